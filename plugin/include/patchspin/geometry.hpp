@@ -1,0 +1,100 @@
+// Patch shapes in the patch frame: origin O (the reference point), x and y in
+// the contact plane, z along the contact normal into the moving body.
+// Disks and convex polygons (rectangles as a helper). O may lie anywhere,
+// inside or outside the patch. Lengths in metres.
+#pragma once
+
+#include <patchspin/types.hpp>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace patchspin {
+
+// Area moments about O.
+struct AreaMoments {
+  double area = 0.0;          // A = ∫ dA                            [m^2]
+  Vec2 first = Vec2::Zero();  // (∫ x dA, ∫ y dA)                    [m^3]
+  double xx = 0.0;            // ∫ x^2 dA                             [m^4]
+  double xy = 0.0;            // ∫ x y dA                             [m^4]
+  double yy = 0.0;            // ∫ y^2 dA                             [m^4]
+
+  // Load matrix of Eq. (94) for p = p0 + cx x + cy y (DESIGN item 2):
+  //   [Pz, Ty, -Tx]^T = G (p0, cx, cy)^T,
+  //   G = [[A, Sx, Sy], [Sx, Ixx, Ixy], [Sy, Ixy, Iyy]].
+  Mat3 loadMatrix() const;
+};
+
+// The integrals behind Eq. (36) for a linear pressure (DESIGN item 1):
+//   m(f, k) = ∫_A f(x,y) phi_k(x,y) dA,
+// f in {1, x, y, r, x/r, y/r} (rows, r = sqrt(x^2+y^2) about O),
+// phi in {1, x, y} (columns). For p = p0 + cx x + cy y every integral of
+// Eq. (36) is m.row(f) * (p0, cx, cy)^T.
+struct MomentTable {
+  enum Row { kOne = 0, kX = 1, kY = 2, kR = 3, kXOverR = 4, kYOverR = 5 };
+  Eigen::Matrix<double, 6, 3> m = Eigen::Matrix<double, 6, 3>::Zero();
+};
+
+class PatchShape {
+ public:
+  enum class Kind { Disk, Polygon };
+
+  // A disk of radius R [m] centred at `centre` (patch frame). Throws Error for
+  // R <= 0 or non-finite input.
+  static PatchShape disk(double radius, const Vec2& centre = Vec2::Zero());
+  // A convex polygon with counter-clockwise vertices in the patch frame.
+  // Throws Error naming the problem for: fewer than 3 vertices, NaN/Inf,
+  // clockwise order, non-convexity, repeated vertices or (near-)zero area.
+  // Collinear interior vertices are removed.
+  static PatchShape polygon(std::vector<Vec2> vertices);
+  // Rectangle lx by ly [m] centred at `centre`, rotated by `angle` [rad] about
+  // its centre; sides along x and y when angle = 0.
+  static PatchShape rectangle(double lx, double ly, const Vec2& centre = Vec2::Zero(),
+                              double angle = 0.0);
+  // Regular n-gon with circumradius [m], first vertex at polar angle `angle`.
+  static PatchShape regularPolygon(int n, double circumradius, const Vec2& centre = Vec2::Zero(),
+                                   double angle = 0.0);
+
+  Kind kind() const { return kind_; }
+  bool isDisk() const { return kind_ == Kind::Disk; }
+  // Disk only (Error otherwise): radius and centre.
+  double radius() const;
+  const Vec2& centre() const;
+  // Polygon only (Error otherwise): counter-clockwise vertices.
+  const std::vector<Vec2>& vertices() const;
+
+  const AreaMoments& areaMoments() const { return moments_; }
+  const MomentTable& momentTable() const { return table_; }
+  double area() const { return moments_.area; }
+  Vec2 centroid() const { return moments_.first / moments_.area; }
+  // rho of Eq. (11) about O: mean distance of the patch from O [m].
+  double defaultRho() const { return table_.m(MomentTable::kR, 0) / moments_.area; }
+  // Largest distance of a patch point from O [m].
+  double maxDistanceFromOrigin() const { return max_distance_; }
+  // Largest distance between two patch points [m].
+  double diameter() const { return diameter_; }
+  // True if (x, y) lies in the closed patch (within `tol` metres).
+  bool contains(const Vec2& point, double tol = 0.0) const;
+
+  // The same shape expressed in a patch frame whose origin is moved to
+  // `newOrigin` (old frame coordinates) and whose axes are rotated by `angle`
+  // [rad]: a point P maps to R(-angle) (P - newOrigin).
+  PatchShape inFrame(const Vec2& newOrigin, double angle) const;
+
+  std::string describe() const;
+
+ private:
+  PatchShape() = default;
+  void finish();
+
+  Kind kind_ = Kind::Disk;
+  double radius_ = 0.0;
+  Vec2 centre_ = Vec2::Zero();
+  std::vector<Vec2> vertices_;
+  AreaMoments moments_;
+  MomentTable table_;
+  double max_distance_ = 0.0;
+  double diameter_ = 0.0;
+};
+
+}  // namespace patchspin

@@ -1,0 +1,42 @@
+// The implicit 3-DOF friction block of one patch (DESIGN item 4), used inside
+// solver iterations and by the reference dynamics.
+//
+// Coordinates are those of the slip state x_o = (u_x, u_y, rho w_z). The
+// friction impulse is lambda = (P_x, P_y, T_z / rho) dt [N s]; applying it
+// changes the slip by K lambda. b is the slip the block would have without its
+// own impulse. With L = mu * (normal impulse) [N s] and the unit law
+// q(w) = Q(w) / (mu Pz):
+//     lambda = L q(w),   w = s / |s|,   s = b + K lambda       (slip)
+//     s = 0, lambda = -K^-1 b inside the friction set L*E        (stick)
+// Ellipsoidal (q = -Pi w), A = L K Pi: stick iff |A^-1 b| <= 1, else
+// w = (r I + A)^-1 b with the scalar r > 0 such that |w| = 1.
+// Exact: the law has maximum dissipation (convex limit set), so the block is
+// the projection of -K^-1 b onto L*E in K's metric; solved as the minimum of
+// the convex slip potential D(s) = 1/2 (s-b)^T K^-1 (s-b) - L min_{q in E} q.s
+// by safeguarded Newton.
+#pragma once
+
+#include <patchspin/models.hpp>
+
+namespace patchspin {
+
+struct FrictionBlockInput {
+  Vec3 b = Vec3::Zero();        // free slip [m/s]
+  Mat3 K = Mat3::Identity();    // slip change per unit impulse, SPD [1/(kg)]
+  double L = 0.0;               // mu * normal impulse [N s], >= 0
+  Vec3 warmSlip = Vec3::Zero(); // previous solution's slip, or zero
+};
+
+struct FrictionBlockResult {
+  Vec3 impulse = Vec3::Zero();  // lambda [N s]
+  Vec3 slip = Vec3::Zero();     // s = b + K lambda [m/s]
+  bool sticking = false;
+  int iterations = 0;
+};
+
+// Solves the block for `patch` (its Pi or its exact law; its Pz only sets the
+// scale of q). Throws Error for non-finite input or a K that is not SPD.
+FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
+                                       const FrictionBlockInput& input);
+
+}  // namespace patchspin
