@@ -1,0 +1,272 @@
+// Exact model, Eq. (16), on a convex polygon with linear pressure basis
+// (1, x, y): see patchspin/internal/exact.hpp for the definitions of F, dF.
+//
+// Two branches, both evaluated in the frame centred at the vertex mean g
+// (P' = P - g), then moved to O:
+//  * near: the ICR c is within kFarRatio circumradii of g. Closed form as a
+//    sum over edges of signed triangles (c, edge), polar about c
+//    (exact_edge_integrals.hpp, DESIGN item 3); derivative via dual numbers
+//    in c and the chain rule through c(w).
+//  * far (includes pure translation w3 = 0): the integrand is analytic on the
+//    polygon, so a tensor Gauss-Legendre rule on a fan of quadrilaterals
+//    (and one triangle for odd vertex counts) from vertex 0, with the order
+//    chosen from the distance ratio; v is computed from w directly.
+#include "exact_edge_integrals.hpp"
+
+#include <patchspin/internal/exact.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace patchspin::internal {
+namespace {
+
+// ICR farther than this many circumradii from g -> quadrature branch. The
+// edge sum loses about kappa^3 eps to cancellation (triangles of area kappa
+// times the polygon's, lever arm kappa); the rule needs fewer nodes for
+// larger kappa. See the branch-switch test for the measured errors.
+constexpr double kFarRatio = 8.0;
+// Default target of the far branch's quadrature error (relative to the scale
+// of F); well below the 1e-10 contract.
+constexpr double kDefaultQuadratureTol = 1e-13;
+// Gauss-Legendre orders available to the far branch.
+constexpr int kMaxOrder = 24;
+// |delta| below this times the edge length is rounding noise of an ICR on the
+// edge's line (e.g. exactly on a vertex).
+constexpr double kDeltaZeroRel = 1e-15;
+// Polygons up to this many vertices are handled without heap allocation.
+constexpr std::size_t kStackVertices = 32;
+
+// Gauss-Legendre rules on [0, 1], orders 1..kMaxOrder, by Newton on P_n.
+struct GaussTables {
+  std::array<std::array<double, kMaxOrder>, kMaxOrder + 1> x{}, w{};
+  GaussTables() {
+    const double pi = std::acos(-1.0);
+    for (int n = 1; n <= kMaxOrder; ++n) {
+      for (int i = 0; i < n; ++i) {
+        double z = std::cos(pi * (i + 0.75) / (n + 0.5));
+        double dp = 1.0;
+        for (int it = 0; it < 100; ++it) {
+          double p0 = 1.0, p1 = 0.0;
+          for (int j = 1; j <= n; ++j) {
+            const double p2 = p1;
+            p1 = p0;
+            p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
+          }
+          dp = n * (z * p0 - p1) / (z * z - 1.0);
+          const double dz = p0 / dp;
+          z -= dz;
+          if (std::abs(dz) < 1e-17) break;
+        }
+        x[n][i] = 0.5 * (1.0 - z);
+        w[n][i] = 1.0 / ((1.0 - z * z) * dp * dp);  // = 2/((1-z^2)P'^2) / 2
+      }
+    }
+  }
+};
+
+const GaussTables& gaussTables() {
+  static const GaussTables tables;
+  return tables;
+}
+
+[[noreturn]] void fail(const std::string& what) { throw Error("exactPolygonBasis: " + what); }
+
+// Accumulated F' (g-frame) and dF'/dw'.
+struct Accumulator {
+  Mat3 F = Mat3::Zero();
+  std::array<Mat3, 3> dF{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};
+};
+
+// ---- far branch ----
+//
+// Quadrilateral (p0, p1, p2, p3) (a triangle when p3 = p0), bilinear map
+//   P(s, t) = (1-s)(1-t) p0 + s(1-t) p1 + s t p2 + (1-s) t p3,  s, t in [0, 1]
+//   dA = det[dP/ds, dP/dt] ds dt  (linear in s, t).
+// At each node, Eq. (1) and the kernel:
+//   v = M w',  M = [[1, 0, -y/rho], [0, 1, x/rho]],  k = M^T v/|v|
+//   dk/dw' = M^T (I - vv^T/|v|^2) M / |v| = m m^T / |v|,  m = M^T perp(v)/|v|.
+template <bool kJacobian>
+void addQuadRule(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, int n,
+                 const Vec3& w, double rho, Accumulator& acc) {
+  const GaussTables& g = gaussTables();
+  const double inv = 1.0 / rho;
+  const Vec2 e01 = p1 - p0, e32 = p2 - p3;
+  for (int i = 0; i < n; ++i) {
+    const double s = g.x[n][i];
+    const Vec2 a = (1.0 - s) * p0 + s * p1, b = (1.0 - s) * p3 + s * p2;
+    const Vec2 dPdt = b - a;
+    for (int j = 0; j < n; ++j) {
+      const double t = g.x[n][j];
+      const Vec2 P = a + t * dPdt;
+      const Vec2 dPds = (1.0 - t) * e01 + t * e32;
+      const double det = dPds.x() * dPdt.y() - dPds.y() * dPdt.x();
+      const double wt = g.w[n][i] * g.w[n][j] * det;
+      const double vx = w.x() - w.z() * P.y() * inv, vy = w.y() + w.z() * P.x() * inv;
+      const double vn = std::sqrt(vx * vx + vy * vy);
+      const double ux = vx / vn, uy = vy / vn;
+      const Vec3 k(ux, uy, (P.x() * uy - P.y() * ux) * inv);
+      const Vec3 phi(wt, wt * P.x(), wt * P.y());
+      acc.F.noalias() += k * phi.transpose();
+      if constexpr (kJacobian) {
+        const Vec3 m(-uy, ux, (P.x() * ux + P.y() * uy) * inv);
+        const Mat3 mm = m * m.transpose() / vn;
+        for (int c = 0; c < 3; ++c) acc.dF[c].noalias() += phi[c] * mm;
+      }
+    }
+  }
+}
+
+template <bool kJacobian>
+void farBranch(const Vec2* v, std::size_t N, const Vec3& w, double rho, int n, Accumulator& acc) {
+  std::size_t i = 1;
+  for (; i + 2 < N; i += 2) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[i + 2], n, w, rho, acc);
+  if (i + 1 < N) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[0], n, w, rho, acc);
+}
+
+// Order n of the far rule for ICR distance ratio kappa = |c'| / Rpoly.
+// Gauss-Legendre on an interval of half-length h with the nearest
+// singularity at distance D converges like beta^(-2n), beta = K + sqrt(K^2-1),
+// K = D/h. A fan piece spans at most 2 Rpoly and c is at least (kappa - 1)
+// Rpoly from it, so K >= kappa - 1 (conservative); kErrorConstant covers the
+// constant in front (checked against the oracle in the tests).
+int farOrder(double kappaSq, double tol) {
+  constexpr double kErrorConstant = 100.0;
+  if (!std::isfinite(kappaSq)) return 2;  // pure translation: k constant, degree-2 integrand
+  const double K = std::sqrt(kappaSq) - 1.0;
+  const double beta = K + std::sqrt(K * K - 1.0);
+  const double n = std::log(kErrorConstant / tol) / (2.0 * std::log(beta));
+  return std::clamp(static_cast<int>(std::ceil(n)), 2, kMaxOrder);
+}
+
+// ---- near branch ----
+template <class T>
+void nearBranch(const Vec2* v, std::size_t N, const T& cx, const T& cy, double deltaZeroRel,
+                EdgeSums<T>& sums) {
+  using std::sqrt;
+  for (int k = 0; k < 3; ++k) sums.fx[k] = sums.fy[k] = sums.tz[k] = T(0.0);
+  auto dist = [&](const Vec2& p) {
+    const T dx = p.x() - cx, dy = p.y() - cy;
+    return sqrt(dx * dx + dy * dy);
+  };
+  const T R0 = dist(v[0]);
+  T Ra = R0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const Vec2& a = v[i];
+    const Vec2& b = v[i + 1 == N ? 0 : i + 1];
+    const T Rb = i + 1 == N ? R0 : dist(b);
+    const double L = (b - a).norm();
+    addSignedTriangle(a.x(), a.y(), b.x(), b.y(), cx, cy, Ra, Rb, deltaZeroRel * L, sums);
+    Ra = Rb;
+  }
+}
+
+}  // namespace
+
+void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
+                       bool wantJacobian, ExactBasis& out, double tolerance) {
+  const std::size_t N = vertices.size();
+  if (N < 3) fail("need at least 3 vertices, got " + std::to_string(N));
+  if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
+  if (!w.allFinite() || w.squaredNorm() == 0.0) fail("w must be finite and nonzero");
+  if (!(tolerance >= 0.0)) fail("tolerance must be >= 0");
+
+  // centre frame: P' = P - g, w' = S w (Eq. (1) about g)
+  Vec2 g = Vec2::Zero();
+  for (const Vec2& p : vertices) {
+    if (!p.allFinite()) fail("vertices must be finite");
+    g += p;
+  }
+  g /= static_cast<double>(N);
+  // vertices in the g-frame; no allocation up to kStackVertices
+  std::array<Vec2, kStackVertices> stackBuffer;
+  std::vector<Vec2> heapBuffer;
+  if (N > kStackVertices) heapBuffer.resize(N);
+  Vec2* local = N > kStackVertices ? heapBuffer.data() : stackBuffer.data();
+  double radiusSq = 0.0, twiceArea = 0.0;
+  for (std::size_t i = 0; i < N; ++i) {
+    local[i] = vertices[i] - g;
+    radiusSq = std::max(radiusSq, local[i].squaredNorm());
+  }
+  for (std::size_t i = 0; i < N; ++i) {
+    const Vec2& a = local[i];
+    const Vec2& b = local[(i + 1) % N];
+    twiceArea += a.x() * b.y() - a.y() * b.x();
+  }
+  if (!(twiceArea > 0.0)) fail("polygon must be counter-clockwise with positive area");
+
+  // S = [[1,0,-gy/rho],[0,1,gx/rho],[0,0,1]], w' = S w; c' = rho (-w'2, w'1) / w3
+  Mat3 S = Mat3::Identity();
+  S(0, 2) = -g.y() / rho;
+  S(1, 2) = g.x() / rho;
+  const Vec3 wl = S * w;
+  const double planarSq = rho * rho * (wl.x() * wl.x() + wl.y() * wl.y());
+  // kappa^2 = |c'|^2 / Rpoly^2, written without dividing by w3
+  const double w3Sq = wl.z() * wl.z();
+  const bool far = planarSq > kFarRatio * kFarRatio * radiusSq * w3Sq;
+
+  Accumulator acc;
+  if (far) {
+    const double kappaSq = w3Sq > 0.0 ? planarSq / (radiusSq * w3Sq) : INFINITY;
+    const double tol = tolerance > 0.0 ? std::max(tolerance, 1e-15) : kDefaultQuadratureTol;
+    const int n = farOrder(kappaSq, tol);
+    if (wantJacobian) {
+      farBranch<true>(local, N, wl, rho, n, acc);
+    } else {
+      farBranch<false>(local, N, wl, rho, n, acc);
+    }
+  } else {
+    const double sgn = wl.z() > 0.0 ? 1.0 : -1.0;
+    const double cx = -rho * wl.y() / wl.z(), cy = rho * wl.x() / wl.z();
+    if (wantJacobian) {
+      EdgeSums<Dual2> sums;
+      nearBranch(local, N, Dual2(cx, 1.0, 0.0), Dual2(cy, 0.0, 1.0), kDeltaZeroRel, sums);
+      // dc'/dw' = (rho/w3) [[0, -1, w2/w3], [1, 0, -w1/w3]]
+      Eigen::Matrix<double, 2, 3> dc;
+      dc << 0.0, -1.0, wl.y() / wl.z(), 1.0, 0.0, -wl.x() / wl.z();
+      dc *= rho / wl.z();
+      for (int k = 0; k < 3; ++k) {
+        const double scale[3] = {sgn, sgn, sgn / rho};
+        const Dual2* comp[3] = {&sums.fx[k], &sums.fy[k], &sums.tz[k]};
+        Eigen::Matrix<double, 3, 2> dFdc;
+        for (int r = 0; r < 3; ++r) {
+          acc.F(r, k) = scale[r] * comp[r]->v;
+          dFdc(r, 0) = scale[r] * comp[r]->d0;
+          dFdc(r, 1) = scale[r] * comp[r]->d1;
+        }
+        acc.dF[k] = dFdc * dc;
+      }
+    } else {
+      EdgeSums<double> sums;
+      nearBranch(local, N, cx, cy, kDeltaZeroRel, sums);
+      for (int k = 0; k < 3; ++k) {
+        acc.F(0, k) = sgn * sums.fx[k];
+        acc.F(1, k) = sgn * sums.fy[k];
+        acc.F(2, k) = sgn * sums.tz[k] / rho;
+      }
+    }
+  }
+
+  // back to O: phi = (1, gx + x', gy + y'), torque about O = T k', T = S^T
+  //   F.col(0) = T F'.col(0),  F.col(1) = T (gx F'.col(0) + F'.col(1)), ...
+  //   dF[k] = T dF'[k] S   (chain rule through w' = S w)
+  const Mat3 T = S.transpose();
+  Mat3 Fm = acc.F;
+  Fm.col(1) += g.x() * acc.F.col(0);
+  Fm.col(2) += g.y() * acc.F.col(0);
+  out.F.noalias() = T * Fm;
+  if (wantJacobian) {
+    const Mat3 d0 = acc.dF[0];
+    const Mat3 d1 = acc.dF[1] + g.x() * d0;
+    const Mat3 d2 = acc.dF[2] + g.y() * d0;
+    out.dF[0].noalias() = T * d0 * S;
+    out.dF[1].noalias() = T * d1 * S;
+    out.dF[2].noalias() = T * d2 * S;
+  } else {
+    for (Mat3& m : out.dF) m.setZero();
+  }
+}
+
+}  // namespace patchspin::internal
