@@ -64,6 +64,8 @@ class PatchShape {
   const std::vector<Vec2>& vertices() const;
 
   const AreaMoments& areaMoments() const { return moments_; }
+  // Inverse of AreaMoments::loadMatrix(), cached (Eq. (94) solved per call).
+  const Mat3& loadMatrixInverse() const { return load_inverse_; }
   const MomentTable& momentTable() const { return table_; }
   double area() const { return moments_.area; }
   Vec2 centroid() const { return moments_.first / moments_.area; }
@@ -93,6 +95,7 @@ class PatchShape {
   std::vector<Vec2> vertices_;
   AreaMoments moments_;
   MomentTable table_;
+  Mat3 load_inverse_ = Mat3::Identity();
   double max_distance_ = 0.0;
   double diameter_ = 0.0;
 };

@@ -64,12 +64,18 @@ class FrictionPatch {
     return model == Model::Ellipsoidal ? ellipsoidalQ(w, jacobian) : exactQ(w, jacobian);
   }
 
+  // The law for unit mu Pz: q(w) = Q(w) / (mu Pz), defined also for mu = 0.
+  // Used by the friction block (step.hpp), whose impulse is L q(w).
+  Vec3 unitQ(Model model, const Vec3& w, Mat3* jacobian = nullptr) const;
+
   // Friction wrench for a slip state x_o = (u_x, u_y, rho w_z). At x_o = 0 the
   // law is set-valued (sticking): returns std::nullopt, never NaN; the
   // sticking wrench is the solver's business (see step.hpp).
   std::optional<Vec3> QofSlip(Model model, const Vec3& x_o) const;
 
  private:
+  Vec3 exactScaled(double scale, const Vec3& w, Mat3* jacobian, double tolerance) const;
+
   PatchShape shape_;
   LinearPressure pressure_;
   bool hertz_ = false;

@@ -1,0 +1,368 @@
+// Patch shapes, area moments, rho (11) and the moment table of Eq. (36).
+//
+// The moment table is computed here by its own method (closed-form edge
+// integrals for polygons, adaptive quadrature in polar coordinates about O
+// for disks), independently of the exact model's code; the tests compare the
+// two (pure spin about O, Eq. (39)).
+#include <patchspin/geometry.hpp>
+
+#include "quadrature.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace patchspin {
+
+using internal::formatDouble;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// asinh(u) - asinh(v) without cancellation when u and v share a sign:
+//   asinh(u) - asinh(v) = asinh((u - v)(u + v) / (u sqrt(1+v^2) + v sqrt(1+u^2)))  (u, v > 0)
+double asinhDifference(double u, double v) {
+  if (u > 0.0 && v > 0.0) {
+    const double den = u * std::sqrt(1.0 + v * v) + v * std::sqrt(1.0 + u * u);
+    return std::asinh((u - v) * (u + v) / den);
+  }
+  if (u < 0.0 && v < 0.0) return -asinhDifference(-u, -v);
+  return std::asinh(u) - std::asinh(v);
+}
+
+// Moment table of a convex polygon about O (the origin).
+//
+// Signed triangles (O, a, b) over the edges. For g homogeneous of degree k,
+//   ∫_tri g dA = cross(a, b) / (k + 2) ∫_0^1 g(a + t (b - a)) dt.
+// Along the edge e(tau) = F + tau t^ (F the foot point of O, d = |F|,
+// r = sqrt(tau^2 + d^2), dt = dtau / L) the needed 1-D integrals are
+//   Jm0 = ∫ 1/r = asinh(tau/d)      Jm1 = ∫ tau/r = r
+//   Jm2 = ∫ tau^2/r = (tau r - d^2 asinh(tau/d)) / 2
+//   J10 = ∫ r = (tau r + d^2 asinh(tau/d)) / 2      J11 = ∫ tau r = r^3 / 3.
+MomentTable polygonMomentTable(const std::vector<Vec2>& v) {
+  MomentTable table;
+  auto& m = table.m;
+  const std::size_t n = v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& a = v[i];
+    const Vec2& b = v[(i + 1) % n];
+    const double c = cross(a, b);
+    // polynomial rows: exact triangle formulas
+    m(MomentTable::kOne, 0) += c / 2.0;
+    m(MomentTable::kOne, 1) += c / 6.0 * (a.x() + b.x());
+    m(MomentTable::kOne, 2) += c / 6.0 * (a.y() + b.y());
+    const double xx = c / 12.0 * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x());
+    const double yy = c / 12.0 * (a.y() * a.y() + a.y() * b.y() + b.y() * b.y());
+    const double xy =
+        c / 24.0 * (2.0 * a.x() * a.y() + a.x() * b.y() + b.x() * a.y() + 2.0 * b.x() * b.y());
+    m(MomentTable::kX, 0) += c / 6.0 * (a.x() + b.x());
+    m(MomentTable::kX, 1) += xx;
+    m(MomentTable::kX, 2) += xy;
+    m(MomentTable::kY, 0) += c / 6.0 * (a.y() + b.y());
+    m(MomentTable::kY, 1) += xy;
+    m(MomentTable::kY, 2) += yy;
+    if (c == 0.0) continue;  // O on the edge line: zero-area triangle
+
+    // rows with r: closed-form edge integrals
+    const Vec2 e = b - a;
+    const double L = e.norm();
+    const Vec2 t = e / L;
+    const double ta = a.dot(t), tb = b.dot(t);
+    const Vec2 F = a - ta * t;
+    const double d = std::abs(c) / L;
+    const double ra = std::hypot(ta, d), rb = std::hypot(tb, d);
+    const double jm0 = asinhDifference(tb / d, ta / d);
+    const double jm1 = rb - ra;
+    const double trDiff = tb * rb - ta * ra;
+    const double jm2 = 0.5 * (trDiff - d * d * jm0);
+    const double j10 = 0.5 * (trDiff + d * d * jm0);
+    const double j11 = (rb * rb * rb - ra * ra * ra) / 3.0;
+    const double s0 = c / (2.0 * L);  // degree 0: cross / (0 + 2), and 1/L from dt
+    const double s1 = c / (3.0 * L);  // degree 1
+    const double s2 = c / (4.0 * L);  // degree 2
+    const double fx = F.x(), fy = F.y(), tx = t.x(), ty = t.y();
+    // r * {1, x, y}
+    m(MomentTable::kR, 0) += s1 * j10;
+    m(MomentTable::kR, 1) += s2 * (fx * j10 + tx * j11);
+    m(MomentTable::kR, 2) += s2 * (fy * j10 + ty * j11);
+    // x/r * {1, x, y}, y/r * {1, x, y}
+    const double xOverR = fx * jm0 + tx * jm1;
+    const double yOverR = fy * jm0 + ty * jm1;
+    const double xxOverR = fx * fx * jm0 + 2.0 * fx * tx * jm1 + tx * tx * jm2;
+    const double yyOverR = fy * fy * jm0 + 2.0 * fy * ty * jm1 + ty * ty * jm2;
+    const double xyOverR = fx * fy * jm0 + (fx * ty + fy * tx) * jm1 + tx * ty * jm2;
+    m(MomentTable::kXOverR, 0) += s0 * xOverR;
+    m(MomentTable::kXOverR, 1) += s1 * xxOverR;
+    m(MomentTable::kXOverR, 2) += s1 * xyOverR;
+    m(MomentTable::kYOverR, 0) += s0 * yOverR;
+    m(MomentTable::kYOverR, 1) += s1 * xyOverR;
+    m(MomentTable::kYOverR, 2) += s1 * yyOverR;
+  }
+  return table;
+}
+
+// Moment table of a disk (centre C, radius R) about O, in polar coordinates
+// (s, alpha) about O. For an integrand s^k T(alpha) the radial integral is
+//   ∫_{s1}^{s2} s^k s ds = (s2^{k+2} - s1^{k+2}) / (k + 2),
+// with the ray/circle intersections s = delta cos(phi) +- sqrt(R^2 - delta^2 sin^2 phi),
+// phi = alpha - beta, (delta, beta) the polar coordinates of C.
+MomentTable diskMomentTable(const Vec2& centre, double R) {
+  MomentTable table;
+  auto& m = table.m;
+  const double A = kPi * R * R;
+  const double cx = centre.x(), cy = centre.y();
+  m(MomentTable::kOne, 0) = A;
+  m(MomentTable::kOne, 1) = m(MomentTable::kX, 0) = A * cx;
+  m(MomentTable::kOne, 2) = m(MomentTable::kY, 0) = A * cy;
+  m(MomentTable::kX, 1) = A * (cx * cx + R * R / 4.0);
+  m(MomentTable::kX, 2) = m(MomentTable::kY, 1) = A * cx * cy;
+  m(MomentTable::kY, 2) = A * (cy * cy + R * R / 4.0);
+
+  const double delta = centre.norm();
+  const double beta = std::atan2(cy, cx);
+  using V8 = Eigen::Matrix<double, 8, 1>;
+  // entries: r, r x, r y, x/r, x^2/r, xy/r, y/r, y^2/r (with their s-powers)
+  auto angular = [&](double alpha, double s1, double s2) {
+    const double ca = std::cos(alpha), sa = std::sin(alpha);
+    const double d2 = (s2 * s2 - s1 * s1) / 2.0;              // k = 0
+    const double d3 = (s2 * s2 * s2 - s1 * s1 * s1) / 3.0;    // k = 1
+    const double s22 = s2 * s2, s12 = s1 * s1;
+    const double d4 = (s22 * s22 - s12 * s12) / 4.0;          // k = 2
+    V8 out;
+    out << d3, d4 * ca, d4 * sa, d2 * ca, d3 * ca * ca, d3 * ca * sa, d2 * sa, d3 * sa * sa;
+    return out;
+  };
+  constexpr double kRelTol = 1e-15;
+  V8 sum = V8::Zero();
+  if (delta < R) {
+    // O inside: s from 0 to delta cos(phi) + S(phi), phi over the full turn;
+    // S is smallest (near-singular as delta -> R) at phi = +-pi/2: break there.
+    auto f = [&](double phi) {
+      const double sp = std::sin(phi);
+      const double S = std::sqrt(std::max(0.0, R * R - delta * delta * sp * sp));
+      return angular(beta + phi, 0.0, delta * std::cos(phi) + S);
+    };
+    const double breaks[4] = {-kPi, -kPi / 2.0, kPi / 2.0, kPi};
+    for (int i = 0; i < 3; ++i)
+      sum += internal::adaptiveGauss<8>(f, breaks[i], breaks[i + 1], kRelTol);
+  } else {
+    // O on or outside the rim: sin(phi) = k sin(psi), k = R / delta, removes
+    // the square-root end singularities; dphi = k cos(psi) / cos(phi) dpsi.
+    const double k = R / delta;
+    auto f = [&](double psi) {
+      const double sphi = k * std::sin(psi);
+      const double cphi = std::sqrt(std::max(0.0, 1.0 - sphi * sphi));
+      const double S = R * std::cos(psi);
+      const double jac = cphi > 0.0 ? k * std::cos(psi) / cphi : 1.0;
+      const double phi = std::asin(sphi);
+      return V8(jac * angular(beta + phi, delta * cphi - S, delta * cphi + S));
+    };
+    sum += internal::adaptiveGauss<8>(f, -kPi / 2.0, 0.0, kRelTol);
+    sum += internal::adaptiveGauss<8>(f, 0.0, kPi / 2.0, kRelTol);
+  }
+  m(MomentTable::kR, 0) = sum[0];
+  m(MomentTable::kR, 1) = sum[1];
+  m(MomentTable::kR, 2) = sum[2];
+  m(MomentTable::kXOverR, 0) = sum[3];
+  m(MomentTable::kXOverR, 1) = sum[4];
+  m(MomentTable::kXOverR, 2) = sum[5];
+  m(MomentTable::kYOverR, 0) = sum[6];
+  m(MomentTable::kYOverR, 1) = sum[5];
+  m(MomentTable::kYOverR, 2) = sum[7];
+  return table;
+}
+
+}  // namespace
+
+Mat3 AreaMoments::loadMatrix() const {
+  Mat3 G;
+  G << area, first.x(), first.y(),  //
+      first.x(), xx, xy,            //
+      first.y(), xy, yy;
+  return G;
+}
+
+PatchShape PatchShape::disk(double radius, const Vec2& centre) {
+  internal::requirePositive(radius, "disk radius R");
+  internal::requireFinite(centre, "disk centre");
+  PatchShape shape;
+  shape.kind_ = Kind::Disk;
+  shape.radius_ = radius;
+  shape.centre_ = centre;
+  shape.finish();
+  return shape;
+}
+
+PatchShape PatchShape::polygon(std::vector<Vec2> vertices) {
+  if (vertices.size() < 3) {
+    throw Error("polygon needs at least 3 vertices: got " + std::to_string(vertices.size()));
+  }
+  double scale = 0.0;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    internal::requireFinite(vertices[i], ("polygon vertex " + std::to_string(i)).c_str());
+    scale = std::max(scale, vertices[i].cwiseAbs().maxCoeff());
+  }
+  // repeated vertices
+  const double kSameVertex = 1e-12 * std::max(scale, 1e-300);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const std::size_t j = (i + 1) % vertices.size();
+    if ((vertices[i] - vertices[j]).norm() <= kSameVertex) {
+      throw Error("polygon has repeated vertex " + std::to_string(j) + " (same as vertex " +
+                  std::to_string(i) + ")");
+    }
+  }
+  // signed area (clockwise / zero area)
+  double twiceArea = 0.0;
+  double diameter = 0.0;
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    twiceArea += cross(vertices[i], vertices[(i + 1) % vertices.size()]);
+    for (const Vec2& u : vertices) diameter = std::max(diameter, (u - vertices[i]).norm());
+  }
+  // relative zero-area threshold: area below 1e-12 of the diameter squared
+  if (std::abs(twiceArea) <= 2e-12 * diameter * diameter) {
+    throw Error("polygon has zero area (degenerate or collinear vertices)");
+  }
+  if (twiceArea < 0.0) {
+    throw Error("polygon vertices are clockwise: give them counter-clockwise");
+  }
+  // drop collinear vertices, then require strictly left turns (convexity)
+  const double kCollinear = 1e-12;
+  std::vector<Vec2> kept;
+  const std::size_t n = vertices.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& prev = vertices[(i + n - 1) % n];
+    const Vec2& cur = vertices[i];
+    const Vec2& next = vertices[(i + 1) % n];
+    const Vec2 e1 = cur - prev, e2 = next - cur;
+    const double turn = cross(e1, e2) / (e1.norm() * e2.norm());
+    if (std::abs(turn) <= kCollinear && e1.dot(e2) > 0.0) continue;  // collinear, straight on
+    if (turn <= kCollinear) {
+      throw Error("polygon is not convex (turns right or folds back at vertex " +
+                  std::to_string(i) + ")");
+    }
+    kept.push_back(cur);
+  }
+  // all left turns: the total turning must be one full turn (rules out stars)
+  double turning = 0.0;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const Vec2 e1 = kept[i] - kept[(i + kept.size() - 1) % kept.size()];
+    const Vec2 e2 = kept[(i + 1) % kept.size()] - kept[i];
+    turning += std::atan2(cross(e1, e2), e1.dot(e2));
+  }
+  if (kept.size() < 3 || std::abs(turning - 2.0 * kPi) > 1e-6) {
+    throw Error("polygon is not convex (self-intersecting, total turning " +
+                formatDouble(turning / (2.0 * kPi)) + " turns)");
+  }
+  PatchShape shape;
+  shape.kind_ = Kind::Polygon;
+  shape.vertices_ = std::move(kept);
+  shape.finish();
+  return shape;
+}
+
+PatchShape PatchShape::rectangle(double lx, double ly, const Vec2& centre, double angle) {
+  internal::requirePositive(lx, "rectangle side LX");
+  internal::requirePositive(ly, "rectangle side LY");
+  internal::requireFinite(centre, "rectangle centre");
+  internal::requireFinite(angle, "rectangle angle");
+  const double c = std::cos(angle), s = std::sin(angle);
+  std::vector<Vec2> v;
+  const double hx = lx / 2.0, hy = ly / 2.0;
+  for (const Vec2& corner : {Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(hx, hy), Vec2(-hx, hy)}) {
+    v.emplace_back(centre.x() + c * corner.x() - s * corner.y(),
+                   centre.y() + s * corner.x() + c * corner.y());
+  }
+  return polygon(std::move(v));
+}
+
+PatchShape PatchShape::regularPolygon(int n, double circumradius, const Vec2& centre, double angle) {
+  if (n < 3) throw Error("regular polygon needs n >= 3: got " + std::to_string(n));
+  internal::requirePositive(circumradius, "regular polygon circumradius");
+  std::vector<Vec2> v;
+  for (int i = 0; i < n; ++i) {
+    const double a = angle + 2.0 * kPi * i / n;
+    v.emplace_back(centre.x() + circumradius * std::cos(a), centre.y() + circumradius * std::sin(a));
+  }
+  return polygon(std::move(v));
+}
+
+double PatchShape::radius() const {
+  if (kind_ != Kind::Disk) throw Error("radius() asked of a polygon patch");
+  return radius_;
+}
+
+const Vec2& PatchShape::centre() const {
+  if (kind_ != Kind::Disk) throw Error("centre() asked of a polygon patch");
+  return centre_;
+}
+
+const std::vector<Vec2>& PatchShape::vertices() const {
+  if (kind_ != Kind::Polygon) throw Error("vertices() asked of a disk patch");
+  return vertices_;
+}
+
+void PatchShape::finish() {
+  if (kind_ == Kind::Disk) {
+    table_ = diskMomentTable(centre_, radius_);
+    max_distance_ = centre_.norm() + radius_;
+    diameter_ = 2.0 * radius_;
+  } else {
+    table_ = polygonMomentTable(vertices_);
+    max_distance_ = 0.0;
+    diameter_ = 0.0;
+    for (const Vec2& v : vertices_) {
+      max_distance_ = std::max(max_distance_, v.norm());
+      for (const Vec2& u : vertices_) diameter_ = std::max(diameter_, (u - v).norm());
+    }
+  }
+  const auto& m = table_.m;
+  moments_.area = m(MomentTable::kOne, 0);
+  moments_.first = Vec2(m(MomentTable::kOne, 1), m(MomentTable::kOne, 2));
+  moments_.xx = m(MomentTable::kX, 1);
+  moments_.xy = m(MomentTable::kX, 2);
+  moments_.yy = m(MomentTable::kY, 2);
+  // G is SPD for any patch of positive area (Gram matrix of 1, x, y)
+  load_inverse_ = moments_.loadMatrix().inverse();
+}
+
+bool PatchShape::contains(const Vec2& point, double tol) const {
+  if (kind_ == Kind::Disk) return (point - centre_).norm() <= radius_ + tol;
+  const std::size_t n = vertices_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 e = vertices_[(i + 1) % n] - vertices_[i];
+    if (cross(e, point - vertices_[i]) < -tol * e.norm()) return false;
+  }
+  return true;
+}
+
+PatchShape PatchShape::inFrame(const Vec2& newOrigin, double angle) const {
+  internal::requireFinite(newOrigin, "new origin");
+  internal::requireFinite(angle, "frame angle");
+  const double c = std::cos(angle), s = std::sin(angle);
+  auto map = [&](const Vec2& p) {
+    const Vec2 q = p - newOrigin;
+    return Vec2(c * q.x() + s * q.y(), -s * q.x() + c * q.y());
+  };
+  if (kind_ == Kind::Disk) return disk(radius_, map(centre_));
+  std::vector<Vec2> v;
+  for (const Vec2& p : vertices_) v.push_back(map(p));
+  return polygon(std::move(v));
+}
+
+std::string PatchShape::describe() const {
+  std::ostringstream out;
+  if (kind_ == Kind::Disk) {
+    out << "disk R=" << radius_ << " m centred at (" << centre_.x() << ", " << centre_.y() << ")";
+  } else {
+    out << vertices_.size() << "-gon";
+  }
+  out << ", area " << moments_.area << " m^2, rho(11) " << defaultRho() << " m";
+  return out.str();
+}
+
+}  // namespace patchspin

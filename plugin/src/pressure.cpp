@@ -1,0 +1,206 @@
+// Linear pressure from loads, Eq. (94); admissible loads (DESIGN item 2);
+// Pi of Eq. (36), (40) from the moment table (DESIGN item 1).
+#include <patchspin/internal/exact.hpp>
+#include <patchspin/pressure.hpp>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace patchspin {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void requireFiniteLoads(const PatchLoads& loads) {
+  internal::requireFinite(loads.Pz, "normal force Pz");
+  internal::requireFinite(loads.Tx, "tipping torque Tx");
+  internal::requireFinite(loads.Ty, "tipping torque Ty");
+}
+
+// (Pz, Tx, Ty) <-> the right-hand side (Pz, Ty, -Tx) of Eq. (94).
+Vec3 loadsToRhs(const PatchLoads& l) { return Vec3(l.Pz, l.Ty, -l.Tx); }
+PatchLoads rhsToLoads(const Vec3& r) { return PatchLoads{r[0], -r[2], r[1]}; }
+
+}  // namespace
+
+LinearPressure LinearPressure::fromLoads(const PatchShape& shape, const PatchLoads& loads) {
+  requireFiniteLoads(loads);
+  // Eq. (94): [Pz, Ty, -Tx] = G (p0, cx, cy)
+  const Vec3 c = shape.loadMatrixInverse() * loadsToRhs(loads);
+  return LinearPressure{c[0], c[1], c[2]};
+}
+
+LinearPressure LinearPressure::uniform(const PatchShape& shape, double Pz) {
+  internal::requireFinite(Pz, "normal force Pz");
+  return LinearPressure{Pz / shape.area(), 0.0, 0.0};
+}
+
+PatchLoads loadsOf(const PatchShape& shape, const LinearPressure& p) {
+  return rhsToLoads(shape.areaMoments().loadMatrix() * p.coefficients());
+}
+
+double minPressure(const PatchShape& shape, const LinearPressure& p) {
+  if (shape.isDisk()) {
+    // min over the disk of an affine function: p(C) - R |grad p|
+    return p.at(shape.centre()) - shape.radius() * std::hypot(p.cx, p.cy);
+  }
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Vec2& v : shape.vertices()) lowest = std::min(lowest, p.at(v));
+  return lowest;
+}
+
+bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTol) {
+  requireFiniteLoads(loads);
+  if (loads.Pz < 0.0) return false;
+  const LinearPressure p = LinearPressure::fromLoads(shape, loads);
+  return minPressure(shape, p) >= -relTol * loads.Pz / shape.area();
+}
+
+// Projection onto the admissible set in scaled load coordinates
+//   l~ = (Pz, Tx / rho, Ty / rho) = M (p0, cx, cy).
+// Polygons: the set is the polyhedral cone {a_i . l~ >= 0}, a_i = M^-T (1, x_i, y_i);
+// the projection is the nearest feasible candidate over the active sets of
+// size 0, 1 and 2 (faces, edges) and the apex 0.
+// Disks: the cone {z0 >= R |(z1, z2)|}, z = (p(C), cx, cy); the boundary is
+// the rays t (1, cos th / R, sin th / R) (in z), and the projection maximises
+// (N u . y)^2 / |N u|^2 over th (sampled, then golden-section refined).
+PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loads, double rho) {
+  requireFiniteLoads(loads);
+  internal::requirePositive(rho, "length scale rho");
+  if (isAdmissible(shape, loads, 0.0)) return loads;
+  // M maps pressure coefficients to scaled loads
+  const Mat3 G = shape.areaMoments().loadMatrix();
+  Mat3 P;  // (Pz, Ty, -Tx) -> (Pz, Tx/rho, Ty/rho)
+  P << 1.0, 0.0, 0.0,       //
+      0.0, 0.0, -1.0 / rho,  //
+      0.0, 1.0 / rho, 0.0;
+  const Mat3 M = P * G;
+  const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
+  auto toLoads = [&](const Vec3& l) { return PatchLoads{l[0], l[1] * rho, l[2] * rho}; };
+
+  if (!shape.isDisk()) {
+    const Mat3 Minv = M.inverse();
+    std::vector<Vec3> a;
+    for (const Vec2& v : shape.vertices()) a.push_back(Minv.transpose() * Vec3(1.0, v.x(), v.y()));
+    // feasibility with a small relative slack for round-off
+    auto feasible = [&](const Vec3& l) {
+      const double scale = l.norm();
+      for (const Vec3& ai : a)
+        if (ai.dot(l) < -1e-12 * ai.norm() * scale) return false;
+      return true;
+    };
+    Vec3 best = Vec3::Zero();
+    double bestDist = y.norm();
+    auto consider = [&](const Vec3& l) {
+      const double dist = (l - y).norm();
+      if (dist < bestDist && feasible(l)) {
+        bestDist = dist;
+        best = l;
+      }
+    };
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      consider(y - a[i].dot(y) / a[i].squaredNorm() * a[i]);
+      for (std::size_t j = i + 1; j < a.size(); ++j) {
+        const Vec3 d = a[i].cross(a[j]);
+        if (d.norm() <= 1e-14 * a[i].norm() * a[j].norm()) continue;
+        const Vec3 u = d.normalized();
+        consider(u.dot(y) * u);
+      }
+    }
+    return toLoads(best);
+  }
+
+  // disk: z = T pi with z = (p(C), cx, cy)
+  const Vec2 C = shape.centre();
+  const double R = shape.radius();
+  Mat3 T;
+  T << 1.0, C.x(), C.y(),  //
+      0.0, 1.0, 0.0,       //
+      0.0, 0.0, 1.0;
+  const Mat3 N = M * T.inverse();
+  auto gain = [&](double th) {
+    const Vec3 u(1.0, std::cos(th) / R, std::sin(th) / R);
+    const Vec3 Nu = N * u;
+    const double proj = Nu.dot(y);
+    return proj > 0.0 ? proj * proj / Nu.squaredNorm() : 0.0;
+  };
+  constexpr int kSamples = 256;
+  int bestIndex = 0;
+  double bestGain = -1.0;
+  for (int i = 0; i < kSamples; ++i) {
+    const double g = gain(2.0 * kPi * i / kSamples);
+    if (g > bestGain) {
+      bestGain = g;
+      bestIndex = i;
+    }
+  }
+  // golden-section refinement on the bracketing samples
+  double lo = 2.0 * kPi * (bestIndex - 1) / kSamples, hi = 2.0 * kPi * (bestIndex + 1) / kSamples;
+  const double invPhi = (std::sqrt(5.0) - 1.0) / 2.0;
+  double x1 = hi - invPhi * (hi - lo), x2 = lo + invPhi * (hi - lo);
+  double g1 = gain(x1), g2 = gain(x2);
+  for (int it = 0; it < 80; ++it) {
+    if (g1 > g2) {
+      hi = x2, x2 = x1, g2 = g1, x1 = hi - invPhi * (hi - lo), g1 = gain(x1);
+    } else {
+      lo = x1, x1 = x2, g1 = g2, x2 = lo + invPhi * (hi - lo), g2 = gain(x2);
+    }
+  }
+  const double th = 0.5 * (lo + hi);
+  const Vec3 u(1.0, std::cos(th) / R, std::sin(th) / R);
+  const Vec3 Nu = N * u;
+  const double t = std::max(0.0, Nu.dot(y) / Nu.squaredNorm());
+  return toLoads(t * Nu);
+}
+
+PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
+  // every integral of Eq. (36) is m.row(f) (p0, cx, cy) (DESIGN item 1)
+  const Eigen::Matrix<double, 6, 1> v = shape.momentTable().m * pressure.coefficients();
+  PiMoments out;
+  out.Pz = v[MomentTable::kOne];
+  if (!(out.Pz > 0.0)) {
+    throw Error("pressure carries no positive normal force: Pz = " +
+                internal::formatDouble(out.Pz) + " N");
+  }
+  const double inv = 1.0 / out.Pz;
+  out.pi_x = v[MomentTable::kX] * inv;
+  out.pi_y = v[MomentTable::kY] * inv;
+  out.pi_xy = v[MomentTable::kR] * inv;
+  out.pi_x0 = v[MomentTable::kXOverR] * inv;
+  out.pi_y0 = v[MomentTable::kYOverR] * inv;
+  return out;
+}
+
+Mat3 ellipsoidalPi(const PiMoments& m, double rho) {
+  // Eq. (40) without the factor -mu Pz
+  Mat3 Pi;
+  Pi << 1.0, 0.0, -m.pi_y0,  //
+      0.0, 1.0, m.pi_x0,     //
+      -m.pi_y / rho, m.pi_x / rho, m.pi_xy / rho;
+  return Pi;
+}
+
+PiMoments piMomentsHertz(const PatchShape& disk, const HertzPressure& pressure) {
+  if (!disk.isDisk()) throw Error("Hertz pressure (57) is defined on disks only");
+  internal::requirePositive(pressure.Pz, "Hertz normal force Pz");
+  // axisymmetric about the centre C: pi_x, pi_y = C. The pure-spin friction of
+  // the unit-load Hertz pressure about O gives the rest, Eq. (39):
+  //   ∫ p1 (-y/r, x/r, r/rho) dA = (-pi_y0, pi_x0, pi_xy / rho)
+  const double rho = 1.0;
+  const Vec3 spin =
+      internal::exactDiskHertz(disk.centre(), disk.radius(), rho, Vec3(0.0, 0.0, 1.0), nullptr);
+  PiMoments out;
+  out.Pz = pressure.Pz;
+  out.pi_x = disk.centre().x();
+  out.pi_y = disk.centre().y();
+  out.pi_y0 = -spin[0];
+  out.pi_x0 = spin[1];
+  out.pi_xy = spin[2] * rho;
+  return out;
+}
+
+}  // namespace patchspin
