@@ -1,0 +1,177 @@
+// Tests of the implicit friction block (step.hpp, DESIGN item 4), each against
+// a computation that does not use the solver: closed forms for isotropic
+// cases, the defining relations, the projection optimality inequality of the
+// maximum-dissipation law, and the energy balance.
+#include <patchspin/step.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace patchspin {
+namespace {
+
+// Round-off of a few 3x3 solves on O(1) numbers, amplified by at most ~100.
+constexpr double kSolveTol = 1e-12;
+
+Mat3 randomSpd(std::mt19937& rng, double lo, double hi) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), e(lo, hi);
+  Mat3 A;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) A(i, j) = u(rng);
+  const Eigen::HouseholderQR<Mat3> qr(A);
+  const Mat3 Qm = qr.householderQ();
+  return Qm * Vec3(e(rng), e(rng), e(rng)).asDiagonal() * Qm.transpose();
+}
+
+Vec3 randomUnit(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  return Vec3(n(rng), n(rng), n(rng)).normalized();
+}
+
+FrictionPatch tiltedDisk() {
+  const PatchShape disk = PatchShape::disk(0.05);
+  return FrictionPatch(disk, LinearPressure::fromLoads(disk, {10.0, 0.06, -0.04}), 0.5);
+}
+
+FrictionPatch tiltedRectangle() {
+  const PatchShape rect = PatchShape::rectangle(0.08, 0.04, Vec2(0.01, -0.005));
+  return FrictionPatch(rect, LinearPressure::fromLoads(rect, {10.0, 0.02, 0.03}), 0.5);
+}
+
+// Isotropic case (Pi = I, K = k I): closed form. Slip s = b (1 - k L / |b|) if
+// |b| > k L, else stick with lambda = -b / k.
+TEST(FrictionBlockTest, EllipsoidalIsotropicMatchesClosedForm) {
+  const PatchShape disk = PatchShape::disk(0.05);
+  const FrictionPatch patch(disk, LinearPressure::uniform(disk, 10.0), 0.5);
+  ASSERT_LT((patch.Pi() - Mat3::Identity()).norm(), 1e-12);  // Sect. 4.5.2
+  const double k = 2.0, L = 0.3;
+  FrictionBlockInput in;
+  in.K = k * Mat3::Identity();
+  in.L = L;
+  in.b = Vec3(1.0, -0.5, 0.7);
+  const auto slip = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+  EXPECT_FALSE(slip.sticking);
+  EXPECT_LT((slip.slip - in.b * (1.0 - k * L / in.b.norm())).norm(), kSolveTol);
+  in.b = Vec3(0.2, -0.1, 0.3);  // |b| = 0.374 < k L = 0.6
+  const auto stick = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+  EXPECT_TRUE(stick.sticking);
+  EXPECT_EQ(stick.slip.norm(), 0.0);
+  EXPECT_LT((stick.impulse + in.b / k).norm(), kSolveTol);
+}
+
+// General ellipsoidal blocks satisfy the defining relations:
+//   slip: s = b + K lambda, lambda = -L Pi s/|s|;  stick: lambda = -K^-1 b
+//   inside the ellipsoid, |(L Pi)^-1 lambda| <= 1.
+TEST(FrictionBlockTest, EllipsoidalSatisfiesDefiningRelations) {
+  std::mt19937 rng(7);
+  const FrictionPatch patch = tiltedDisk();
+  int slips = 0, sticks = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    FrictionBlockInput in;
+    in.K = randomSpd(rng, 0.2, 5.0);
+    in.L = 0.5;
+    in.b = randomUnit(rng) * std::uniform_real_distribution<double>(0.01, 6.0)(rng);
+    const auto res = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+    const Vec3 lambdaInEllipsoid = (in.L * patch.Pi()).inverse() * res.impulse;
+    if (res.sticking) {
+      ++sticks;
+      EXPECT_LT((in.K * res.impulse + in.b).norm(), kSolveTol * in.b.norm());
+      EXPECT_LE(lambdaInEllipsoid.norm(), 1.0 + kSolveTol);
+    } else {
+      ++slips;
+      EXPECT_LT((res.slip - in.b - in.K * res.impulse).norm(), kSolveTol * in.b.norm());
+      const Vec3 w = res.slip.normalized();
+      EXPECT_LT((res.impulse + in.L * patch.Pi() * w).norm(), kSolveTol);
+      // and stick was correctly refused: -K^-1 b lies outside the ellipsoid
+      EXPECT_GT(((in.L * patch.Pi()).inverse() * (-in.K.inverse() * in.b)).norm(), 1.0);
+    }
+  }
+  EXPECT_GT(slips, 20);
+  EXPECT_GT(sticks, 20);
+}
+
+// Exact law: the impulse is the K-metric projection of lambda0 = -K^-1 b onto
+// L E. Optimality is checked against sampled points L q(w') of the limit
+// surface (and the origin): none may be K-closer to lambda0.
+void checkExactProjection(const FrictionPatch& patch, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  // sampled limit surface, shared by all trials
+  std::vector<Vec3> surface;
+  for (int i = 0; i < 2000; ++i) surface.push_back(patch.unitQ(Model::Exact, randomUnit(rng)));
+  int slips = 0, sticks = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    FrictionBlockInput in;
+    in.K = randomSpd(rng, 0.2, 5.0);
+    in.L = 0.5;
+    in.b = randomUnit(rng) * std::uniform_real_distribution<double>(0.01, 5.0)(rng);
+    const auto res = solveFrictionBlock(patch, Model::Exact, in);
+    const Mat3 Kinv = in.K.inverse();
+    const Vec3 lambda0 = -Kinv * in.b;
+    auto kdist = [&](const Vec3& l) { return (l - lambda0).dot(in.K * (l - lambda0)); };
+    // relative slack: the solver converges to ~1e-14; sampled points are exact
+    const double slack = 1e-10 * (1.0 + kdist(Vec3::Zero()));
+    if (res.sticking) {
+      ++sticks;
+      EXPECT_EQ(res.slip.norm(), 0.0);
+      EXPECT_LT((res.impulse - lambda0).norm(), kSolveTol * (1.0 + lambda0.norm()));
+      // lambda0 inside L E: support inequality lambda0.d >= L q(d).d on samples
+      for (int i = 0; i < 200; ++i) {
+        const Vec3 d = randomUnit(rng);
+        EXPECT_GE(lambda0.dot(d), in.L * patch.unitQ(Model::Exact, d).dot(d) - 1e-12);
+      }
+    } else {
+      ++slips;
+      EXPECT_LT((res.slip - in.b - in.K * res.impulse).norm(), kSolveTol * (1.0 + in.b.norm()));
+      // impulse on the limit surface with the slip's direction as its normal
+      const Vec3 w = res.slip.normalized();
+      EXPECT_LT((res.impulse - in.L * patch.unitQ(Model::Exact, w)).norm(), 1e-10);
+      const double best = kdist(res.impulse);
+      for (const Vec3& q : surface) EXPECT_GE(kdist(in.L * q), best - slack);
+      // friction dissipates: lambda . s <= 0
+      EXPECT_LE(res.impulse.dot(res.slip), 0.0);
+    }
+  }
+  EXPECT_GT(slips, 5);
+  EXPECT_GT(sticks, 5);
+}
+
+TEST(FrictionBlockTest, ExactIsKProjectionOntoLimitSetDisk) { checkExactProjection(tiltedDisk(), 11); }
+TEST(FrictionBlockTest, ExactIsKProjectionOntoLimitSetRectangle) {
+  checkExactProjection(tiltedRectangle(), 12);
+}
+
+// Friction never adds energy: with E(x) = 1/2 x^T K^-1 x, E(s) <= E(b).
+TEST(FrictionBlockTest, NeverAddsEnergy) {
+  std::mt19937 rng(3);
+  for (const Model model : {Model::Ellipsoidal, Model::Exact}) {
+    const FrictionPatch patch = tiltedRectangle();
+    for (int trial = 0; trial < 100; ++trial) {
+      FrictionBlockInput in;
+      in.K = randomSpd(rng, 0.2, 5.0);
+      in.L = std::uniform_real_distribution<double>(0.0, 2.0)(rng);
+      in.b = randomUnit(rng) * std::uniform_real_distribution<double>(0.0, 5.0)(rng);
+      const auto res = solveFrictionBlock(patch, model, in);
+      const Mat3 Kinv = in.K.inverse();
+      EXPECT_LE(res.slip.dot(Kinv * res.slip), in.b.dot(Kinv * in.b) * (1.0 + 1e-12))
+          << toString(model);
+    }
+  }
+}
+
+TEST(FrictionBlockTest, RejectsBadInput) {
+  const FrictionPatch patch = tiltedDisk();
+  FrictionBlockInput in;
+  in.L = -1.0;
+  EXPECT_THROW(solveFrictionBlock(patch, Model::Ellipsoidal, in), Error);
+  in.L = 1.0;
+  in.b = Vec3(NAN, 0.0, 0.0);
+  EXPECT_THROW(solveFrictionBlock(patch, Model::Exact, in), Error);
+  in.b = Vec3(1.0, 0.0, 0.0);
+  in.K = -Mat3::Identity();
+  EXPECT_THROW(solveFrictionBlock(patch, Model::Exact, in), Error);
+}
+
+}  // namespace
+}  // namespace patchspin
