@@ -1,0 +1,120 @@
+// Drop-in replacement for btSequentialImpulseConstraintSolver that gives
+// opted-in bodies the coupled slip-spin friction of flat contact patches
+// (Antali & Varkonyi; DESIGN items 2, 4 and 5).
+//
+//   patchspin::bullet::PatchFrictionSolver solver;
+//   btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
+//   solver.enablePatchFriction(body, {patchspin::Model::Ellipsoidal});
+//
+// For every contact manifold that involves an opted-in body and whose two
+// touching faces are parallel (a cylinder cap, a box face or a convex-hull
+// face against a static plane, a box face or another such face), Bullet's own
+// contact and friction rows for that manifold are replaced by two 3-DOF blocks
+// at the patch reference point O (the centroid of the face overlap):
+//   normal block    (normal velocity, two tilt rates), impulse kept in the
+//                   admissible-load set (pressure >= 0 on the patch), Eq. (94)-(96);
+//   friction block  the implicit slip-spin step of step.hpp with the patch's
+//                   pressure set from the normal block every iteration.
+// Both run inside Bullet's solver iterations, after Bullet's own rows, so
+// patch bodies interact with joints, other contacts and stacks. Everything
+// else (other bodies, non-flat contacts, tipping bodies) goes through stock
+// Bullet untouched.
+#pragma once
+
+#include <patchspin/models.hpp>
+#include <patchspin/pressure.hpp>
+#include <patchspin/types.hpp>
+
+#include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace patchspin::bullet {
+
+// Per-body options of the patch friction law.
+struct PatchOptions {
+  PatchOptions() = default;
+  // Implicit, so that {Model::Exact} or {Model::Exact, 0.4} reads naturally.
+  PatchOptions(Model model_, std::optional<double> mu_ = std::nullopt,
+               std::optional<double> rho_ = std::nullopt, double flatnessTolerance_ = 0.02)
+      : model(model_), mu(mu_), rho(rho_), flatnessTolerance(flatnessTolerance_) {}
+
+  Model model = Model::Ellipsoidal;
+  // Friction coefficient [-]; default: Bullet's combined friction of the pair.
+  std::optional<double> mu;
+  // Length scale rho [m] of the slip state (u_x, u_y, rho w_z); default
+  // Eq. (11) about O (mean distance of the patch from O).
+  std::optional<double> rho;
+  // Faces count as parallel (a flat patch) once the angle between them falls
+  // below this [rad]; they stay a patch until it exceeds twice this
+  // (hysteresis).
+  double flatnessTolerance = 0.02;
+};
+
+// State of one active patch after a step, for the application to read.
+// Patch frame: origin O, z = normal (into `body`), x, y in the contact plane.
+struct PatchReport {
+  const btCollisionObject* body = nullptr;   // opted-in body (z points into it)
+  const btCollisionObject* other = nullptr;  // body it stands on
+  btVector3 origin{0, 0, 0};                 // O, world [m]
+  btVector3 normal{0, 0, 1};                 // z axis, world
+  btVector3 xAxis{1, 0, 0};                  // x axis, world
+  btVector3 yAxis{0, 1, 0};                  // y axis, world
+  PatchShape shape = PatchShape::disk(1.0);  // overlap of the two faces, patch frame [m]
+  Model model = Model::Ellipsoidal;
+  double mu = 0.0;                           // [-]
+  double rho = 0.0;                          // [m]
+  PatchLoads loads;                          // Pz [N], Tx, Ty [N m] = normal impulses / dt
+  LinearPressure pressure;                   // p0 [Pa], cx, cy [Pa/m] carrying `loads`
+  Vec3 Q = Vec3::Zero();                     // friction wrench (P_x, P_y, T_z / rho) [N]
+  Vec3 slip = Vec3::Zero();                  // x_o = (u_x, u_y, rho w_z) after the step [m/s]
+  double r = 0.0;                            // |x_o| [m/s]
+  Vec3 w = Vec3::Zero();                     // x_o / r (zero while sticking)
+  bool sticking = false;                     // friction block in its stick branch
+};
+
+class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
+ public:
+  PatchFrictionSolver();
+  ~PatchFrictionSolver() override;
+  PatchFrictionSolver(const PatchFrictionSolver&) = delete;
+  PatchFrictionSolver& operator=(const PatchFrictionSolver&) = delete;
+
+  // Opts `body` in (or replaces its options). Throws Error for a null body,
+  // mu < 0, rho <= 0 or a non-positive/non-finite flatness tolerance.
+  void enablePatchFriction(btRigidBody* body, const PatchOptions& options = PatchOptions());
+  void disablePatchFriction(btRigidBody* body);
+  bool isPatchFrictionEnabled(const btCollisionObject* body) const;
+
+  // Patches that were active in the last step (all islands).
+  const std::vector<PatchReport>& patchReports() const;
+  // The report of the patch under `body` in the last step, or null.
+  const PatchReport* findPatchReport(const btCollisionObject* body) const;
+
+  // btConstraintSolver hooks called once per world step.
+  void prepareSolve(int numBodies, int numManifolds) override;
+  void allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+
+ protected:
+  void convertContacts(btPersistentManifold** manifolds, int numManifolds,
+                       const btContactSolverInfo& info) override;
+  btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+                                btPersistentManifold** manifolds, int numManifolds,
+                                btTypedConstraint** constraints, int numConstraints,
+                                const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+  void solveGroupCacheFriendlySplitImpulseIterations(
+      btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+      int numManifolds, btTypedConstraint** constraints, int numConstraints,
+      const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+  btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                         const btContactSolverInfo& info) override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace patchspin::bullet

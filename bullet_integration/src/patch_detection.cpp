@@ -1,0 +1,257 @@
+// Flat faces of Bullet shapes and their overlap patch (see patch_detection.hpp).
+#include "patch_detection.hpp"
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/CollisionShapes/btConvexPolyhedron.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace patchspin::bullet::internal {
+namespace {
+
+// A disk that is cut by the other face's boundary is replaced by this
+// regular polygon: its area is 0.4 % short of the disk's, its mean radius
+// 0.1 % short (1 - cos(pi / n) ~ pi^2 / (2 n^2)).
+constexpr int kDiskSides = 64;
+// Vertices closer than this fraction of the patch size are merged
+// (PatchShape rejects repeated vertices).
+constexpr double kMergeFraction = 1e-9;
+
+Vec2 toPlane(const btVector3& p, const btVector3& origin, const btVector3& ex, const btVector3& ey) {
+  const btVector3 d = p - origin;
+  return Vec2(double(d.dot(ex)), double(d.dot(ey)));
+}
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Sorts the points of a convex set counter-clockwise about their mean and
+// merges near-duplicates.
+std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
+  if (pts.size() < 3) return pts;
+  Vec2 mean = Vec2::Zero();
+  for (const Vec2& p : pts) mean += p;
+  mean /= double(pts.size());
+  std::sort(pts.begin(), pts.end(), [&](const Vec2& a, const Vec2& b) {
+    return std::atan2(a.y() - mean.y(), a.x() - mean.x()) <
+           std::atan2(b.y() - mean.y(), b.x() - mean.x());
+  });
+  double size = 0.0;
+  for (const Vec2& p : pts) size = std::max(size, (p - mean).norm());
+  const double merge = kMergeFraction * size;
+  std::vector<Vec2> out;
+  for (const Vec2& p : pts) {
+    if (out.empty() || (p - out.back()).norm() > merge) out.push_back(p);
+  }
+  while (out.size() > 1 && (out.front() - out.back()).norm() <= merge) out.pop_back();
+  return out;
+}
+
+std::vector<Vec2> diskPolygon(const Vec2& centre, double radius) {
+  std::vector<Vec2> pts;
+  pts.reserve(kDiskSides);
+  for (int i = 0; i < kDiskSides; ++i) {
+    const double t = 2.0 * M_PI * i / kDiskSides;
+    pts.emplace_back(centre + radius * Vec2(std::cos(t), std::sin(t)));
+  }
+  return pts;
+}
+
+// Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
+// (both counter-clockwise).
+std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
+  for (size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
+    const Vec2& c1 = clip[i];
+    const Vec2& c2 = clip[(i + 1) % clip.size()];
+    const Vec2 edge = c2 - c1;
+    std::vector<Vec2> out;
+    for (size_t j = 0; j < subject.size(); ++j) {
+      const Vec2& p = subject[j];
+      const Vec2& q = subject[(j + 1) % subject.size()];
+      const double sp = cross2(edge, p - c1);
+      const double sq = cross2(edge, q - c1);
+      if (sp >= 0.0) out.push_back(p);
+      if ((sp >= 0.0) != (sq >= 0.0)) out.push_back(p + (q - p) * (sp / (sp - sq)));
+    }
+    subject.swap(out);
+  }
+  return subject;
+}
+
+// True if the disk (centre, radius) lies inside the convex CCW polygon.
+bool diskInsidePolygon(const Vec2& centre, double radius, const std::vector<Vec2>& poly) {
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec2 edge = poly[(i + 1) % poly.size()] - poly[i];
+    // signed distance of the centre to the edge line, positive inside
+    if (cross2(edge, centre - poly[i]) / edge.norm() < radius) return false;
+  }
+  return true;
+}
+
+// The face of a box (half extents h, with margin: the real box).
+Face boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDir, double* cosine) {
+  int axis = localDir.closestAxis();
+  const double sign = localDir[axis] >= 0 ? 1.0 : -1.0;
+  btVector3 n(0, 0, 0);
+  n[axis] = btScalar(sign);
+  if (cosine) *cosine = double(n.dot(localDir));
+  Face face;
+  face.kind = Face::Kind::Polygon;
+  face.normal = tr.getBasis() * n;
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  btVector3 c(0, 0, 0);
+  c[axis] = btScalar(sign) * h[axis];
+  face.centre = tr * c;
+  const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  for (int k = 0; k < 4; ++k) {
+    btVector3 p = c;
+    p[u] = btScalar(su[k]) * h[u];
+    p[v] = btScalar(sv[k]) * h[v];
+    face.vertices.push_back(tr * p);
+  }
+  return face;
+}
+
+}  // namespace
+
+std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
+                                  double* cosine) {
+  const btCollisionShape* shape = object.getCollisionShape();
+  const btTransform& tr = object.getWorldTransform();
+  const btVector3 localDir = tr.getBasis().transpose() * direction;
+  switch (shape->getShapeType()) {
+    case STATIC_PLANE_PROXYTYPE: {
+      const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+      Face face;
+      face.kind = Face::Kind::Plane;
+      face.normal = tr.getBasis() * plane->getPlaneNormal();
+      face.centre = tr * (plane->getPlaneNormal() * plane->getPlaneConstant());
+      if (cosine) *cosine = double(face.normal.dot(direction));
+      return face;
+    }
+    case BOX_SHAPE_PROXYTYPE: {
+      const auto* box = static_cast<const btBoxShape*>(shape);
+      return boxFace(box->getHalfExtentsWithMargin(), tr, localDir, cosine);
+    }
+    case CYLINDER_SHAPE_PROXYTYPE: {
+      // btCylinderShape (y up), btCylinderShapeX, btCylinderShapeZ: the caps
+      // are the two flat faces.
+      const auto* cyl = static_cast<const btCylinderShape*>(shape);
+      const int axis = cyl->getUpAxis();
+      const btVector3 h = cyl->getHalfExtentsWithMargin();
+      const double sign = localDir[axis] >= 0 ? 1.0 : -1.0;
+      btVector3 n(0, 0, 0);
+      n[axis] = btScalar(sign);
+      if (cosine) *cosine = double(n.dot(localDir));
+      Face face;
+      face.kind = Face::Kind::Disk;
+      face.normal = tr.getBasis() * n;
+      face.centre = tr * (n * h[axis]);
+      face.radius = double(cyl->getRadius());
+      return face;
+    }
+    case CONVEX_HULL_SHAPE_PROXYTYPE: {
+      // Polyhedral features are built once per shape (this writes to the
+      // user's shape, as Bullet's own polyhedral contact clipping does).
+      auto* hull = const_cast<btConvexHullShape*>(static_cast<const btConvexHullShape*>(shape));
+      if (!hull->getConvexPolyhedron()) hull->initializePolyhedralFeatures();
+      const btConvexPolyhedron* poly = hull->getConvexPolyhedron();
+      if (!poly || poly->m_faces.size() == 0) return std::nullopt;
+      int best = -1;
+      double bestCos = -2.0;
+      for (int i = 0; i < poly->m_faces.size(); ++i) {
+        const btScalar* pl = poly->m_faces[i].m_plane;
+        const double c = double(btVector3(pl[0], pl[1], pl[2]).dot(localDir));
+        if (c > bestCos) {
+          bestCos = c;
+          best = i;
+        }
+      }
+      const btFace& f = poly->m_faces[best];
+      Face face;
+      face.kind = Face::Kind::Polygon;
+      face.normal = tr.getBasis() * btVector3(f.m_plane[0], f.m_plane[1], f.m_plane[2]);
+      btVector3 sum(0, 0, 0);
+      for (int k = 0; k < f.m_indices.size(); ++k) {
+        const btVector3 p = tr * poly->m_vertices[f.m_indices[k]];
+        face.vertices.push_back(p);
+        sum += p;
+      }
+      if (face.vertices.size() < 3) return std::nullopt;
+      face.centre = sum / btScalar(face.vertices.size());
+      if (cosine) *cosine = bestCos;
+      return face;
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint) {
+  DetectedPatch patch;
+  const btVector3 n = b.normal.normalized();
+  patch.normal = n;
+  btVector3 ex = xHint - n * xHint.dot(n);
+  if (ex.length2() < btScalar(1e-6)) {
+    btVector3 e1, e2;
+    btPlaneSpace1(n, e1, e2);
+    ex = e1;
+  }
+  ex.normalize();
+  patch.xAxis = ex;
+  patch.yAxis = n.cross(ex);
+  const btVector3& ey = patch.yAxis;
+
+  // provisional 2D origin: a's centre projected onto b's plane
+  const double gap = double(n.dot(a.centre - b.centre));
+  const btVector3 base = a.centre - n * btScalar(gap);
+  patch.gap = gap;
+  // rotation that takes -a.normal onto n (small angle): theta = u x n
+  patch.tilt = (-a.normal).cross(n);
+
+  auto polygonOf = [&](const Face& f) {
+    std::vector<Vec2> pts;
+    if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius);
+    for (const btVector3& p : f.vertices) pts.push_back(toPlane(p, base, ex, ey));
+    return counterClockwise(std::move(pts));
+  };
+
+  std::optional<PatchShape> shape;
+  try {
+    const Vec2 ca = toPlane(a.centre, base, ex, ey);
+    if (b.kind == Face::Kind::Plane) {
+      // an infinite plane: the patch is a's whole face
+      shape = a.kind == Face::Kind::Disk ? PatchShape::disk(a.radius, ca)
+                                          : PatchShape::polygon(polygonOf(a));
+    } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Polygon &&
+               diskInsidePolygon(ca, a.radius, polygonOf(b))) {
+      shape = PatchShape::disk(a.radius, ca);
+    } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Disk &&
+               (ca - toPlane(b.centre, base, ex, ey)).norm() + a.radius <= b.radius) {
+      shape = PatchShape::disk(a.radius, ca);
+    } else if (b.kind == Face::Kind::Disk && a.kind == Face::Kind::Disk &&
+               (ca - toPlane(b.centre, base, ex, ey)).norm() + b.radius <= a.radius) {
+      shape = PatchShape::disk(b.radius, toPlane(b.centre, base, ex, ey));
+    } else if (a.kind == Face::Kind::Polygon && b.kind == Face::Kind::Disk &&
+               diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonOf(a))) {
+      shape = PatchShape::disk(b.radius, toPlane(b.centre, base, ex, ey));
+    } else {
+      std::vector<Vec2> overlap = counterClockwise(clipConvex(polygonOf(a), polygonOf(b)));
+      if (overlap.size() < 3) return std::nullopt;
+      shape = PatchShape::polygon(std::move(overlap));
+    }
+  } catch (const Error&) {
+    return std::nullopt;  // degenerate overlap: leave the contact to Bullet
+  }
+  // O at the centroid of the overlap
+  const Vec2 c = shape->centroid();
+  patch.shape = shape->inFrame(c, 0.0);
+  patch.origin = base + ex * btScalar(c.x()) + ey * btScalar(c.y());
+  return patch;
+}
+
+}  // namespace patchspin::bullet::internal

@@ -1,0 +1,49 @@
+// Flat faces of Bullet shapes and the patch where two of them touch.
+// The patch comes from the real face geometry (half extents with margin for
+// boxes and cylinders, the hull points for convex hulls), never from the
+// manifold points: the manifold only says that the bodies touch and which
+// way the normal points.
+#pragma once
+
+#include <patchspin/geometry.hpp>
+
+#include <LinearMath/btVector3.h>
+
+#include <optional>
+#include <vector>
+
+class btCollisionObject;
+
+namespace patchspin::bullet::internal {
+
+// One flat face of a shape, in world coordinates.
+struct Face {
+  enum class Kind { Disk, Polygon, Plane };
+  Kind kind = Kind::Polygon;
+  btVector3 normal{0, 0, 1};        // outward unit normal
+  btVector3 centre{0, 0, 0};        // disk centre / polygon centroid / a point of the plane
+  double radius = 0.0;              // disk only [m]
+  std::vector<btVector3> vertices;  // polygon only
+};
+
+// The face of `object` whose outward normal is closest to `direction`
+// (unit), with its cosine; nullopt for shapes without flat faces.
+std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
+                                  double* cosine);
+
+// A flat patch between face `a` of the moving body and face `b` it stands on.
+struct DetectedPatch {
+  btVector3 origin;                   // O (on b's plane), world
+  btVector3 normal;                   // z: b's outward normal (into a's body)
+  btVector3 xAxis, yAxis;             // in-plane axes
+  PatchShape shape = PatchShape::disk(1.0);  // overlap, patch frame about O
+  double gap = 0.0;                   // signed distance of a's face centre above b's plane [m]
+  btVector3 tilt{0, 0, 0};            // small rotation of a that makes it flat on b [rad]
+};
+
+// Builds the overlap of the two faces (a disk stays a disk while it lies
+// fully inside the other face; otherwise a polygon). `xHint` is an in-plane
+// direction for the x axis. nullopt if the overlap is empty or degenerate.
+std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint);
+
+}  // namespace patchspin::bullet::internal

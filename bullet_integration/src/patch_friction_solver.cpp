@@ -1,0 +1,507 @@
+// PatchFrictionSolver: Bullet's sequential-impulse solver with a normal block
+// and a slip-spin friction block per flat contact patch (DESIGN items 2, 4, 5).
+//
+// Stages per island (Box2D-style explicit list):
+//   convertContacts   manifolds of opted-in bodies with a flat patch become a
+//                     PatchConstraint (Jacobians, effective masses, warm start);
+//                     all other manifolds go to stock Bullet
+//   split iterations  stock split impulses, then the patch's position
+//                     correction (gap and tilt) on the pseudo velocities
+//   iterations        stock rows, then per patch: normal block, friction block
+//   finish            reports and warm-start cache, then stock write-back
+#include <patchspin/bullet/patch_friction_solver.hpp>
+
+#include "patch_detection.hpp"
+
+#include <patchspin/step.hpp>
+
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace patchspin::bullet {
+namespace {
+
+using Mat36 = Eigen::Matrix<double, 3, 6>;
+using Mat63 = Eigen::Matrix<double, 6, 3>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+// Inner projected-gradient iterations of the normal block when its
+// unconstrained impulse leaves the admissible-load set (tipping); the block
+// is 3x3 and scaled to unit diagonal, so a few dozen steps converge far
+// below the outer iterations' own error.
+constexpr int kProjectionIterations = 30;
+// Relative pressure violation (of the mean pressure Pz / A) at the end of a
+// step beyond which the body counts as tipping and the contact goes back to
+// Bullet's point handling; small against 1, large against round-off.
+constexpr double kTipRelTol = 1e-3;
+// Steps a tipped contact stays with Bullet before it may become a patch again.
+constexpr long kTipCooldownSteps = 10;
+// Pseudo-velocity iterations of the patch position correction per step.
+constexpr int kPushIterations = 4;
+
+Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
+btVector3 toBt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); }
+
+// Normal impulses (Lambda_z, couple about x, couple about y) on the moving
+// body <-> loads of Eq. (94): the pressure's couple on the body is
+// (∫ y p, -∫ x p) = (-Tx, -Ty) with Tx = -∫ y p, Ty = ∫ x p (Eq. (3)).
+PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lamN[2]}; }
+Vec3 fromLoads(const PatchLoads& l) { return Vec3(l.Pz, -l.Tx, -l.Ty); }
+
+struct BodyJacobian {
+  int id = -1;
+  bool dynamic = false;
+  Mat63 Jl = Mat63::Zero();  // rows: constraint DOFs; linear part
+  Mat63 Ja = Mat63::Zero();  // angular part
+  Mat36 Dl = Mat36::Zero();  // velocity change per unit impulse (linear)
+  Mat36 Da = Mat36::Zero();  // (angular)
+};
+
+// One flat patch of one manifold, for one island solve.
+struct PatchConstraint {
+  btPersistentManifold* manifold = nullptr;
+  const btCollisionObject* body = nullptr;
+  const btCollisionObject* other = nullptr;
+  BodyJacobian a, b;
+  internal::DetectedPatch geometry;
+  Model model = Model::Ellipsoidal;
+  double mu = 0.0, rho = 0.0, dt = 0.0;
+  // effective masses: K6 = [[W, Knf], [Knf^T, Kff]]
+  Mat3 W, Winv, Kff, Knf, Ks, G;
+  double rhoMetric = 0.0;  // metric length of the load projection [m]
+  double alpha = 0.0;      // projected-gradient step
+  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
+  Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
+  Vec3 warmSlip = Vec3::Zero();
+  bool interior = true;  // normal block inside the admissible set (bilateral)
+  bool tipping = false;
+  bool sticking = false;
+  std::optional<FrictionPatch> friction;
+};
+
+// Per-manifold memory across steps: warm start and hysteresis.
+struct PatchState {
+  const btCollisionObject* body = nullptr;
+  const btCollisionObject* other = nullptr;
+  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), slip = Vec3::Zero();
+  bool flat = false;
+  long lastSeen = std::numeric_limits<long>::min() / 2;
+  long tipStep = std::numeric_limits<long>::min() / 2;
+};
+
+}  // namespace
+
+struct PatchFrictionSolver::Impl {
+  std::unordered_map<const btCollisionObject*, PatchOptions> options;
+  std::unordered_map<const btPersistentManifold*, PatchState> states;
+  std::vector<PatchConstraint> patches;  // current island
+  std::vector<PatchReport> reports;      // whole step
+  long step = 0;
+
+  const PatchOptions* optionsOf(const btCollisionObject* o) const {
+    auto it = options.find(o);
+    return it == options.end() ? nullptr : &it->second;
+  }
+};
+
+namespace {
+
+// Velocity of a solver body during the iterations (Bullet adds the external
+// impulses only at write-back, so include them here).
+void velocityOf(const btSolverBody& sb, Vec3& v, Vec3& w) {
+  if (!sb.m_originalBody) {
+    v.setZero();
+    w.setZero();
+    return;
+  }
+  v = toEigen(sb.m_linearVelocity + sb.m_externalForceImpulse + sb.m_deltaLinearVelocity);
+  w = toEigen(sb.m_angularVelocity + sb.m_externalTorqueImpulse + sb.m_deltaAngularVelocity);
+}
+
+Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
+  Vec6 c = Vec6::Zero();
+  Vec3 v, w;
+  if (pc.a.dynamic) {
+    velocityOf(pool[pc.a.id], v, w);
+    c += pc.a.Jl * v + pc.a.Ja * w;
+  }
+  if (pc.b.dynamic) {
+    velocityOf(pool[pc.b.id], v, w);
+    c += pc.b.Jl * v + pc.b.Ja * w;
+  }
+  return c;
+}
+
+void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool, const Vec6& lam) {
+  if (pc.a.dynamic) {
+    pool[pc.a.id].m_deltaLinearVelocity += toBt(pc.a.Dl * lam);
+    pool[pc.a.id].m_deltaAngularVelocity += toBt(pc.a.Da * lam);
+  }
+  if (pc.b.dynamic) {
+    pool[pc.b.id].m_deltaLinearVelocity += toBt(pc.b.Dl * lam);
+    pool[pc.b.id].m_deltaAngularVelocity += toBt(pc.b.Da * lam);
+  }
+}
+
+// Jacobian rows of the six patch DOFs for one body with lever r = O - c:
+//   0: n.u(O)      1: ex.omega     2: ey.omega       (normal block)
+//   3: ex.u(O)     4: ey.u(O)      5: rho n.omega    (friction block: x_o)
+// with u(O) = v + omega x r, so d.u(O) = d.v + (r x d).omega. `sign` is -1
+// for the body underneath (relative velocity).
+BodyJacobian makeJacobian(const btSolverBody& sb, int id, const Vec3& r, const Vec3& n,
+                          const Vec3& ex, const Vec3& ey, double rho, double sign) {
+  BodyJacobian j;
+  j.id = id;
+  j.dynamic = sb.m_originalBody != nullptr;
+  if (!j.dynamic) return j;
+  j.Jl.row(0) = sign * n.transpose();
+  j.Ja.row(0) = sign * r.cross(n).transpose();
+  j.Ja.row(1) = sign * ex.transpose();
+  j.Ja.row(2) = sign * ey.transpose();
+  j.Jl.row(3) = sign * ex.transpose();
+  j.Ja.row(3) = sign * r.cross(ex).transpose();
+  j.Jl.row(4) = sign * ey.transpose();
+  j.Ja.row(4) = sign * r.cross(ey).transpose();
+  j.Ja.row(5) = sign * rho * n.transpose();
+  // Bullet applies Delta v = invMass (x) linearFactor, Delta omega =
+  // (I^-1 (tau (x) angularFactor)) (x) angularFactor.
+  const btRigidBody* rb = sb.m_originalBody;
+  const Vec3 invM = toEigen(sb.m_invMass).cwiseProduct(toEigen(sb.m_linearFactor));
+  const btMatrix3x3& I = rb->getInvInertiaTensorWorld();
+  Mat3 invI;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) invI(i, k) = double(I[i][k]);
+  const Vec3 af = toEigen(sb.m_angularFactor);
+  invI = af.asDiagonal() * invI * af.asDiagonal();
+  j.Dl = invM.asDiagonal() * j.Jl.transpose();
+  j.Da = invI * j.Ja.transpose();
+  return j;
+}
+
+}  // namespace
+
+PatchFrictionSolver::PatchFrictionSolver() : impl_(std::make_unique<Impl>()) {}
+PatchFrictionSolver::~PatchFrictionSolver() = default;
+
+void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOptions& options) {
+  if (!body) throw Error("enablePatchFriction: body is null");
+  if (options.mu) {
+    patchspin::internal::requireFinite(*options.mu, "PatchOptions::mu");
+    if (*options.mu < 0.0) throw Error("PatchOptions::mu must be >= 0: got " + patchspin::internal::formatDouble(*options.mu));
+  }
+  if (options.rho) patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
+  patchspin::internal::requirePositive(options.flatnessTolerance, "PatchOptions::flatnessTolerance");
+  impl_->options[body] = options;
+}
+
+void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) { impl_->options.erase(body); }
+
+bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
+  return impl_->optionsOf(body) != nullptr;
+}
+
+const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const { return impl_->reports; }
+
+const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
+  for (const PatchReport& r : impl_->reports)
+    if (r.body == body) return &r;
+  return nullptr;
+}
+
+void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
+  btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
+  ++impl_->step;
+  impl_->reports.clear();
+}
+
+void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
+  btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
+  // forget manifolds not seen for a while (they may have been deleted)
+  for (auto it = impl_->states.begin(); it != impl_->states.end();) {
+    if (it->second.lastSeen < impl_->step - kTipCooldownSteps - 1)
+      it = impl_->states.erase(it);
+    else
+      ++it;
+  }
+}
+
+void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int numManifolds,
+                                          const btContactSolverInfo& info) {
+  Impl& im = *impl_;
+  im.patches.clear();
+  // no opted-in body: stock Bullet, stock cost
+  if (im.options.empty()) {
+    btSequentialImpulseConstraintSolver::convertContacts(manifolds, numManifolds, info);
+    return;
+  }
+  const double dt = double(info.m_timeStep);
+  for (int i = 0; i < numManifolds; ++i) {
+    btPersistentManifold* m = manifolds[i];
+    const btCollisionObject* o0 = m->getBody0();
+    const btCollisionObject* o1 = m->getBody1();
+    const PatchOptions* opt0 = im.optionsOf(o0);
+    const PatchOptions* opt1 = opt0 ? nullptr : im.optionsOf(o1);
+    if ((!opt0 && !opt1) || m->getNumContacts() == 0) {
+      convertContact(m, info);
+      continue;
+    }
+    const bool aIs0 = opt0 != nullptr;
+    const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
+    const btCollisionObject* A = aIs0 ? o0 : o1;
+    const btCollisionObject* B = aIs0 ? o1 : o0;
+    // manifold normal points from body1 to body0
+    const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
+                                  : -m->getContactPoint(0).m_normalWorldOnB;
+    PatchState& st = im.states[m];
+    if (st.body != A || st.other != B) st = PatchState{A, B};
+    const bool wasFlat = st.flat && st.lastSeen >= im.step - 1;
+    st.lastSeen = im.step;
+
+    // faces and flatness, with hysteresis
+    double cosA = 0.0, cosB = 0.0;
+    const auto faceA = internal::findFaceAlong(*A, -nIntoA, &cosA);
+    const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
+    bool flat = false;
+    std::optional<internal::DetectedPatch> geo;
+    if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
+      const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
+      const double angle = std::acos(c);
+      const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
+      flat = angle < tol && im.step - st.tipStep > kTipCooldownSteps;
+      if (flat) geo = internal::buildPatch(*faceA, *faceB, B->getWorldTransform().getBasis().getColumn(0));
+    }
+    st.flat = flat && geo.has_value();
+    if (!st.flat) {
+      st.lamN.setZero();
+      st.lamF.setZero();
+      convertContact(m, info);
+      continue;
+    }
+    // stock rows of this manifold are replaced: start them from zero if
+    // the contact goes back to Bullet later
+    for (int k = 0; k < m->getNumContacts(); ++k) {
+      btManifoldPoint& p = m->getContactPoint(k);
+      p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+    }
+
+    PatchConstraint pc;
+    pc.manifold = m;
+    pc.body = A;
+    pc.other = B;
+    pc.geometry = std::move(*geo);
+    pc.model = opt.model;
+    pc.dt = dt;
+    pc.mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
+    pc.rho = opt.rho ? *opt.rho : pc.geometry.shape.defaultRho();
+    const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
+    const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
+    const Vec3 O = toEigen(pc.geometry.origin);
+    const Vec3 n = toEigen(pc.geometry.normal);
+    const Vec3 ex = toEigen(pc.geometry.xAxis);
+    const Vec3 ey = toEigen(pc.geometry.yAxis);
+    const btSolverBody& sbA = m_tmpSolverBodyPool[idA];
+    const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
+    pc.a = makeJacobian(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()), n, ex, ey, pc.rho, 1.0);
+    pc.b = makeJacobian(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()), n, ex, ey, pc.rho, -1.0);
+
+    // effective masses of the 6 DOFs and the friction block's Schur
+    // complement (normal block held bilateral):
+    //   Ks = Kff - Knf^T W^-1 Knf,   G = W^-1 Knf
+    Eigen::Matrix<double, 6, 6> K6 = Eigen::Matrix<double, 6, 6>::Zero();
+    if (pc.a.dynamic) K6 += pc.a.Jl * pc.a.Dl + pc.a.Ja * pc.a.Da;
+    if (pc.b.dynamic) K6 += pc.b.Jl * pc.b.Dl + pc.b.Ja * pc.b.Da;
+    pc.W = K6.topLeftCorner<3, 3>();
+    pc.Knf = K6.topRightCorner<3, 3>();
+    pc.Kff = K6.bottomRightCorner<3, 3>();
+    Eigen::LDLT<Mat3> ldlt(pc.W);
+    if (ldlt.info() != Eigen::Success || !(pc.W.determinant() > 0.0)) {
+      st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
+      convertContact(m, info);
+      continue;
+    }
+    pc.Winv = ldlt.solve(Mat3::Identity());
+    pc.G = pc.Winv * pc.Knf;
+    pc.Ks = pc.Kff - pc.Knf.transpose() * pc.G;
+    pc.Ks = 0.5 * (pc.Ks + pc.Ks.transpose());
+    // load-projection metric close to W (unit-diagonal scaling), and the
+    // projected-gradient step 1 / (Gershgorin bound of D^-1/2 W D^-1/2)
+    const double wt = 0.5 * (pc.W(1, 1) + pc.W(2, 2));
+    pc.rhoMetric = std::sqrt(pc.W(0, 0) / wt);
+    const Vec3 s(1.0, pc.rhoMetric, pc.rhoMetric);
+    const Mat3 Ws = s.asDiagonal() * pc.W * s.asDiagonal();
+    double bound = 0.0;
+    for (int r = 0; r < 3; ++r) bound = std::max(bound, Ws.row(r).cwiseAbs().sum());
+    pc.alpha = 1.0 / bound;
+
+    // position error: gap at O (< 0 penetrating) and tilt of the face
+    //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
+    //   otherwise:      Baumgarte with erp2 in the velocity target
+    const double gap = pc.geometry.gap;
+    const Vec3 tilt = toEigen(pc.geometry.tilt);
+    const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
+    if (gap > 0.0) {
+      pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
+    } else if (info.m_splitImpulse) {
+      pc.targetPush = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp) / dt;
+    } else {
+      pc.targetN = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp2) / dt;
+    }
+    if (gap > 0.0 && info.m_splitImpulse) pc.targetPush = tiltRate * double(info.m_erp) / dt;
+
+    pc.friction.emplace(pc.geometry.shape, LinearPressure::uniform(pc.geometry.shape, 1.0), pc.mu, pc.rho);
+    // warm start from the previous step
+    if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
+      const double f = double(info.m_warmstartingFactor);
+      pc.lamN = f * st.lamN;
+      pc.lamF = f * st.lamF;
+      pc.warmSlip = st.slip;
+      Vec6 lam;
+      lam << pc.lamN, pc.lamF;
+      applyImpulse(pc, m_tmpSolverBodyPool, lam);
+    }
+    im.patches.push_back(std::move(pc));
+  }
+}
+
+btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+                                                   btPersistentManifold** manifolds, int numManifolds,
+                                                   btTypedConstraint** constraints, int numConstraints,
+                                                   const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
+  btScalar residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
+      iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+  if (iteration >= info.m_numIterations) return residual;
+  double worst = 0.0;
+  for (PatchConstraint& pc : impl_->patches) {
+    const PatchShape& shape = pc.geometry.shape;
+    // normal block: y = lamN - W^-1 (c_n - target); keep it admissible
+    Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
+    const Vec3 y = pc.lamN - pc.Winv * (c.head<3>() - pc.targetN);
+    Vec3 lamN = y;
+    pc.interior = y[0] > 0.0 && isAdmissible(shape, toLoads(y));
+    pc.tipping = y[0] > 0.0 && !isAdmissible(shape, toLoads(y), kTipRelTol);
+    if (!pc.interior) {
+      // projection of y onto the admissible cone in W's metric, by projected
+      // gradient in the scaled metric D = diag(1, rhoM^-2, rhoM^-2):
+      //   lam <- P_D(lam - alpha D^-1 W (lam - y))
+      lamN = fromLoads(nearestAdmissibleLoads(shape, toLoads(y), pc.rhoMetric));
+      const Vec3 dinv(1.0, pc.rhoMetric * pc.rhoMetric, pc.rhoMetric * pc.rhoMetric);
+      for (int k = 0; k < kProjectionIterations && lamN[0] > 0.0; ++k) {
+        const Vec3 step = lamN - pc.alpha * dinv.cwiseProduct(pc.W * (lamN - y));
+        lamN = fromLoads(nearestAdmissibleLoads(shape, toLoads(step), pc.rhoMetric));
+      }
+    }
+    Vec6 d = Vec6::Zero();
+    d.head<3>() = lamN - pc.lamN;
+    pc.lamN = lamN;
+
+    // friction block on the slip x_o, with the normal block held (Schur
+    // complement Ks) while it is inside the admissible set
+    const Vec3 s = c.tail<3>() + pc.Knf.transpose() * d.head<3>();
+    const double L = pc.mu * pc.lamN[0];
+    Vec3 lamF = Vec3::Zero();
+    if (L > 0.0) {
+      const Mat3& K = pc.interior ? pc.Ks : pc.Kff;
+      FrictionBlockInput in;
+      in.b = s - K * pc.lamF;
+      in.K = K;
+      in.L = L;
+      in.warmSlip = pc.warmSlip;
+      const PatchLoads loads = pc.interior ? toLoads(pc.lamN) : nearestAdmissibleLoads(shape, toLoads(pc.lamN), pc.rho);
+      pc.friction->setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
+      const FrictionBlockResult res = solveFrictionBlock(*pc.friction, pc.model, in);
+      lamF = res.impulse;
+      pc.sticking = res.sticking;
+      pc.warmSlip = res.slip;
+    }
+    d.tail<3>() = lamF - pc.lamF;
+    pc.lamF = lamF;
+    if (pc.interior) {
+      // the normal block follows the friction impulse: W dN = -Knf dF
+      const Vec3 dn = -pc.G * d.tail<3>();
+      d.head<3>() += dn;
+      pc.lamN += dn;
+    }
+    applyImpulse(pc, m_tmpSolverBodyPool, d);
+    worst = std::max(worst, d.squaredNorm());
+  }
+  return std::max(residual, btScalar(worst));
+}
+
+void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& info,
+    btIDebugDraw* debugDrawer) {
+  btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIterations(
+      bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+  if (!info.m_splitImpulse) return;
+  // position correction on Bullet's pseudo velocities (push / turn), which
+  // move the bodies but never enter their real velocities: no rocking
+  for (int it = 0; it < kPushIterations; ++it) {
+    for (PatchConstraint& pc : impl_->patches) {
+      if (pc.targetPush.isZero()) continue;
+      Vec3 c = Vec3::Zero();
+      for (const BodyJacobian* j : {&pc.a, &pc.b}) {
+        if (!j->dynamic) continue;
+        const btSolverBody& sb = m_tmpSolverBodyPool[j->id];
+        c += (j->Jl * toEigen(sb.m_pushVelocity) + j->Ja * toEigen(sb.m_turnVelocity)).head<3>();
+      }
+      Vec3 lam = pc.lamPush - pc.Winv * (c - pc.targetPush);
+      if (lam[0] < 0.0) lam.setZero();  // pushes only apart
+      const Vec3 d = lam - pc.lamPush;
+      pc.lamPush = lam;
+      for (const BodyJacobian* j : {&pc.a, &pc.b}) {
+        if (!j->dynamic) continue;
+        btSolverBody& sb = m_tmpSolverBodyPool[j->id];
+        sb.m_pushVelocity += toBt(j->Dl.leftCols<3>() * d);
+        sb.m_turnVelocity += toBt(j->Da.leftCols<3>() * d);
+      }
+    }
+  }
+}
+
+btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                                            const btContactSolverInfo& info) {
+  Impl& im = *impl_;
+  for (PatchConstraint& pc : im.patches) {
+    PatchState& st = im.states[pc.manifold];
+    const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
+    st.lamN = pc.lamN;
+    st.lamF = pc.lamF;
+    st.slip = c.tail<3>();
+    if (pc.tipping) {
+      st.tipStep = im.step;
+      st.flat = false;
+    }
+    PatchReport r;
+    r.body = pc.body;
+    r.other = pc.other;
+    r.origin = pc.geometry.origin;
+    r.normal = pc.geometry.normal;
+    r.xAxis = pc.geometry.xAxis;
+    r.yAxis = pc.geometry.yAxis;
+    r.shape = pc.geometry.shape;
+    r.model = pc.model;
+    r.mu = pc.mu;
+    r.rho = pc.rho;
+    const PatchLoads l = toLoads(pc.lamN);
+    r.loads = PatchLoads{l.Pz / pc.dt, l.Tx / pc.dt, l.Ty / pc.dt};
+    if (r.loads.Pz > 0.0) r.pressure = LinearPressure::fromLoads(r.shape, r.loads);
+    r.Q = pc.lamF / pc.dt;
+    r.slip = c.tail<3>();
+    r.r = r.slip.norm();
+    r.sticking = pc.sticking;
+    r.w = pc.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
+    im.reports.push_back(std::move(r));
+  }
+  im.patches.clear();
+  return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
+}
+
+}  // namespace patchspin::bullet

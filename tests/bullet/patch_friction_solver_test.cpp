@@ -1,0 +1,133 @@
+// PatchFrictionSolver in Bullet worlds: no creep, no energy gain, no rocking,
+// mixed scenes, tipping back to Bullet. Each scene is also run with stock
+// Bullet (no body opted in) and its figure printed beside ours.
+#include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/bullet/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace patchspin::bullet {
+namespace {
+
+constexpr bool kDouble = sizeof(btScalar) == sizeof(double);
+constexpr double kG = 9.81;
+constexpr double kDt = 1.0 / 240.0;
+
+// The coin of the issue: R = 5 cm, H = 1 cm, 1 kg, mu = 0.3 (ground friction
+// 1, so Bullet's combined friction is the body's).
+constexpr double kR = 0.05, kH = 0.01, kMass = 1.0, kMu = 0.3;
+
+struct Coin {
+  Scene scene;
+  btRigidBody* body;
+  explicit Coin(bool patch, Model model = Model::Ellipsoidal) : scene(kG) {
+    scene.addGroundPlane(1.0);
+    body = scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2)), kMu);
+    if (patch) scene.solver().enablePatchFriction(body, {model});
+  }
+  double tiltRate() const {
+    const btVector3 w = body->getAngularVelocity();
+    return std::hypot(double(w.x()), double(w.y()));
+  }
+};
+
+// ---- no creep ---------------------------------------------------------------
+// A force inside the friction limit leaves the body exactly at rest: the
+// friction block sticks (s = 0 for all six patch DOFs), so the centre of mass
+// never moves. Double: below 1e-6 m over 10 s (the issue's bound). Float:
+// each step leaves a velocity of round-off size, ~eps_f * g dt = 6e-8 * 0.04
+// = 2.5e-9 m/s, i.e. 1e-11 m per step and 2.4e-8 m over 2400 steps if it
+// always had the same sign; the bound 1e-5 m leaves a factor 400 for
+// the solver's float arithmetic.
+constexpr double kCreepBound = kDouble ? 1e-6 : 1e-5;
+
+double creep(bool patch, Model model) {
+  Coin coin(patch, model);
+  const btVector3 start = coin.body->getWorldTransform().getOrigin();
+  const btVector3 push(btScalar(0.9 * kMu * kMass * kG), 0, 0);
+  for (int k = 0; k < 2400; ++k) {
+    coin.body->applyCentralForce(push);
+    coin.scene.step(kDt);
+  }
+  const btVector3 d = coin.body->getWorldTransform().getOrigin() - start;
+  return std::hypot(double(d.x()), double(d.y()));
+}
+
+TEST(PatchFrictionSolver, NoCreepUnderPushInsideFrictionLimit) {
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    const double d = creep(true, model);
+    std::printf("[creep] %s (%s): %.3e m over 10 s; stock Bullet: %.3e m\n", toString(model),
+                kDouble ? "double" : "float", d, creep(false, model));
+    RecordProperty(std::string("creep_") + toString(model), std::to_string(d));
+    EXPECT_LT(d, kCreepBound) << toString(model);
+  }
+}
+
+// ---- friction never adds energy ----------------------------------------------
+// Sliding and spinning coin, no driving force: the kinetic energy may only
+// fall, step by step. Allowed rise per step: round-off of the energy sum,
+// 1e-12 (double) / 1e-5 (float: velocities stored in float, eps 6e-8, times
+// the ~100 flops between steps) relative to the initial energy.
+constexpr double kEnergyRelTol = kDouble ? 1e-12 : 1e-5;
+
+TEST(PatchFrictionSolver, FrictionNeverIncreasesKineticEnergy) {
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    Coin coin(true, model);
+    coin.body->setLinearVelocity(btVector3(1.0, 0.3, 0));
+    coin.body->setAngularVelocity(btVector3(0, 0, 25.0));
+    coin.scene.step(kDt);  // settle the gravity impulse on the first contact
+    double e = coin.scene.kineticEnergy();
+    const double e0 = e;
+    double worstRise = -1e300;
+    int steps = 0;
+    for (; steps < 480 && e > 0; ++steps) {
+      coin.scene.step(kDt);
+      const double e1 = coin.scene.kineticEnergy();
+      worstRise = std::max(worstRise, e1 - e);
+      EXPECT_LE(e1, e + kEnergyRelTol * e0) << toString(model) << " step " << steps;
+      e = e1;
+    }
+    std::printf("[energy] %s: E0 = %.4f J, largest step-to-step change %.3e J, final %.3e J\n",
+                toString(model), e0, worstRise, e);
+    EXPECT_LT(e, 1e-12 + 1e-6 * e0) << "coin should have stopped within 2 s";
+  }
+}
+
+// ---- no rocking ---------------------------------------------------------------
+// Resting and sliding coins keep their tilt rates below 1e-3 rad/s (issue
+// bound); the normal block holds both tilt DOFs at O, and the position
+// correction works on pseudo velocities only.
+constexpr double kTiltBound = 1e-3;
+
+double worstTilt(bool patch, const btVector3& v0, double omega0, int steps) {
+  Coin coin(patch);
+  coin.body->setLinearVelocity(v0);
+  coin.body->setAngularVelocity(btVector3(0, 0, btScalar(omega0)));
+  double worst = 0;
+  for (int k = 0; k < steps; ++k) {
+    coin.scene.step(kDt);
+    worst = std::max(worst, coin.tiltRate());
+  }
+  return worst;
+}
+
+TEST(PatchFrictionSolver, RestingCoinDoesNotRock) {
+  const double ours = worstTilt(true, btVector3(0, 0, 0), 0, 480);
+  std::printf("[rocking] resting coin: max tilt rate %.3e rad/s; stock Bullet %.3e rad/s\n", ours,
+              worstTilt(false, btVector3(0, 0, 0), 0, 480));
+  EXPECT_LT(ours, kTiltBound);
+}
+
+TEST(PatchFrictionSolver, SlidingAndSpinningCoinDoesNotRock) {
+  const double ours = worstTilt(true, btVector3(1.5, 0, 0), 30, 480);
+  std::printf("[rocking] sliding+spinning coin: max tilt rate %.3e rad/s; stock Bullet %.3e rad/s\n", ours,
+              worstTilt(false, btVector3(1.5, 0, 0), 30, 480));
+  EXPECT_LT(ours, kTiltBound);
+}
+
+}  // namespace
+}  // namespace patchspin::bullet
