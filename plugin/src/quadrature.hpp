@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace patchspin::internal {
@@ -55,7 +56,11 @@ Eigen::Matrix<double, N, 1> adaptiveGaussRecurse(F& f, double a, double b,
   gaussOnInterval<N>(f, a, m, left, absLeft);
   gaussOnInterval<N>(f, m, b, right, absRight);
   const V sum = left + right;
-  if (depth >= 60 || ((sum - whole).cwiseAbs().array() <= tol.array()).all()) return sum;
+  // accept at the tolerance, or once the difference is down to round-off of
+  // the local |f| (a tighter tolerance could never be met: no endless split)
+  const V roundOff = (64.0 * std::numeric_limits<double>::epsilon()) * (absLeft + absRight);
+  const V accept = tol.cwiseMax(roundOff);
+  if (depth >= 50 || ((sum - whole).cwiseAbs().array() <= accept.array()).all()) return sum;
   // halve the tolerance per half so the errors add up to at most tol
   return adaptiveGaussRecurse<N>(f, a, m, left, 0.5 * tol, depth + 1) +
          adaptiveGaussRecurse<N>(f, m, b, right, 0.5 * tol, depth + 1);
