@@ -1,0 +1,502 @@
+// Exact model, Eq. (16), on a disk: linear pressure basis (exactDiskBasis)
+// and Hertz pressure (57) (exactDiskHertz). F, dF and the kernel k(w; x, y)
+// are defined in patchspin/internal/exact.hpp.
+//
+// Reduction (DESIGN item 3). Lengths in units of R about the disk centre C:
+// q = (P - C)/R. With c' = (c - C)/R the ICR relative to C,
+//   v ∝ s J (q - c'),   s = sign(w3),   J = [[0, -1], [1, 0]],
+// so the kernel depends on w only through c' and s. Rotate so that
+// c' = (delta, 0) and write d = q - c', u = J d / |d| (unit disk, s = +1):
+//   a = ∫ u_y,  b = ∫ x u_y,  e = ∫ y u_x,  T0 = ∫ q x u,  T1 = ∫ x (q x u)
+// (all other moments vanish by the symmetry y -> -y). With the radial
+// potentials M_n(delta) = ∫ |d|^n dA and grad_c |d|^n = -n |d|^(n-2) d:
+//   a = -M1',  b = M3''/3 - M1 - delta M1',  e = M1 - M3'/(3 delta),
+//   T0 = b - e,  T1 = delta (b + e)          (identities, checked symbolically)
+// and by the angular average of |d|^n (a Gauss hypergeometric series):
+//   delta <= 1:  M1 = (2 pi/3) 2F1(-1/2, -3/2; 1; m),  m = delta^2
+//                M3 = (2 pi/5) 2F1(-3/2, -5/2; 1; m)
+//   delta >= 1:  M1 = pi delta 2F1(-1/2, -1/2; 2; p),  p = 1/delta^2
+//                M3 = pi delta^3 2F1(-3/2, -3/2; 2; p)
+// which reduce to the complete elliptic integrals K, E (cf. Eq. (52)-(53),
+// which are the case C = O, pressure 1, of the same formulas).
+//
+// Smooth parametrisations (also what makes dF well defined everywhere):
+//  * near (delta <= 1/sqrt(kFarSeriesP)): with A = a/delta, B = (b - e)/2,
+//    C = (b + e)/(2 m), all analytic in m (also across the rim in value and
+//    first derivative):
+//      force(1) = s A J c',  force(q) = s [B J + C J (2 c' c'^T - m I)],
+//      torque_C(1) = 2 s B,  torque_C(q) = 2 s m C c'^T.
+//  * far (includes w3 = 0): n = (rho (-w2, w1) - w3 C)/R, c' = n / w3,
+//    tau = w3/|n| (signed 1/delta), nh = n/|n|, p = tau^2, and the analytic
+//    functions a(p), bt = b/|tau|, et = e/|tau|:
+//      force(1) = a J nh,  force(q) = tau [(bt - et)/2 J + (bt + et)/2 J D],
+//      D = 2 nh nh^T - I,  torque_C(1) = tau (bt - et),  torque_C(q) = (bt + et) nh^T.
+// Each radial function has three evaluations: a power series in m (ICR near
+// the centre, including pure spin), the elliptic closed form (ICR within a
+// band around the rim), and a power series in p (ICR far, including pure
+// translation). The closed forms' K terms all carry a factor (1 - m) (or
+// (1 - p)), so they stay finite and accurate up to the rim, where K -> inf.
+//
+// Hertz pressure (57), p1 = 3/(2 pi) sqrt(1 - |q|^2) on the unit disk: the same
+// reduction with p1 as weight needs only a_H = ∫ p1 u_y and T0_H = ∫ p1 q x u,
+// which are Eq. (58)-(59) (verified): a_H = -P_eps(delta),
+// T0_H = (3 pi/16) T_eps(delta), delta = eps.
+//
+// Jacobians: forward-mode dual numbers in w through the smooth
+// parametrisations, with the radial functions' derivatives in closed form.
+#include "elliptic.hpp"
+
+#include <patchspin/internal/exact.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace patchspin::internal {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// ICR within sqrt(kInsideSeriesM) R of the centre -> power series in m. The
+// closed form loses ~1/m^2 to cancellation near m = 0 (C has a 1/m^2
+// prefactor), i.e. a factor 25 at the switch; the series needs ~25 terms there.
+constexpr double kInsideSeriesM = 0.2;
+// ICR beyond R / sqrt(kFarSeriesP) from the centre -> power series in p. The
+// closed form loses ~delta^4 = 25 at the switch; the series needs ~25 terms.
+constexpr double kFarSeriesP = 0.2;
+// Series are stopped when a term (times its index, for the derivative) is
+// below this relative to O(1) coefficients: full double accuracy.
+constexpr double kFullAccuracy = 1e-17;
+// Safety cap on series terms (at m or p = 0.2, 1e-17 needs about 27).
+constexpr int kMaxTerms = 80;
+
+// ---------------------------------------------------------------- duals
+// Value and gradient with respect to the three components of w.
+struct Dual3 {
+  double v = 0.0;
+  double d[3] = {0.0, 0.0, 0.0};
+};
+
+inline Dual3 operator+(const Dual3& a, const Dual3& b) {
+  return {a.v + b.v, {a.d[0] + b.d[0], a.d[1] + b.d[1], a.d[2] + b.d[2]}};
+}
+inline Dual3 operator-(const Dual3& a, const Dual3& b) {
+  return {a.v - b.v, {a.d[0] - b.d[0], a.d[1] - b.d[1], a.d[2] - b.d[2]}};
+}
+inline Dual3 operator-(const Dual3& a) { return {-a.v, {-a.d[0], -a.d[1], -a.d[2]}}; }
+inline Dual3 operator*(const Dual3& a, const Dual3& b) {
+  return {a.v * b.v,
+          {a.d[0] * b.v + a.v * b.d[0], a.d[1] * b.v + a.v * b.d[1], a.d[2] * b.v + a.v * b.d[2]}};
+}
+inline Dual3 operator*(double s, const Dual3& a) { return {s * a.v, {s * a.d[0], s * a.d[1], s * a.d[2]}}; }
+inline Dual3 operator*(const Dual3& a, double s) { return s * a; }
+inline Dual3 operator/(const Dual3& a, const Dual3& b) {
+  const double inv = 1.0 / b.v;
+  const double q = a.v / b.v;  // same rounding as the double instantiation
+  return {q, {(a.d[0] - q * b.d[0]) * inv, (a.d[1] - q * b.d[1]) * inv, (a.d[2] - q * b.d[2]) * inv}};
+}
+inline Dual3 operator/(const Dual3& a, double s) {
+  return {a.v / s, {a.d[0] / s, a.d[1] / s, a.d[2] / s}};
+}
+inline Dual3 sqrt(const Dual3& a) {
+  const double r = std::sqrt(a.v);
+  const double h = 0.5 / r;
+  return {r, {h * a.d[0], h * a.d[1], h * a.d[2]}};
+}
+
+inline double valueOf(double x) { return x; }
+inline double valueOf(const Dual3& x) { return x.v; }
+using std::sqrt;
+
+// f(x) as T from its value f and derivative df at x.
+inline double lift(double f, double /*df*/, double /*x*/) { return f; }
+inline Dual3 lift(double f, double df, const Dual3& x) {
+  return {f, {df * x.d[0], df * x.d[1], df * x.d[2]}};
+}
+
+// ------------------------------------------------------ radial functions
+// Three functions of one variable and their derivatives.
+struct Radial3 {
+  double f[3] = {0.0, 0.0, 0.0};
+  double df[3] = {0.0, 0.0, 0.0};
+};
+
+// alpha_k = ((-1/2)_k / k!)^2:  alpha_0 = 1, alpha_{k+1} = alpha_k ((2k-1)/(2k+2))^2.
+inline double nextAlpha(double alpha, int k) {
+  const double r = (2.0 * k - 1.0) / (2.0 * k + 2.0);
+  return alpha * r * r;
+}
+
+// near the centre (m = delta^2 <= kInsideSeriesM), series of the 2F1's:
+//   A = -4 pi sum_{k>=1} k alpha_k / (3 - 2k) m^(k-1)
+//   B =    pi sum_{k>=0} alpha_k (1 - 2k) / (3 - 2k) m^k
+//   C =   -pi sum_{k>=0} (k+1)(2k+1) alpha_{k+1} / ((1 - 2k)(k + 2)) m^k
+Radial3 insideSeries(double m, double relTol) {
+  Radial3 r;
+  double alpha = 1.0;               // alpha_k
+  double alpha1 = nextAlpha(1.0, 0);  // alpha_{k+1}
+  double pk = 1.0, pk1 = 0.0, pk2 = 0.0;  // m^k, m^(k-1), m^(k-2)
+  for (int k = 0; k < kMaxTerms; ++k) {
+    const double kk = k;
+    const double cB = kPi * alpha * (1.0 - 2.0 * kk) / (3.0 - 2.0 * kk);
+    const double cC = -kPi * (kk + 1.0) * (2.0 * kk + 1.0) * alpha1 / ((1.0 - 2.0 * kk) * (kk + 2.0));
+    const double cA = -4.0 * kPi * kk * alpha / (3.0 - 2.0 * kk);  // zero for k = 0
+    r.f[0] += cA * pk1;
+    r.df[0] += (kk - 1.0) * cA * pk2;
+    r.f[1] += cB * pk;
+    r.df[1] += kk * cB * pk1;
+    r.f[2] += cC * pk;
+    r.df[2] += kk * cC * pk1;
+    const double size = (kk + 1.0) * (std::fabs(cA * pk1) + std::fabs(cB * pk) + std::fabs(cC * pk));
+    if (k >= 2 && size <= relTol) {
+      break;
+    }
+    alpha = alpha1;
+    alpha1 = nextAlpha(alpha1, k + 1);
+    pk2 = (k == 0) ? 1.0 : pk1;
+    pk1 = pk;
+    pk *= m;
+  }
+  return r;
+}
+
+// far from the disk (p = 1/delta^2 <= kFarSeriesP):
+//   a  = pi sum_{k>=0} (2k-1) alpha_k / (k+1) p^k
+//   bt = pi sum_{k>=2} 2k (2k-2) alpha_k / ((2k-3)(k+1)) p^(k-1)
+//   et = pi sum_{k>=1} 2k alpha_k / ((2k-3)(k+1)) p^(k-1)
+Radial3 farSeries(double p, double relTol) {
+  Radial3 r;
+  double alpha = 1.0;
+  double pk = 1.0, pk1 = 0.0, pk2 = 0.0;
+  for (int k = 0; k < kMaxTerms; ++k) {
+    const double kk = k;
+    const double ca = kPi * (2.0 * kk - 1.0) * alpha / (kk + 1.0);
+    const double cb = kPi * 2.0 * kk * (2.0 * kk - 2.0) * alpha / ((2.0 * kk - 3.0) * (kk + 1.0));
+    const double ce = kPi * 2.0 * kk * alpha / ((2.0 * kk - 3.0) * (kk + 1.0));
+    r.f[0] += ca * pk;
+    r.df[0] += kk * ca * pk1;
+    r.f[1] += cb * pk1;
+    r.df[1] += (kk - 1.0) * cb * pk2;
+    r.f[2] += ce * pk1;
+    r.df[2] += (kk - 1.0) * ce * pk2;
+    const double size = (kk + 1.0) * (std::fabs(ca * pk) + std::fabs(cb * pk1) + std::fabs(ce * pk1));
+    if (k >= 2 && size <= relTol) {
+      break;
+    }
+    alpha = nextAlpha(alpha, k);
+    pk2 = (k == 0) ? 1.0 : pk1;
+    pk1 = pk;
+    pk *= p;
+  }
+  return r;
+}
+
+// ICR inside, closed form (m in (kInsideSeriesM, 1], mc = 1 - m), with
+// mcK = (1 - m) K(m):
+//   A = 4/(3m) [mcK - (1 + m) E]             dA/dm = 2/(3m^2) [(2 - m) E - 2 mcK]
+//   B = 2/9 [2 (2 - m) E - mcK]              dB/dm = 1/(3m) [(1 - 2m) E - mcK]
+//   C = 2/(15 m^2) [(2 - m) mcK - 2 (m^2 - m + 1) E]
+//   dC/dm = 1/(15 m^3) [(8 - 3m - 2m^2) E - (m + 8) mcK]
+Radial3 insideClosedForm(double m, double mc, double relTol) {
+  const EllipticKE ke = completeEllipticKE(m, mc, relTol);
+  const double E = ke.E, K1 = mcK(ke, mc);
+  Radial3 r;
+  r.f[0] = 4.0 / (3.0 * m) * (K1 - (1.0 + m) * E);
+  r.df[0] = 2.0 / (3.0 * m * m) * ((2.0 - m) * E - 2.0 * K1);
+  r.f[1] = 2.0 / 9.0 * (2.0 * (2.0 - m) * E - K1);
+  r.df[1] = 1.0 / (3.0 * m) * ((1.0 - 2.0 * m) * E - K1);
+  r.f[2] = 2.0 / (15.0 * m * m) * ((2.0 - m) * K1 - 2.0 * (m * m - m + 1.0) * E);
+  r.df[2] = 1.0 / (15.0 * m * m * m) * ((8.0 - 3.0 * m - 2.0 * m * m) * E - (m + 8.0) * K1);
+  return r;
+}
+
+// ICR outside, closed form in p = 1/m in (kFarSeriesP, 1), pc = 1 - p,
+// pcK = (1 - p) K(p), sp = sqrt(p); returns A, B, C and d/dm = -p^2 d/dp:
+//   A = 4/(3 sp) [pcK - (1 + p) E]           dA/dp = 2/(3 p sp) [(1 - 2p) E - pcK]
+//   B = 2/(9 p sp) [2 (2p - 1) E + (2 - 3p) pcK]
+//   dB/dp = 1/(3 p^2 sp) [(2 - p) E - 2 pcK]
+//   C = 2/(15 sp) [(2 - p) pcK - 2 (p^2 - p + 1) E]
+//   dC/dp = 1/(15 p sp) [(2 + 3p - 8p^2) E - 2 (2p + 1) pcK]
+Radial3 outsideClosedForm(double p, double pc, double relTol) {
+  const EllipticKE ke = completeEllipticKE(p, pc, relTol);
+  const double E = ke.E, K1 = mcK(ke, pc);
+  const double sp = std::sqrt(p);
+  const double dmdp = -p * p;  // d/dm = -p^2 d/dp
+  Radial3 r;
+  r.f[0] = 4.0 / (3.0 * sp) * (K1 - (1.0 + p) * E);
+  r.df[0] = dmdp * 2.0 / (3.0 * p * sp) * ((1.0 - 2.0 * p) * E - K1);
+  r.f[1] = 2.0 / (9.0 * p * sp) * (2.0 * (2.0 * p - 1.0) * E + (2.0 - 3.0 * p) * K1);
+  r.df[1] = dmdp / (3.0 * p * p * sp) * ((2.0 - p) * E - 2.0 * K1);
+  r.f[2] = 2.0 / (15.0 * sp) * ((2.0 - p) * K1 - 2.0 * (p * p - p + 1.0) * E);
+  r.df[2] = dmdp / (15.0 * p * sp) * ((2.0 + 3.0 * p - 8.0 * p * p) * E - 2.0 * (2.0 * p + 1.0) * K1);
+  return r;
+}
+
+// A, B, C and d/dm for the near parametrisation; nn = |n|^2, w33 = w3^2
+// (m = nn / w33, passed separately for accurate 1 - m and 1 - 1/m).
+Radial3 nearRadial(double m, double nn, double w33, double relTol) {
+  if (m <= kInsideSeriesM) {
+    return insideSeries(m, relTol);
+  }
+  if (nn <= w33) {
+    return insideClosedForm(m, (w33 - nn) / w33, relTol);
+  }
+  return outsideClosedForm(w33 / nn, (nn - w33) / nn, relTol);
+}
+
+// Hertz (57), unit load on the unit disk: AH = a_H / delta and T0H with d/dm.
+//   m <= 1:  AH = -(3 pi/32)(4 - m),  T0H = (3 pi/128)(3 m^2 - 8 m + 8)       (58)-(59)
+//   m > 1, S = asin(1/sqrt(m)), Q = sqrt(m - 1):
+//     AH  = 3/16 [(m - 4) S - Q (1 + 2/m)],        dAH/dm  = 3/16 [S + Q (2 - m)/m^2]
+//     T0H = 3/64 [(3m^2 - 8m + 8) S + Q (6 - 3m)], dT0H/dm = 3/32 [(3m - 4) S - Q (3m - 2)/m]
+struct Radial2 {
+  double f[2] = {0.0, 0.0};
+  double df[2] = {0.0, 0.0};
+};
+
+Radial2 hertzNear(double m, double nn, double w33) {
+  Radial2 r;
+  if (nn <= w33) {
+    r.f[0] = -3.0 * kPi / 32.0 * (4.0 - m);
+    r.df[0] = 3.0 * kPi / 32.0;
+    r.f[1] = 3.0 * kPi / 128.0 * ((3.0 * m - 8.0) * m + 8.0);
+    r.df[1] = 3.0 * kPi / 128.0 * (6.0 * m - 8.0);
+    return r;
+  }
+  // S = asin(1/delta) from the same Q, so that the sqrt-sensitive parts of
+  // S and Q (Q ~ 1e-8 for delta^2 - 1 ~ 1e-16) cancel as they do exactly.
+  const double Q = std::sqrt((nn - w33) / w33);
+  const double S = std::atan2(1.0, Q);
+  r.f[0] = 3.0 / 16.0 * ((m - 4.0) * S - Q * (1.0 + 2.0 / m));
+  r.df[0] = 3.0 / 16.0 * (S + Q * (2.0 - m) / (m * m));
+  r.f[1] = 3.0 / 64.0 * (((3.0 * m - 8.0) * m + 8.0) * S + Q * (6.0 - 3.0 * m));
+  r.df[1] = 3.0 / 32.0 * ((3.0 * m - 4.0) * S - Q * (3.0 * m - 2.0) / m);
+  return r;
+}
+
+// Hertz far (p = 1/delta^2 <= kFarSeriesP): with asin t = sum c_k t^(2k+1),
+// sqrt(1 - t^2) = sum s_k t^(2k), the t-expansions of (58)-(59) give
+//   aH   = -(3/16) sum_{k>=1} d_k p^(k-1),  d_k = 4c_{k-1} - c_k + s_k + 2s_{k-1}
+//   T0Ht = T0_H/|tau| = (3/64) sum_{k>=2} e_k p^(k-2),
+//          e_k = 3c_k - 8c_{k-1} + 8c_{k-2} + 6s_{k-1} - 3s_k
+// c_0 = s_0 = 1, c_k = c_{k-1} (2k-1)^2/(2k (2k+1)), s_k = s_{k-1} (k - 3/2)/k.
+Radial2 hertzFar(double p, double relTol) {
+  Radial2 r;
+  double c2 = 0.0, c1 = 0.0, c0 = 1.0;  // c_{k-2}, c_{k-1}, c_k
+  double s1 = 0.0, s0 = 1.0;            // s_{k-1}, s_k
+  double pa = 0.0, pa1 = 0.0;           // p^(k-1), p^(k-2)
+  double pb = 0.0, pb1 = 0.0;           // p^(k-2), p^(k-3)
+  for (int k = 1; k < kMaxTerms; ++k) {
+    const double kk = k;
+    c2 = c1;
+    c1 = c0;
+    c0 = c1 * (2.0 * kk - 1.0) * (2.0 * kk - 1.0) / (2.0 * kk * (2.0 * kk + 1.0));
+    s1 = s0;
+    s0 = s1 * (kk - 1.5) / kk;
+    pa1 = pa;
+    pa = (k == 1) ? 1.0 : pa * p;
+    pb1 = pb;
+    pb = (k == 2) ? 1.0 : pb * p;
+    const double d = 4.0 * c1 - c0 + s0 + 2.0 * s1;
+    const double e = 3.0 * c0 - 8.0 * c1 + 8.0 * c2 + 6.0 * s1 - 3.0 * s0;
+    r.f[0] -= 3.0 / 16.0 * d * pa;
+    r.df[0] -= 3.0 / 16.0 * (kk - 1.0) * d * pa1;
+    if (k >= 2) {
+      r.f[1] += 3.0 / 64.0 * e * pb;
+      r.df[1] += 3.0 / 64.0 * (kk - 2.0) * e * pb1;
+    }
+    const double size = kk * (std::fabs(d * pa) + std::fabs(e * pb));
+    if (k >= 3 && size <= relTol) {
+      break;
+    }
+  }
+  return r;
+}
+
+// ------------------------------------------------------------- assembly
+// The slip direction reduced to the disk: vector g (c' near, nh far), and
+// n = (rho (-w2, w1) - w3 C)/R.
+template <class T>
+struct Reduced {
+  T nx, ny;
+  double nn = 0.0, w33 = 0.0;
+  bool far = false;
+};
+
+template <class T>
+Reduced<T> reduce(const Vec2& centre, double R, double rho, const T* w) {
+  Reduced<T> red;
+  red.nx = (-rho * w[1] - centre.x() * w[2]) / R;
+  red.ny = (rho * w[0] - centre.y() * w[2]) / R;
+  const double nx = valueOf(red.nx), ny = valueOf(red.ny), w3 = valueOf(w[2]);
+  red.nn = nx * nx + ny * ny;
+  red.w33 = w3 * w3;
+  // far <=> delta^2 = nn / w33 > 1 / kFarSeriesP
+  red.far = red.w33 < kFarSeriesP * red.nn;
+  return red;
+}
+
+// F of exact.hpp (columns phi = 1, x, y) from w, as T.
+template <class T>
+void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relTol, T F[3][3]) {
+  const Reduced<T> red = reduce(centre, R, rho, w);
+  T gx, gy;     // c' (near) or nh (far)
+  T fa;         // force(1) = fa J g
+  T Bq, Cq;     // force(q) = Bq J + Cq J (2 g g^T - |g|^2 I)
+  T tqs;        // torque_C(q) = tqs g^T
+  if (!red.far) {
+    const double s = valueOf(w[2]) > 0.0 ? 1.0 : -1.0;
+    gx = red.nx / w[2];
+    gy = red.ny / w[2];
+    const T m = gx * gx + gy * gy;
+    const Radial3 r = nearRadial(valueOf(m), red.nn, red.w33, relTol);
+    fa = s * lift(r.f[0], r.df[0], m);
+    Bq = s * lift(r.f[1], r.df[1], m);
+    Cq = s * lift(r.f[2], r.df[2], m);
+    tqs = 2.0 * m * Cq;
+  } else {
+    const T norm = sqrt(red.nx * red.nx + red.ny * red.ny);
+    gx = red.nx / norm;
+    gy = red.ny / norm;
+    const T tau = w[2] / norm;
+    const T p = tau * tau;
+    const Radial3 r = farSeries(valueOf(p), relTol);
+    fa = lift(r.f[0], r.df[0], p);
+    const T bt = lift(r.f[1], r.df[1], p);
+    const T et = lift(r.f[2], r.df[2], p);
+    Bq = 0.5 * (tau * (bt - et));
+    Cq = 0.5 * (tau * (bt + et));
+    tqs = bt + et;
+  }
+  // disk-centred wrench in physical units: force(1) ~ R^2, force(q), torque(1) ~ R^3, torque(q) ~ R^4
+  const double R2 = R * R, R3 = R2 * R, R4 = R3 * R;
+  const T f1x = -R2 * (fa * gy), f1y = R2 * (fa * gx);
+  const T gxy = 2.0 * (gx * gy), gdd = gx * gx - gy * gy;
+  const T fq[2][2] = {{-R3 * (Cq * gxy), R3 * (Cq * gdd - Bq)},
+                      {R3 * (Bq + Cq * gdd), R3 * (Cq * gxy)}};
+  const T t1 = 2.0 * R3 * Bq;
+  const T tq[2] = {R4 * (tqs * gx), R4 * (tqs * gy)};
+  // move to O: phi = (1, Cx + qx, Cy + qy), torque_O = torque_C + C x force
+  const double cx = centre.x(), cy = centre.y();
+  F[0][0] = f1x;
+  F[1][0] = f1y;
+  F[2][0] = (t1 + cx * f1y - cy * f1x) / rho;
+  for (int j = 0; j < 2; ++j) {
+    const double cj = (j == 0) ? cx : cy;
+    const T fx = cj * f1x + fq[0][j];
+    const T fy = cj * f1y + fq[1][j];
+    F[0][j + 1] = fx;
+    F[1][j + 1] = fy;
+    F[2][j + 1] = (cj * t1 + tq[j] + cx * fy - cy * fx) / rho;
+  }
+}
+
+// Hertz result of exact.hpp from w, as T.
+template <class T>
+void diskHertz(const Vec2& centre, double R, double rho, const T* w, double relTol, T out[3]) {
+  const Reduced<T> red = reduce(centre, R, rho, w);
+  T gx, gy, fa, t1;
+  if (!red.far) {
+    const double s = valueOf(w[2]) > 0.0 ? 1.0 : -1.0;
+    gx = red.nx / w[2];
+    gy = red.ny / w[2];
+    const T m = gx * gx + gy * gy;
+    const Radial2 r = hertzNear(valueOf(m), red.nn, red.w33);
+    fa = s * lift(r.f[0], r.df[0], m);
+    t1 = s * lift(r.f[1], r.df[1], m);
+  } else {
+    const T norm = sqrt(red.nx * red.nx + red.ny * red.ny);
+    gx = red.nx / norm;
+    gy = red.ny / norm;
+    const T tau = w[2] / norm;
+    const T p = tau * tau;
+    const Radial2 r = hertzFar(valueOf(p), relTol);
+    fa = lift(r.f[0], r.df[0], p);
+    t1 = tau * lift(r.f[1], r.df[1], p);
+  }
+  // unit load: force dimensionless, torque ~ R
+  const T fx = -(fa * gy), fy = fa * gx;
+  out[0] = fx;
+  out[1] = fy;
+  out[2] = (R * t1 + centre.x() * fy - centre.y() * fx) / rho;
+}
+
+// Checks the inputs and returns the scale sigma = max |w_i| (w / sigma is
+// used inside: the result is homogeneous of degree 0 in w).
+double checkInputs(const Vec2& centre, double R, double rho, const Vec3& w, double tolerance) {
+  requireFinite(centre, "exact disk: centre");
+  requirePositive(R, "exact disk: radius R");
+  requirePositive(rho, "exact disk: rho");
+  requireFinite(w, "exact disk: slip direction w");
+  requireFinite(tolerance, "exact disk: tolerance");
+  if (tolerance < 0.0) {
+    throw Error("exact disk: tolerance must be >= 0: got " + formatDouble(tolerance));
+  }
+  const double sigma = w.cwiseAbs().maxCoeff();
+  if (sigma == 0.0) {
+    throw Error("exact disk: slip direction w must be nonzero: got (0, 0, 0)");
+  }
+  return sigma;
+}
+
+double effectiveTol(double tolerance) { return tolerance > 0.0 ? tolerance : kFullAccuracy; }
+
+}  // namespace
+
+void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, bool wantJacobian,
+                    ExactBasis& out, double tolerance) {
+  const double sigma = checkInputs(centre, R, rho, w, tolerance);
+  const double relTol = effectiveTol(tolerance);
+  if (!wantJacobian) {
+    const double ws[3] = {w.x() / sigma, w.y() / sigma, w.z() / sigma};
+    double F[3][3];
+    diskBasis(centre, R, rho, ws, relTol, F);
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        out.F(i, k) = F[i][k];
+      }
+    }
+    return;
+  }
+  Dual3 ws[3];
+  for (int j = 0; j < 3; ++j) {
+    ws[j].v = w[j] / sigma;
+    ws[j].d[j] = 1.0;
+  }
+  Dual3 F[3][3];
+  diskBasis(centre, R, rho, ws, relTol, F);
+  // d/dw = (1/sigma) d/dws
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      out.F(i, k) = F[i][k].v;
+      for (int j = 0; j < 3; ++j) {
+        out.dF[k](i, j) = F[i][k].d[j] / sigma;
+      }
+    }
+  }
+}
+
+Vec3 exactDiskHertz(const Vec2& centre, double R, double rho, const Vec3& w, Mat3* jacobian,
+                    double tolerance) {
+  const double sigma = checkInputs(centre, R, rho, w, tolerance);
+  const double relTol = effectiveTol(tolerance);
+  if (jacobian == nullptr) {
+    const double ws[3] = {w.x() / sigma, w.y() / sigma, w.z() / sigma};
+    double r[3];
+    diskHertz(centre, R, rho, ws, relTol, r);
+    return Vec3(r[0], r[1], r[2]);
+  }
+  Dual3 ws[3];
+  for (int j = 0; j < 3; ++j) {
+    ws[j].v = w[j] / sigma;
+    ws[j].d[j] = 1.0;
+  }
+  Dual3 r[3];
+  diskHertz(centre, R, rho, ws, relTol, r);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      (*jacobian)(i, j) = r[i].d[j] / sigma;
+    }
+  }
+  return Vec3(r[0].v, r[1].v, r[2].v);
+}
+
+}  // namespace patchspin::internal
