@@ -1,0 +1,182 @@
+// Plots through gnuplot: each kind gives a PNG of the requested size with
+// content, from small synthetic data; bad input and a missing gnuplot give
+// clear errors.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <patchspin/render/image.hpp>
+#include <patchspin/render/plot.hpp>
+#include <string>
+
+namespace patchspin::render {
+namespace {
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 240;
+// a blank (uniform) PNG has variance 0; axes, curves and text give far more
+constexpr double kMinVariance = 100.0;
+
+std::string tempDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("patchspin_plot_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+PlotOptions smallOptions() {
+  PlotOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.fontSize = 7;
+  o.title = "test";
+  return o;
+}
+
+void expectValidPng(const std::string& path) {
+  const Image image = readPng(path);
+  EXPECT_EQ(image.width, kWidth);
+  EXPECT_EQ(image.height, kHeight);
+  EXPECT_GT(pixelVariance(image), kMinVariance);
+}
+
+// a bifurcation sweep shaped like the thin disk of Sect. 6.1: a pitchfork at
+// F = 1/9 and a change of stability at F = 1 (synthetic values, not physics)
+std::string writeBifurcationCsv(const std::string& dir) {
+  const std::string path = dir + "/sweep.csv";
+  std::ofstream out(path);
+  out << "# synthetic sweep\nmodel,F,T,w1,w2,w3,stability,kind\n";
+  for (const char* model : {"ellipsoidal", "exact"}) {
+    for (int i = 0; i <= 12; ++i) {
+      for (int j = 0; j <= 4; ++j) {
+        const double F = 0.1 * i, T = 0.05 * j, Fc = 1.0 / 9.0 + T;
+        out << model << "," << F << "," << T << ",-1,0,0,attracting,isolated\n";
+        if (F > 1.0) {
+          out << model << "," << F << "," << T << ",1,0,0,repelling,isolated\n";
+        } else if (F > Fc) {
+          out << model << "," << F << "," << T << ",1,0,0,attracting,dominant\n";
+        } else {
+          const double w1 = F / Fc, w3 = std::sqrt(1.0 - w1 * w1);
+          out << model << "," << F << "," << T << ",1,0,0,attracting,saddle\n";
+          out << model << "," << F << "," << T << "," << w1 << ",0," << w3
+              << ",attracting,dominant\n";
+          out << model << "," << F << "," << T << "," << w1 << ",0," << -w3
+              << ",attracting,dominant\n";
+        }
+      }
+    }
+  }
+  return path;
+}
+
+TEST(Plot, SlipSphere) {
+  SpherePlot plot;
+  for (int k = 0; k < 2; ++k) {
+    SpherePath path;
+    path.label = k ? "ellipsoidal" : "exact";
+    // a path crossing from the hidden to the visible hemisphere
+    for (int i = 0; i <= 50; ++i) {
+      const double s = i / 50.0, a = 4.0 * s + k;
+      path.w.push_back(Vec3((1 - s) * std::cos(a) + 0.8 * s, (1 - s) * std::sin(a), 0.3 + 0.5 * s));
+    }
+    plot.paths.push_back(path);
+  }
+  plot.limits = {{Vec3(0.8, 0, 0.6), Stability::Attracting, LimitKind::Dominant, "w_3"},
+                 {Vec3(1, 0, 0), Stability::Attracting, LimitKind::Saddle, "w_1"},
+                 {Vec3(-1, 0, 0), Stability::Repelling, LimitKind::Isolated, ""}};
+  const std::string dir = tempDir("sphere");
+  plotSlipSphere(plot, dir + "/sphere.png", smallOptions());
+  expectValidPng(dir + "/sphere.png");
+  // the script stays next to the PNG so it can be rerun
+  EXPECT_TRUE(std::filesystem::exists(dir + "/sphere.gp"));
+}
+
+TEST(Plot, SlipRatioAgainstTime) {
+  TimeSeriesPlot plot;
+  for (int k = 0; k < 3; ++k) {
+    TimeSeries ts;
+    ts.label = k == 0 ? "exact" : k == 1 ? "ellipsoidal" : "stock";
+    for (int i = 0; i <= 100; ++i) {
+      const double t = 0.02 * i;
+      ts.t.push_back(t);
+      ts.slipRatio.push_back(i == 100 ? NAN : 0.653 + (1.0 + k) * std::exp(-2.0 * t));
+      ts.r.push_back(std::max(0.0, 2.0 - t));
+    }
+    plot.series.push_back(ts);
+  }
+  const std::string dir = tempDir("ratio");
+  plotSlipRatio(plot, dir + "/ratio.png", smallOptions());
+  expectValidPng(dir + "/ratio.png");
+  plot.logR = true;  // r = 0 at the end must be dropped, not break the log axis
+  plotSlipRatio(plot, dir + "/ratio_log.png", smallOptions());
+  expectValidPng(dir + "/ratio_log.png");
+}
+
+TEST(Plot, BifurcationAgainstForceAndOverPlane) {
+  const std::string dir = tempDir("bifurcation");
+  const std::string csv = writeBifurcationCsv(dir);
+  plotBifurcationForce(csv, dir + "/force.png", BifurcationOptions(), smallOptions());
+  expectValidPng(dir + "/force.png");
+  BifurcationOptions component;
+  component.component = 3;
+  component.torque = 0.1;
+  plotBifurcationForce(csv, dir + "/force_w3.png", component, smallOptions());
+  expectValidPng(dir + "/force_w3.png");
+  plotBifurcationPlane(csv, dir + "/plane.png", BifurcationOptions(), smallOptions());
+  expectValidPng(dir + "/plane.png");
+}
+
+TEST(Plot, Pareto) {
+  const std::string dir = tempDir("pareto");
+  {
+    std::ofstream out(dir + "/bench.csv");
+    out << "model,time,error,label\n"
+        << "exact,2e-6,1e-3,4 nodes\nexact,4e-6,1e-6,8 nodes\nexact,8e-6,1e-10,16 nodes\n"
+        << "ellipsoidal,2e-7,0.05,\nstock,1e-7,0.4,\n";
+  }
+  plotPareto(dir + "/bench.csv", dir + "/pareto.png", ParetoOptions(), smallOptions());
+  expectValidPng(dir + "/pareto.png");
+}
+
+TEST(Plot, ClearErrors) {
+  const std::string dir = tempDir("errors");
+  // missing gnuplot: the message says what to install
+  PlotOptions o = smallOptions();
+  o.gnuplot = "/nonexistent/gnuplot";
+  try {
+    plotPareto(writeBifurcationCsv(dir), dir + "/x.png", ParetoOptions(), o);
+    ADD_FAILURE() << "no error";
+  } catch (const RenderError& e) {
+    // the CSV check comes first: the sweep file has no 'time' column
+    EXPECT_NE(std::string(e.what()).find("missing column 'time'"), std::string::npos) << e.what();
+  }
+  {
+    std::ofstream out(dir + "/bench.csv");
+    out << "model,time,error\nexact,1e-6,1e-3\n";
+  }
+  try {
+    plotPareto(dir + "/bench.csv", dir + "/x.png", ParetoOptions(), o);
+    ADD_FAILURE() << "no error";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("gnuplot-nox"), std::string::npos) << e.what();
+  }
+  // a bad value names file, line and column
+  {
+    std::ofstream out(dir + "/bad.csv");
+    out << "model,time,error\nexact,fast,1e-3\n";
+  }
+  try {
+    plotPareto(dir + "/bad.csv", dir + "/x.png", ParetoOptions(), smallOptions());
+    ADD_FAILURE() << "no error";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2: 'time' is not a number"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(plotPareto(dir + "/missing.csv", dir + "/x.png"), RenderError);
+}
+
+}  // namespace
+}  // namespace patchspin::render

@@ -1,0 +1,256 @@
+// Off-screen renderer: output size, content, determinism, and geometry placed
+// where an independent pinhole projection says it should be.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <patchspin/render/renderer.hpp>
+#include <string>
+
+namespace patchspin::render {
+namespace {
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+
+std::string tempDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("patchspin_render_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+SceneBody disk(const Vec3& centre, double angle) {
+  SceneBody b;
+  b.kind = SceneBody::Cylinder;
+  b.dimensions = Vec3(0.05, 0.05, 0.01);
+  b.pose.translation() = centre;
+  b.pose.linear() = Eigen::AngleAxisd(angle, Vec3::UnitZ()).toRotationMatrix();
+  return b;
+}
+
+// a coin on the ground seen from above at an angle, with the overlay
+Scene coinScene(double angle = 0.3, const Vec3& centre = Vec3(0.0, 0.0, 0.005)) {
+  Scene s;
+  s.bodies.push_back(disk(centre, angle));
+  s.camera.eye = Vec3(0.12, -0.16, 0.2);
+  s.camera.target = Vec3::Zero();
+  s.camera.fovYDeg = 40.0;
+  s.overlay.time = 0.5;
+  s.overlay.model = "exact";
+  return s;
+}
+
+RenderOptions smallOptions() {
+  RenderOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  return o;
+}
+
+int countDifferentPixels(const Image& a, const Image& b, int threshold) {
+  int n = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
+      if (d > threshold) ++n;
+    }
+  }
+  return n;
+}
+
+TEST(Renderer, SmallSceneGivesPngOfRequestedSizeNotBlank) {
+  Renderer renderer(smallOptions());
+  const std::string dir = tempDir("size");
+  FrameWriter writer(dir);
+  const std::string path = writer.write(renderer.render(coinScene()));
+  EXPECT_EQ(path, (std::filesystem::path(dir) / "frame_00000.png").string());
+  const Image back = readPng(path);
+  EXPECT_EQ(back.width, kWidth);
+  EXPECT_EQ(back.height, kHeight);
+  // a blank (uniform) frame has variance 0; sky, ground, coin and text give
+  // far more than a standard deviation of 10 grey levels
+  constexpr double kMinVariance = 100.0;
+  EXPECT_GT(pixelVariance(back), kMinVariance);
+}
+
+TEST(Renderer, PngRoundTripKeepsPixels) {
+  Renderer renderer(smallOptions());
+  const Image image = renderer.render(coinScene());
+  const std::string path = tempDir("roundtrip") + "/a.png";
+  writePng(image, path);
+  const Image back = readPng(path);
+  EXPECT_EQ(back.width, image.width);
+  EXPECT_EQ(back.height, image.height);
+  EXPECT_EQ(back.rgb, image.rgb);
+}
+
+TEST(Renderer, SameSceneTwiceGivesIdenticalBytes) {
+  const std::string dir = tempDir("determinism");
+  Scene scene = coinScene();
+  Trail trail;
+  for (int i = 0; i < 20; ++i) trail.points.push_back(Vec3(-0.1 + 0.005 * i, 0.002 * i, 0.0));
+  scene.trails.push_back(trail);
+  Arrow arrow;
+  arrow.origin = Vec3(0.0, 0.0, 0.01);
+  arrow.vector = Vec3(0.06, 0.0, 0.0);
+  arrow.label = "F";
+  scene.arrows.push_back(arrow);
+  scene.overlay.tracked.push_back(
+      {"exact", {0.9, 0.5, 0.2}, 0.653, Vec3(0.6, 0.0, 0.8), Vec3(0, 0, 0.02)});
+
+  Renderer first(smallOptions());
+  writePng(first.render(scene), dir + "/a.png");
+  writePng(first.render(scene), dir + "/b.png");
+  // a second renderer (a second OSMesa context) gives the same bytes too
+  Renderer second(smallOptions());
+  writePng(second.render(scene), dir + "/c.png");
+  const std::string a = fileBytes(dir + "/a.png");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, fileBytes(dir + "/b.png"));
+  EXPECT_EQ(a, fileBytes(dir + "/c.png"));
+}
+
+TEST(Renderer, FrameChangesWhenBodyMovesOrSpins) {
+  Renderer renderer(smallOptions());
+  const Image base = renderer.render(coinScene(0.3));
+  const Image moved = renderer.render(coinScene(0.3, Vec3(0.01, 0.0, 0.005)));
+  // a pure spin about the disk axis changes only the spin markers
+  const Image spun = renderer.render(coinScene(0.3 + 0.5 * M_PI));
+  // differences well above filtering noise (there is none: same input, same
+  // bytes) in at least a handful of pixels
+  constexpr int kLevel = 20;
+  constexpr int kMinPixels = 20;
+  EXPECT_GT(countDifferentPixels(base, moved, kLevel), kMinPixels);
+  EXPECT_GT(countDifferentPixels(base, spun, kLevel), kMinPixels);
+}
+
+// The coin is drawn where an independent pinhole model puts it: adding it
+// changes pixels only inside the projected box of its corners, and fills a
+// good part of that box.
+TEST(Renderer, BodyAppearsWhereThePinholeProjectionPutsIt) {
+  RenderOptions o = smallOptions();
+  o.shadows = false;  // shadows fall outside the body's own projection
+  Renderer renderer(o);
+  // off the image centre, so a mirrored or shifted projection would show
+  Scene with = coinScene(0.3, Vec3(0.05, 0.03, 0.005));
+  with.camera.eye = Vec3(0.1, -0.15, 0.25);
+  with.overlay = FrameOverlay();  // time panel only, identical in both images
+  with.overlay.time = 0.0;
+  Scene without = with;
+  without.bodies.clear();
+  const Image a = renderer.render(with), b = renderer.render(without);
+
+  // pinhole: camera basis (s, u, -f), focal length from the vertical fov
+  const Camera& cam = with.camera;
+  const Vec3 f = (cam.target - cam.eye).normalized();
+  const Vec3 s = f.cross(cam.up).normalized();
+  const Vec3 u = s.cross(f);
+  const double focal = 0.5 * kHeight / std::tan(0.5 * cam.fovYDeg * M_PI / 180.0);
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  const SceneBody& body = with.bodies[0];
+  for (int i = 0; i < 64; ++i) {
+    const double t = 2.0 * M_PI * i / 64;
+    for (double z : {-0.005, 0.005}) {
+      const Vec3 p = body.pose * Vec3(0.05 * std::cos(t), 0.05 * std::sin(t), z) - cam.eye;
+      const double depth = p.dot(f);
+      const double x = 0.5 * kWidth + focal * p.dot(s) / depth;
+      const double y = 0.5 * kHeight - focal * p.dot(u) / depth;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  }
+  // the box filter of supersampling spreads an edge by at most one pixel
+  constexpr double kEdgePx = 1.5;
+  int inside = 0, outside = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) continue;
+      const double cx = x + 0.5, cy = y + 0.5;
+      if (cx >= x0 - kEdgePx && cx <= x1 + kEdgePx && cy >= y0 - kEdgePx && cy <= y1 + kEdgePx) {
+        ++inside;
+      } else {
+        ++outside;
+      }
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  // an ellipse fills pi/4 ~ 0.785 of its bounding box; perspective and the
+  // polygonal rim cost a little, grid lines hidden under it nothing
+  constexpr double kMinFill = 0.6;
+  EXPECT_GT(inside, kMinFill * (x1 - x0) * (y1 - y0));
+}
+
+// A convex hull of a box's corners (plus interior points that must be
+// ignored) draws like the box itself.
+TEST(Renderer, ConvexHullOfBoxCornersDrawsLikeTheBox) {
+  Renderer renderer(smallOptions());
+  Scene boxScene;
+  SceneBody box;
+  box.kind = SceneBody::Box;
+  box.dimensions = Vec3(0.08, 0.05, 0.04);
+  box.spinMarker = false;
+  box.pose.translation() = Vec3(0, 0, 0.02);
+  box.pose.linear() = Eigen::AngleAxisd(0.4, Vec3::UnitZ()).toRotationMatrix();
+  boxScene.bodies.push_back(box);
+  boxScene.camera = fitCamera(boxScene.bodies, -60.0, 35.0, double(kWidth) / kHeight);
+  Scene hullScene = boxScene;
+  SceneBody& hull = hullScene.bodies[0];
+  hull.kind = SceneBody::ConvexHull;
+  for (int i = 0; i < 8; ++i) {
+    hull.hullPoints.push_back(
+        0.5 * Vec3((i & 1 ? 1 : -1) * 0.08, (i & 2 ? 1 : -1) * 0.05, (i & 4 ? 1 : -1) * 0.04));
+  }
+  hull.hullPoints.push_back(Vec3(0.01, -0.005, 0.003));  // interior
+  hull.hullPoints.push_back(Vec3(0.04, 0.0, 0.0));       // on a face
+  Scene empty = boxScene;
+  empty.bodies.clear();
+  const Image a = renderer.render(boxScene), b = renderer.render(hullScene),
+              e = renderer.render(empty);
+  // the same faces may be split into different triangles, which moves a few
+  // edge pixels by a few levels; nothing else may differ
+  constexpr int kLevel = 12;
+  const int bodyPixels = countDifferentPixels(a, e, kLevel);
+  ASSERT_GT(bodyPixels, 300);  // the box covers a good part of the frame
+  EXPECT_LE(countDifferentPixels(a, b, kLevel), bodyPixels / 50);
+}
+
+TEST(Renderer, OverlayTextIsDrawn) {
+  Renderer renderer(smallOptions());
+  Scene plain = coinScene();
+  Scene text = plain;
+  text.overlay.title = "coin";
+  text.overlay.tracked.push_back(
+      {"exact", {0.9, 0.5, 0.2}, 0.653, Vec3(0.6, 0.0, 0.8), std::nullopt});
+  // two more panel lines of text: well over a hundred changed pixels
+  constexpr int kMinPixels = 100;
+  EXPECT_GT(countDifferentPixels(renderer.render(plain), renderer.render(text), 40), kMinPixels);
+}
+
+TEST(Renderer, BadInputIsRejected) {
+  RenderOptions o = smallOptions();
+  o.width = 0;
+  EXPECT_THROW(Renderer{o}, RenderError);
+  o = smallOptions();
+  o.fontFile = "/nonexistent/font.ttf";
+  EXPECT_THROW(Renderer{o}, RenderError);
+  EXPECT_THROW(readPng("/nonexistent/frame.png"), RenderError);
+  Renderer renderer(smallOptions());
+  Scene s = coinScene();
+  s.bodies[0].kind = SceneBody::ConvexHull;  // no points
+  EXPECT_THROW(renderer.render(s), RenderError);
+}
+
+}  // namespace
+}  // namespace patchspin::render
