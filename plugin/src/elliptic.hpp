@@ -34,15 +34,17 @@ inline EllipticKE completeEllipticKE(double m, double mc, double relTol = 1e-17)
   double pow2 = 0.5;
   for (int it = 0; it < 40; ++it) {
     const double c = 0.5 * (a - b);
-    if (c * c <= relTol * a * a) {
-      a = 0.5 * (a + b);  // AGM = (a + b)/2 - O(c^2 / a)
-      break;
-    }
+    const bool last = c * c <= relTol * a * a;
     const double an = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = an;
     pow2 *= 2.0;
     sum += pow2 * c * c;
+    if (last) {
+      // AGM = a_{N+1} (1 - O(c^2/4)); the next sum term is O(2^N c^4)
+      a = an;
+      break;
+    }
+    b = std::sqrt(a * b);
+    a = an;
   }
   const double pi = 3.14159265358979323846;
   r.K = pi / (2.0 * a);

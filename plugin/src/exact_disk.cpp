@@ -57,16 +57,17 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 // ICR within sqrt(kInsideSeriesM) R of the centre -> power series in m. The
 // closed form loses ~1/m^2 to cancellation near m = 0 (C has a 1/m^2
-// prefactor), i.e. a factor 25 at the switch; the series needs ~25 terms there.
-constexpr double kInsideSeriesM = 0.2;
+// prefactor), i.e. a factor 100 at the switch (~1e-14); the series needs
+// ~16 terms there. (The AGM branch is the cheaper one, so it gets the most.)
+constexpr double kInsideSeriesM = 0.1;
 // ICR beyond R / sqrt(kFarSeriesP) from the centre -> power series in p. The
-// closed form loses ~delta^4 = 25 at the switch; the series needs ~25 terms.
-constexpr double kFarSeriesP = 0.2;
+// closed form loses ~delta^4 = 100 at the switch; the series needs ~16 terms.
+constexpr double kFarSeriesP = 0.1;
 // Series are stopped when a term (times its index, for the derivative) is
-// below this relative to O(1) coefficients: full double accuracy.
+// below this, the coefficients being O(1): full double accuracy.
 constexpr double kFullAccuracy = 1e-17;
-// Safety cap on series terms (at m or p = 0.2, 1e-17 needs about 27).
-constexpr int kMaxTerms = 80;
+// Series length cap (at m or p = 0.1, 1e-17 needs about 17 terms).
+constexpr int kMaxTerms = 40;
 
 // ---------------------------------------------------------------- duals
 // Value and gradient with respect to the three components of w.
@@ -93,6 +94,12 @@ inline Dual3 operator/(const Dual3& a, const Dual3& b) {
   const double q = a.v / b.v;  // same rounding as the double instantiation
   return {q, {(a.d[0] - q * b.d[0]) * inv, (a.d[1] - q * b.d[1]) * inv, (a.d[2] - q * b.d[2]) * inv}};
 }
+inline Dual3 reciprocal(const Dual3& a) {
+  const double r = 1.0 / a.v;
+  const double h = -r * r;
+  return {r, {h * a.d[0], h * a.d[1], h * a.d[2]}};
+}
+inline double reciprocal(double a) { return 1.0 / a; }
 inline Dual3 operator/(const Dual3& a, double s) {
   return {a.v / s, {a.d[0] / s, a.d[1] / s, a.d[2] / s}};
 }
@@ -119,73 +126,99 @@ struct Radial3 {
   double df[3] = {0.0, 0.0, 0.0};
 };
 
-// alpha_k = ((-1/2)_k / k!)^2:  alpha_0 = 1, alpha_{k+1} = alpha_k ((2k-1)/(2k+2))^2.
-inline double nextAlpha(double alpha, int k) {
-  const double r = (2.0 * k - 1.0) / (2.0 * k + 2.0);
-  return alpha * r * r;
-}
+// Power-series coefficients, computed once at compile time. Each table holds
+// the coefficients c_j of f(x) = sum_j c_j x^j.
+constexpr int kTerms = kMaxTerms;
+struct SeriesTables {
+  // near the centre (x = m = delta^2), from the 2F1's:
+  //   A = -4 pi sum_{k>=1} k alpha_k / (3 - 2k) m^(k-1)
+  //   B =    pi sum_{k>=0} alpha_k (1 - 2k) / (3 - 2k) m^k
+  //   C =   -pi sum_{k>=0} (k+1)(2k+1) alpha_{k+1} / ((1 - 2k)(k + 2)) m^k
+  // with alpha_k = ((-1/2)_k / k!)^2, alpha_{k+1} = alpha_k ((2k-1)/(2k+2))^2.
+  double inA[kTerms] = {}, inB[kTerms] = {}, inC[kTerms] = {};
+  // far (x = p = 1/delta^2):
+  //   a  = pi sum_{k>=0} (2k-1) alpha_k / (k+1) p^k
+  //   bt = pi sum_{k>=2} 2k (2k-2) alpha_k / ((2k-3)(k+1)) p^(k-1)
+  //   et = pi sum_{k>=1} 2k alpha_k / ((2k-3)(k+1)) p^(k-1)
+  double farA[kTerms] = {}, farBt[kTerms] = {}, farEt[kTerms] = {};
+  // Hertz far: with asin t = sum c_k t^(2k+1), sqrt(1 - t^2) = sum s_k t^(2k)
+  // (c_0 = s_0 = 1, c_k = c_{k-1} (2k-1)^2/(2k (2k+1)), s_k = s_{k-1} (k - 3/2)/k),
+  // the t-expansions of (58)-(59) give
+  //   aH   = -(3/16) sum_{k>=1} d_k p^(k-1),  d_k = 4c_{k-1} - c_k + s_k + 2s_{k-1}
+  //   T0Ht = T0_H / |tau| = (3/64) sum_{k>=2} e_k p^(k-2),
+  //          e_k = 3c_k - 8c_{k-1} + 8c_{k-2} + 6s_{k-1} - 3s_k
+  double hzA[kTerms] = {}, hzT[kTerms] = {};
 
-// near the centre (m = delta^2 <= kInsideSeriesM), series of the 2F1's:
-//   A = -4 pi sum_{k>=1} k alpha_k / (3 - 2k) m^(k-1)
-//   B =    pi sum_{k>=0} alpha_k (1 - 2k) / (3 - 2k) m^k
-//   C =   -pi sum_{k>=0} (k+1)(2k+1) alpha_{k+1} / ((1 - 2k)(k + 2)) m^k
-Radial3 insideSeries(double m, double relTol) {
-  Radial3 r;
-  double alpha = 1.0;               // alpha_k
-  double alpha1 = nextAlpha(1.0, 0);  // alpha_{k+1}
-  double pk = 1.0, pk1 = 0.0, pk2 = 0.0;  // m^k, m^(k-1), m^(k-2)
-  for (int k = 0; k < kMaxTerms; ++k) {
-    const double kk = k;
-    const double cB = kPi * alpha * (1.0 - 2.0 * kk) / (3.0 - 2.0 * kk);
-    const double cC = -kPi * (kk + 1.0) * (2.0 * kk + 1.0) * alpha1 / ((1.0 - 2.0 * kk) * (kk + 2.0));
-    const double cA = -4.0 * kPi * kk * alpha / (3.0 - 2.0 * kk);  // zero for k = 0
-    r.f[0] += cA * pk1;
-    r.df[0] += (kk - 1.0) * cA * pk2;
-    r.f[1] += cB * pk;
-    r.df[1] += kk * cB * pk1;
-    r.f[2] += cC * pk;
-    r.df[2] += kk * cC * pk1;
-    const double size = (kk + 1.0) * (std::fabs(cA * pk1) + std::fabs(cB * pk) + std::fabs(cC * pk));
-    if (k >= 2 && size <= relTol) {
+  constexpr SeriesTables() {
+    double alpha[kTerms + 2] = {};
+    alpha[0] = 1.0;
+    for (int k = 0; k + 1 < kTerms + 2; ++k) {
+      const double r = (2.0 * k - 1.0) / (2.0 * k + 2.0);
+      alpha[k + 1] = alpha[k] * r * r;
+    }
+    for (int k = 0; k < kTerms; ++k) {
+      const double kk = k;
+      if (k >= 1) inA[k - 1] = -4.0 * kPi * kk * alpha[k] / (3.0 - 2.0 * kk);
+      inB[k] = kPi * alpha[k] * (1.0 - 2.0 * kk) / (3.0 - 2.0 * kk);
+      inC[k] = -kPi * (kk + 1.0) * (2.0 * kk + 1.0) * alpha[k + 1] / ((1.0 - 2.0 * kk) * (kk + 2.0));
+      farA[k] = kPi * (2.0 * kk - 1.0) * alpha[k] / (kk + 1.0);
+      if (k >= 2) farBt[k - 1] = kPi * 2.0 * kk * (2.0 * kk - 2.0) * alpha[k] / ((2.0 * kk - 3.0) * (kk + 1.0));
+      if (k >= 1) farEt[k - 1] = kPi * 2.0 * kk * alpha[k] / ((2.0 * kk - 3.0) * (kk + 1.0));
+    }
+    double c[kTerms + 2] = {}, sq[kTerms + 2] = {};
+    c[0] = 1.0;
+    sq[0] = 1.0;
+    for (int k = 1; k < kTerms + 2; ++k) {
+      const double kk = k;
+      c[k] = c[k - 1] * (2.0 * kk - 1.0) * (2.0 * kk - 1.0) / (2.0 * kk * (2.0 * kk + 1.0));
+      sq[k] = sq[k - 1] * (kk - 1.5) / kk;
+    }
+    for (int k = 1; k <= kTerms; ++k) {
+      hzA[k - 1] = -3.0 / 16.0 * (4.0 * c[k - 1] - c[k] + sq[k] + 2.0 * sq[k - 1]);
+    }
+    for (int k = 2; k < kTerms + 2; ++k) {
+      hzT[k - 2] = 3.0 / 64.0 * (3.0 * c[k] - 8.0 * c[k - 1] + 8.0 * c[k - 2] + 6.0 * sq[k - 1] - 3.0 * sq[k]);
+    }
+  }
+};
+constexpr SeriesTables kSeries{};
+
+// sum_j c_i[j] x^j and its derivative for N tables at once, stopped when the
+// next terms (times j, for the derivative) are below relTol; x <= 0.1 here
+// and the coefficients are O(1), so relTol is an absolute bound on O(1) values.
+template <int N>
+void sumSeries(const double* const (&c)[N], double x, double relTol, double* f, double* df) {
+  for (int i = 0; i < N; ++i) {
+    f[i] = c[i][0];
+    df[i] = 0.0;
+  }
+  double xj1 = 1.0;  // x^(j-1)
+  for (int j = 1; j < kTerms; ++j) {
+    const double xj = xj1 * x;
+    double size = 0.0;
+    for (int i = 0; i < N; ++i) {
+      f[i] += c[i][j] * xj;
+      df[i] += j * c[i][j] * xj1;
+      size += std::fabs(c[i][j]);
+    }
+    if (j >= 2 && (j + 1) * size * xj <= relTol) {
       break;
     }
-    alpha = alpha1;
-    alpha1 = nextAlpha(alpha1, k + 1);
-    pk2 = (k == 0) ? 1.0 : pk1;
-    pk1 = pk;
-    pk *= m;
+    xj1 = xj;
   }
+}
+
+Radial3 insideSeries(double m, double relTol) {
+  Radial3 r;
+  const double* const c[3] = {kSeries.inA, kSeries.inB, kSeries.inC};
+  sumSeries<3>(c, m, relTol, r.f, r.df);
   return r;
 }
 
-// far from the disk (p = 1/delta^2 <= kFarSeriesP):
-//   a  = pi sum_{k>=0} (2k-1) alpha_k / (k+1) p^k
-//   bt = pi sum_{k>=2} 2k (2k-2) alpha_k / ((2k-3)(k+1)) p^(k-1)
-//   et = pi sum_{k>=1} 2k alpha_k / ((2k-3)(k+1)) p^(k-1)
 Radial3 farSeries(double p, double relTol) {
   Radial3 r;
-  double alpha = 1.0;
-  double pk = 1.0, pk1 = 0.0, pk2 = 0.0;
-  for (int k = 0; k < kMaxTerms; ++k) {
-    const double kk = k;
-    const double ca = kPi * (2.0 * kk - 1.0) * alpha / (kk + 1.0);
-    const double cb = kPi * 2.0 * kk * (2.0 * kk - 2.0) * alpha / ((2.0 * kk - 3.0) * (kk + 1.0));
-    const double ce = kPi * 2.0 * kk * alpha / ((2.0 * kk - 3.0) * (kk + 1.0));
-    r.f[0] += ca * pk;
-    r.df[0] += kk * ca * pk1;
-    r.f[1] += cb * pk1;
-    r.df[1] += (kk - 1.0) * cb * pk2;
-    r.f[2] += ce * pk1;
-    r.df[2] += (kk - 1.0) * ce * pk2;
-    const double size = (kk + 1.0) * (std::fabs(ca * pk) + std::fabs(cb * pk1) + std::fabs(ce * pk1));
-    if (k >= 2 && size <= relTol) {
-      break;
-    }
-    alpha = nextAlpha(alpha, k);
-    pk2 = (k == 0) ? 1.0 : pk1;
-    pk1 = pk;
-    pk *= p;
-  }
+  const double* const c[3] = {kSeries.farA, kSeries.farBt, kSeries.farEt};
+  sumSeries<3>(c, p, relTol, r.f, r.df);
   return r;
 }
 
@@ -198,13 +231,14 @@ Radial3 farSeries(double p, double relTol) {
 Radial3 insideClosedForm(double m, double mc, double relTol) {
   const EllipticKE ke = completeEllipticKE(m, mc, relTol);
   const double E = ke.E, K1 = mcK(ke, mc);
+  const double im = 1.0 / m, im2 = im * im;
   Radial3 r;
-  r.f[0] = 4.0 / (3.0 * m) * (K1 - (1.0 + m) * E);
-  r.df[0] = 2.0 / (3.0 * m * m) * ((2.0 - m) * E - 2.0 * K1);
+  r.f[0] = 4.0 / 3.0 * im * (K1 - (1.0 + m) * E);
+  r.df[0] = 2.0 / 3.0 * im2 * ((2.0 - m) * E - 2.0 * K1);
   r.f[1] = 2.0 / 9.0 * (2.0 * (2.0 - m) * E - K1);
-  r.df[1] = 1.0 / (3.0 * m) * ((1.0 - 2.0 * m) * E - K1);
-  r.f[2] = 2.0 / (15.0 * m * m) * ((2.0 - m) * K1 - 2.0 * (m * m - m + 1.0) * E);
-  r.df[2] = 1.0 / (15.0 * m * m * m) * ((8.0 - 3.0 * m - 2.0 * m * m) * E - (m + 8.0) * K1);
+  r.df[1] = 1.0 / 3.0 * im * ((1.0 - 2.0 * m) * E - K1);
+  r.f[2] = 2.0 / 15.0 * im2 * ((2.0 - m) * K1 - 2.0 * (m * m - m + 1.0) * E);
+  r.df[2] = 1.0 / 15.0 * im2 * im * ((8.0 - 3.0 * m - 2.0 * m * m) * E - (m + 8.0) * K1);
   return r;
 }
 
@@ -218,15 +252,15 @@ Radial3 insideClosedForm(double m, double mc, double relTol) {
 Radial3 outsideClosedForm(double p, double pc, double relTol) {
   const EllipticKE ke = completeEllipticKE(p, pc, relTol);
   const double E = ke.E, K1 = mcK(ke, pc);
-  const double sp = std::sqrt(p);
-  const double dmdp = -p * p;  // d/dm = -p^2 d/dp
+  const double sp = std::sqrt(p), isp = 1.0 / sp, ip = isp * isp;
+  // d/dm = -p^2 d/dp
   Radial3 r;
-  r.f[0] = 4.0 / (3.0 * sp) * (K1 - (1.0 + p) * E);
-  r.df[0] = dmdp * 2.0 / (3.0 * p * sp) * ((1.0 - 2.0 * p) * E - K1);
-  r.f[1] = 2.0 / (9.0 * p * sp) * (2.0 * (2.0 * p - 1.0) * E + (2.0 - 3.0 * p) * K1);
-  r.df[1] = dmdp / (3.0 * p * p * sp) * ((2.0 - p) * E - 2.0 * K1);
-  r.f[2] = 2.0 / (15.0 * sp) * ((2.0 - p) * K1 - 2.0 * (p * p - p + 1.0) * E);
-  r.df[2] = dmdp / (15.0 * p * sp) * ((2.0 + 3.0 * p - 8.0 * p * p) * E - 2.0 * (2.0 * p + 1.0) * K1);
+  r.f[0] = 4.0 / 3.0 * isp * (K1 - (1.0 + p) * E);
+  r.df[0] = -2.0 / 3.0 * sp * ((1.0 - 2.0 * p) * E - K1);
+  r.f[1] = 2.0 / 9.0 * ip * isp * (2.0 * (2.0 * p - 1.0) * E + (2.0 - 3.0 * p) * K1);
+  r.df[1] = -1.0 / 3.0 * isp * ((2.0 - p) * E - 2.0 * K1);
+  r.f[2] = 2.0 / 15.0 * isp * ((2.0 - p) * K1 - 2.0 * (p * p - p + 1.0) * E);
+  r.df[2] = -1.0 / 15.0 * sp * ((2.0 + 3.0 * p - 8.0 * p * p) * E - 2.0 * (2.0 * p + 1.0) * K1);
   return r;
 }
 
@@ -237,9 +271,10 @@ Radial3 nearRadial(double m, double nn, double w33, double relTol) {
     return insideSeries(m, relTol);
   }
   if (nn <= w33) {
-    return insideClosedForm(m, (w33 - nn) / w33, relTol);
+    return insideClosedForm(m, 1.0 - m, relTol);
   }
-  return outsideClosedForm(w33 / nn, (nn - w33) / nn, relTol);
+  const double p = w33 / nn;
+  return outsideClosedForm(p, 1.0 - p, relTol);
 }
 
 // Hertz (57), unit load on the unit disk: AH = a_H / delta and T0H with d/dm.
@@ -272,42 +307,11 @@ Radial2 hertzNear(double m, double nn, double w33) {
   return r;
 }
 
-// Hertz far (p = 1/delta^2 <= kFarSeriesP): with asin t = sum c_k t^(2k+1),
-// sqrt(1 - t^2) = sum s_k t^(2k), the t-expansions of (58)-(59) give
-//   aH   = -(3/16) sum_{k>=1} d_k p^(k-1),  d_k = 4c_{k-1} - c_k + s_k + 2s_{k-1}
-//   T0Ht = T0_H/|tau| = (3/64) sum_{k>=2} e_k p^(k-2),
-//          e_k = 3c_k - 8c_{k-1} + 8c_{k-2} + 6s_{k-1} - 3s_k
-// c_0 = s_0 = 1, c_k = c_{k-1} (2k-1)^2/(2k (2k+1)), s_k = s_{k-1} (k - 3/2)/k.
+// Hertz far (p = 1/delta^2 <= kFarSeriesP): aH and T0Ht from the tables.
 Radial2 hertzFar(double p, double relTol) {
   Radial2 r;
-  double c2 = 0.0, c1 = 0.0, c0 = 1.0;  // c_{k-2}, c_{k-1}, c_k
-  double s1 = 0.0, s0 = 1.0;            // s_{k-1}, s_k
-  double pa = 0.0, pa1 = 0.0;           // p^(k-1), p^(k-2)
-  double pb = 0.0, pb1 = 0.0;           // p^(k-2), p^(k-3)
-  for (int k = 1; k < kMaxTerms; ++k) {
-    const double kk = k;
-    c2 = c1;
-    c1 = c0;
-    c0 = c1 * (2.0 * kk - 1.0) * (2.0 * kk - 1.0) / (2.0 * kk * (2.0 * kk + 1.0));
-    s1 = s0;
-    s0 = s1 * (kk - 1.5) / kk;
-    pa1 = pa;
-    pa = (k == 1) ? 1.0 : pa * p;
-    pb1 = pb;
-    pb = (k == 2) ? 1.0 : pb * p;
-    const double d = 4.0 * c1 - c0 + s0 + 2.0 * s1;
-    const double e = 3.0 * c0 - 8.0 * c1 + 8.0 * c2 + 6.0 * s1 - 3.0 * s0;
-    r.f[0] -= 3.0 / 16.0 * d * pa;
-    r.df[0] -= 3.0 / 16.0 * (kk - 1.0) * d * pa1;
-    if (k >= 2) {
-      r.f[1] += 3.0 / 64.0 * e * pb;
-      r.df[1] += 3.0 / 64.0 * (kk - 2.0) * e * pb1;
-    }
-    const double size = kk * (std::fabs(d * pa) + std::fabs(e * pb));
-    if (k >= 3 && size <= relTol) {
-      break;
-    }
-  }
+  const double* const c[2] = {kSeries.hzA, kSeries.hzT};
+  sumSeries<2>(c, p, relTol, r.f, r.df);
   return r;
 }
 
@@ -324,8 +328,9 @@ struct Reduced {
 template <class T>
 Reduced<T> reduce(const Vec2& centre, double R, double rho, const T* w) {
   Reduced<T> red;
-  red.nx = (-rho * w[1] - centre.x() * w[2]) / R;
-  red.ny = (rho * w[0] - centre.y() * w[2]) / R;
+  const double invR = 1.0 / R;
+  red.nx = (-rho * w[1] - centre.x() * w[2]) * invR;
+  red.ny = (rho * w[0] - centre.y() * w[2]) * invR;
   const double nx = valueOf(red.nx), ny = valueOf(red.ny), w3 = valueOf(w[2]);
   red.nn = nx * nx + ny * ny;
   red.w33 = w3 * w3;
@@ -344,8 +349,9 @@ void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relT
   T tqs;        // torque_C(q) = tqs g^T
   if (!red.far) {
     const double s = valueOf(w[2]) > 0.0 ? 1.0 : -1.0;
-    gx = red.nx / w[2];
-    gy = red.ny / w[2];
+    const T invW3 = reciprocal(w[2]);
+    gx = red.nx * invW3;
+    gy = red.ny * invW3;
     const T m = gx * gx + gy * gy;
     const Radial3 r = nearRadial(valueOf(m), red.nn, red.w33, relTol);
     fa = s * lift(r.f[0], r.df[0], m);
@@ -353,10 +359,10 @@ void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relT
     Cq = s * lift(r.f[2], r.df[2], m);
     tqs = 2.0 * m * Cq;
   } else {
-    const T norm = sqrt(red.nx * red.nx + red.ny * red.ny);
-    gx = red.nx / norm;
-    gy = red.ny / norm;
-    const T tau = w[2] / norm;
+    const T invNorm = reciprocal(sqrt(red.nx * red.nx + red.ny * red.ny));
+    gx = red.nx * invNorm;
+    gy = red.ny * invNorm;
+    const T tau = w[2] * invNorm;
     const T p = tau * tau;
     const Radial3 r = farSeries(valueOf(p), relTol);
     fa = lift(r.f[0], r.df[0], p);
@@ -375,17 +381,17 @@ void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relT
   const T t1 = 2.0 * R3 * Bq;
   const T tq[2] = {R4 * (tqs * gx), R4 * (tqs * gy)};
   // move to O: phi = (1, Cx + qx, Cy + qy), torque_O = torque_C + C x force
-  const double cx = centre.x(), cy = centre.y();
+  const double cx = centre.x(), cy = centre.y(), invRho = 1.0 / rho;
   F[0][0] = f1x;
   F[1][0] = f1y;
-  F[2][0] = (t1 + cx * f1y - cy * f1x) / rho;
+  F[2][0] = (t1 + cx * f1y - cy * f1x) * invRho;
   for (int j = 0; j < 2; ++j) {
     const double cj = (j == 0) ? cx : cy;
     const T fx = cj * f1x + fq[0][j];
     const T fy = cj * f1y + fq[1][j];
     F[0][j + 1] = fx;
     F[1][j + 1] = fy;
-    F[2][j + 1] = (cj * t1 + tq[j] + cx * fy - cy * fx) / rho;
+    F[2][j + 1] = (cj * t1 + tq[j] + cx * fy - cy * fx) * invRho;
   }
 }
 
@@ -396,17 +402,18 @@ void diskHertz(const Vec2& centre, double R, double rho, const T* w, double relT
   T gx, gy, fa, t1;
   if (!red.far) {
     const double s = valueOf(w[2]) > 0.0 ? 1.0 : -1.0;
-    gx = red.nx / w[2];
-    gy = red.ny / w[2];
+    const T invW3 = reciprocal(w[2]);
+    gx = red.nx * invW3;
+    gy = red.ny * invW3;
     const T m = gx * gx + gy * gy;
     const Radial2 r = hertzNear(valueOf(m), red.nn, red.w33);
     fa = s * lift(r.f[0], r.df[0], m);
     t1 = s * lift(r.f[1], r.df[1], m);
   } else {
-    const T norm = sqrt(red.nx * red.nx + red.ny * red.ny);
-    gx = red.nx / norm;
-    gy = red.ny / norm;
-    const T tau = w[2] / norm;
+    const T invNorm = reciprocal(sqrt(red.nx * red.nx + red.ny * red.ny));
+    gx = red.nx * invNorm;
+    gy = red.ny * invNorm;
+    const T tau = w[2] * invNorm;
     const T p = tau * tau;
     const Radial2 r = hertzFar(valueOf(p), relTol);
     fa = lift(r.f[0], r.df[0], p);
@@ -416,12 +423,18 @@ void diskHertz(const Vec2& centre, double R, double rho, const T* w, double relT
   const T fx = -(fa * gy), fy = fa * gx;
   out[0] = fx;
   out[1] = fy;
-  out[2] = (R * t1 + centre.x() * fy - centre.y() * fx) / rho;
+  out[2] = (R * t1 + centre.x() * fy - centre.y() * fx) * (1.0 / rho);
 }
 
 // Checks the inputs and returns the scale sigma = max |w_i| (w / sigma is
 // used inside: the result is homogeneous of degree 0 in w).
 double checkInputs(const Vec2& centre, double R, double rho, const Vec3& w, double tolerance) {
+  const double sigma = w.cwiseAbs().maxCoeff();
+  // fast path: everything valid (the sum is finite iff every term is)
+  if (R > 0.0 && rho > 0.0 && tolerance >= 0.0 && sigma > 0.0 &&
+      std::isfinite(centre.x() + centre.y() + R + rho + w.x() + w.y() + w.z() + tolerance)) {
+    return sigma;
+  }
   requireFinite(centre, "exact disk: centre");
   requirePositive(R, "exact disk: radius R");
   requirePositive(rho, "exact disk: rho");
@@ -430,7 +443,6 @@ double checkInputs(const Vec2& centre, double R, double rho, const Vec3& w, doub
   if (tolerance < 0.0) {
     throw Error("exact disk: tolerance must be >= 0: got " + formatDouble(tolerance));
   }
-  const double sigma = w.cwiseAbs().maxCoeff();
   if (sigma == 0.0) {
     throw Error("exact disk: slip direction w must be nonzero: got (0, 0, 0)");
   }
@@ -443,10 +455,10 @@ double effectiveTol(double tolerance) { return tolerance > 0.0 ? tolerance : kFu
 
 void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, bool wantJacobian,
                     ExactBasis& out, double tolerance) {
-  const double sigma = checkInputs(centre, R, rho, w, tolerance);
+  const double invSigma = 1.0 / checkInputs(centre, R, rho, w, tolerance);
   const double relTol = effectiveTol(tolerance);
   if (!wantJacobian) {
-    const double ws[3] = {w.x() / sigma, w.y() / sigma, w.z() / sigma};
+    const double ws[3] = {w.x() * invSigma, w.y() * invSigma, w.z() * invSigma};
     double F[3][3];
     diskBasis(centre, R, rho, ws, relTol, F);
     for (int i = 0; i < 3; ++i) {
@@ -458,7 +470,7 @@ void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, boo
   }
   Dual3 ws[3];
   for (int j = 0; j < 3; ++j) {
-    ws[j].v = w[j] / sigma;
+    ws[j].v = w[j] * invSigma;
     ws[j].d[j] = 1.0;
   }
   Dual3 F[3][3];
@@ -468,7 +480,7 @@ void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, boo
     for (int k = 0; k < 3; ++k) {
       out.F(i, k) = F[i][k].v;
       for (int j = 0; j < 3; ++j) {
-        out.dF[k](i, j) = F[i][k].d[j] / sigma;
+        out.dF[k](i, j) = F[i][k].d[j] * invSigma;
       }
     }
   }
@@ -476,24 +488,24 @@ void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, boo
 
 Vec3 exactDiskHertz(const Vec2& centre, double R, double rho, const Vec3& w, Mat3* jacobian,
                     double tolerance) {
-  const double sigma = checkInputs(centre, R, rho, w, tolerance);
+  const double invSigma = 1.0 / checkInputs(centre, R, rho, w, tolerance);
   const double relTol = effectiveTol(tolerance);
   if (jacobian == nullptr) {
-    const double ws[3] = {w.x() / sigma, w.y() / sigma, w.z() / sigma};
+    const double ws[3] = {w.x() * invSigma, w.y() * invSigma, w.z() * invSigma};
     double r[3];
     diskHertz(centre, R, rho, ws, relTol, r);
     return Vec3(r[0], r[1], r[2]);
   }
   Dual3 ws[3];
   for (int j = 0; j < 3; ++j) {
-    ws[j].v = w[j] / sigma;
+    ws[j].v = w[j] * invSigma;
     ws[j].d[j] = 1.0;
   }
   Dual3 r[3];
   diskHertz(centre, R, rho, ws, relTol, r);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      (*jacobian)(i, j) = r[i].d[j] / sigma;
+      (*jacobian)(i, j) = r[i].d[j] * invSigma;
     }
   }
   return Vec3(r[0].v, r[1].v, r[2].v);

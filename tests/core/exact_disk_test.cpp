@@ -43,6 +43,11 @@ constexpr double kFdTol = 1e-8;
 constexpr double kFdRimTol = 1e-5;
 // dF[k] w = 0 (degree-0 homogeneity) holds to rounding of the dual numbers.
 constexpr double kHomogeneityTol = 1e-13;
+// Where exact_disk.cpp switches branches (delta^2 / R^2): series about the
+// centre below kSwitchInside, elliptic closed forms up to kSwitchFar, series in
+// 1/delta^2 beyond; the rim (delta = R) separates the two closed forms.
+constexpr double kSwitchInside = 0.1;
+constexpr double kSwitchFar = 10.0;
 // Two sides of a branch switch 1e-12 apart (relative in delta^2): the true
 // change is ~1e-12 times an O(1) derivative; the rest is the branches' error.
 constexpr double kSwitchTol = 1e-12;
@@ -89,15 +94,15 @@ std::vector<Case> cases(const Disk& d) {
       {"w3=1e-9", Vec3(0.28, -0.96, 1e-9).normalized()},
       {"icrCentre", wForIcr(d, 0.0, 0.0)},
       {"icr0.3", wForIcr(d, 0.3, 1.0)},
-      {"icrSwitchIn-", wForIcr(d, std::sqrt(0.2) * (1 - 1e-9), 2.0)},
-      {"icrSwitchIn+", wForIcr(d, std::sqrt(0.2) * (1 + 1e-9), 2.0, -1.0)},
+      {"icrSwitchIn-", wForIcr(d, std::sqrt(kSwitchInside) * (1 - 1e-9), 2.0)},
+      {"icrSwitchIn+", wForIcr(d, std::sqrt(kSwitchInside) * (1 + 1e-9), 2.0, -1.0)},
       {"icr0.7", wForIcr(d, 0.7, -2.5, -1.0)},
       {"rimIn1e-8", wForIcr(d, 1 - 1e-8, 0.4)},
       {"rim", wForIcr(d, 1.0, -1.2)},
       {"rimOut1e-8", wForIcr(d, 1 + 1e-8, 3.0, -1.0)},
       {"icr1.5", wForIcr(d, 1.5, 0.9)},
-      {"icrSwitchOut-", wForIcr(d, std::sqrt(5.0) * (1 - 1e-9), -0.3)},
-      {"icrSwitchOut+", wForIcr(d, std::sqrt(5.0) * (1 + 1e-9), -0.3, -1.0)},
+      {"icrSwitchOut-", wForIcr(d, std::sqrt(kSwitchFar) * (1 - 1e-9), -0.3)},
+      {"icrSwitchOut+", wForIcr(d, std::sqrt(kSwitchFar) * (1 + 1e-9), -0.3, -1.0)},
       {"icr5", wForIcr(d, 5.0, 2.2)},
       {"icr100", wForIcr(d, 100.0, -2.9, -1.0)},
   };
@@ -310,11 +315,12 @@ TEST(ExactDiskHertz, JacobianMatchesCentralDifferences) {
 
 // ------------------------------------------------------------- continuity
 
-// The branches (series about the centre, closed form, far series) meet at
-// delta^2 = 0.2 R^2, R^2 (rim) and 5 R^2; w3 = 0 is inside the far branch.
+// The branches (series about the centre, closed forms, far series) meet at
+// delta^2 = kSwitchInside R^2, R^2 (rim) and kSwitchFar R^2; w3 = 0 is inside
+// the far branch.
 TEST(ExactDiskBasis, ContinuousAcrossBranchSwitchesAndPureTranslation) {
   for (const Disk& d : disks()) {
-    for (double f2 : {0.2, 1.0, 5.0}) {
+    for (double f2 : {kSwitchInside, 1.0, kSwitchFar}) {
       for (double phi : {0.3, 2.0, -1.9}) {
         const double f = std::sqrt(f2);
         const Vec3 wm = wForIcr(d, f * (1.0 - 0.5e-12), phi), wp = wForIcr(d, f * (1.0 + 0.5e-12), phi);
@@ -349,7 +355,7 @@ TEST(ExactDiskBasis, ContinuousAcrossBranchSwitchesAndPureTranslation) {
 TEST(ExactDiskHertz, ContinuousAcrossBranchSwitches) {
   for (const Disk& d : disks()) {
     const double scale = 1.0 + (d.centre.norm() + d.R) / d.rho;
-    for (double f2 : {1.0, 5.0}) {
+    for (double f2 : {1.0, kSwitchFar}) {
       const double f = std::sqrt(f2);
       const Vec3 wm = wForIcr(d, f * (1.0 - 0.5e-12), 0.8), wp = wForIcr(d, f * (1.0 + 0.5e-12), 0.8);
       Mat3 Jm, Jp;
