@@ -484,6 +484,11 @@ TEST(ExactModel, JacobianMatchesFiniteDifferences) {
       }
       EXPECT_LT((J - fd).cwiseAbs().maxCoeff(), kFiniteDifferenceTol * scaleOf(p))
           << "w = " << w.transpose() << "\nJ =\n" << J << "\nFD =\n" << fd;
+      // Q is the gradient of the dissipation potential D(w) = -mu ∫ p |A w| dA
+      // (v = A w, A = [[1, 0, -y/rho], [0, 1, x/rho]], grad |A w| = A^T v^ = k),
+      // so J = Hess D is symmetric.
+      EXPECT_LT((J - J.transpose()).cwiseAbs().maxCoeff(), kFiniteDifferenceTol * scaleOf(p))
+          << "J not symmetric:\n" << J;
       // degree-0 homogeneous: J w = 0; and J(s w) = J(w) / s
       EXPECT_TRUE(nearVec(J * w, Vec3::Zero(), kExactTol * scaleOf(p)));
       Mat3 J2;
