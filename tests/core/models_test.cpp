@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -156,6 +157,57 @@ TEST(ExactModel, MatchesOracleAtSpecialCentres) {
                             kExactTol * scaleOf(p)))
             << "ICR at " << ctr.transpose() << ", w = " << w.transpose();
       }
+    }
+  }
+}
+
+// Convex hull (counter-clockwise, Andrew's monotone chain) of random points.
+std::vector<Vec2> convexHull(std::vector<Vec2> pts) {
+  std::sort(pts.begin(), pts.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Vec2> hull(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+// Random convex polygons and disks, O inside or outside, random admissible
+// linear pressures and slip directions (fixed seed).
+TEST(ExactModel, RandomPatchesMatchOracle) {
+  std::mt19937 rng(20);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 8; ++trial) {
+    const Vec2 offset(0.6 * u(rng), 0.6 * u(rng));
+    PatchShape shape = PatchShape::disk(0.2 + 0.3 * std::abs(u(rng)), offset);
+    if (trial % 2 == 0) {
+      std::vector<Vec2> pts;
+      for (int i = 0; i < 4 + trial; ++i) pts.push_back(offset + 0.5 * Vec2(u(rng), u(rng)));
+      shape = PatchShape::polygon(convexHull(pts));
+    }
+    SCOPED_TRACE(shape.describe());
+    // pressure p >= 0 on the patch: random gradient, p0 lifted above zero
+    const double l = shape.diameter();
+    LinearPressure p{0.0, u(rng) / l, u(rng) / l};
+    double lowest = p.at(shape.centroid()) - l * std::hypot(p.cx, p.cy);
+    p.p0 = -lowest + 0.2 + std::abs(u(rng));
+    const double mu = 0.2 + std::abs(u(rng));
+    const FrictionPatch patch(shape, p, mu);
+    for (int k = 0; k < 5; ++k) {
+      const Vec3 w = randomUnit(rng);
+      EXPECT_TRUE(nearVec(patch.exactQ(w), bruteForceQ(shape, linearField(p), mu, patch.rho(), w),
+                          kExactTol * scaleOf(patch)))
+          << "w = " << w.transpose();
     }
   }
 }
@@ -319,8 +371,11 @@ TEST(ExactModel, ContinuousAcrossPureTranslation) {
           const Vec3 w(w0.x(), w0.y(), s * e);
           const Vec3 q = p.exactQ(w);
           ASSERT_TRUE(q.allFinite()) << "w3 = " << s * e;
-          // first order: Q(w) ~ Q(w0) + J (0, 0, w3); the remainder is O(w3^2)
-          EXPECT_TRUE(nearVec(q, q0 + J.col(2) * (s * e), kExactTol * scaleOf(p) + 10 * e * e * scaleOf(p)))
+          // first order: Q(w) ~ Q(w0) + J (0, 0, w3); the remainder is O(w3^2):
+          // measured <= 0.6 mu Pz w3^2 on these patches (w3 <= 0.1), bound 2
+          constexpr double kSecondOrder = 2.0;
+          EXPECT_TRUE(nearVec(q, q0 + J.col(2) * (s * e),
+                              kExactTol * scaleOf(p) + kSecondOrder * e * e * scaleOf(p)))
               << "w3 = " << s * e;
           if (e >= 1e-6) {
             EXPECT_TRUE(nearVec(q, bruteForceQ(p.shape(), c.pressure, p.mu(), p.rho(), w),
