@@ -34,7 +34,9 @@ void writePng(const Image& image, const std::string& path) {
     throw RenderError("writePng: libpng failed writing " + path);
   }
   png_init_io(png, file.get());
-  png_set_compression_level(png, 6);
+  // one filter and a fast zlib level: frames are written often, size matters less
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
+  png_set_compression_level(png, 3);
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);

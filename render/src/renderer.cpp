@@ -320,20 +320,41 @@ Vec3 anyPerpendicular(const Vec3& v) {
 
 // ---------------------------------------------------------------------------
 
+namespace {
+// World points whose images bound the body's image: hull points, box
+// corners, or points on the cylinder rims.
+std::vector<Vec3> outlinePoints(const SceneBody& b) {
+  std::vector<Vec3> pts;
+  switch (b.kind) {
+    case SceneBody::ConvexHull:
+      for (const Vec3& p : b.hullPoints) pts.push_back(b.pose * p);
+      break;
+    case SceneBody::Box:
+      for (int i = 0; i < 8; ++i) {
+        pts.push_back(b.pose * Vec3((i & 1 ? 0.5 : -0.5) * b.dimensions.x(),
+                                    (i & 2 ? 0.5 : -0.5) * b.dimensions.y(),
+                                    (i & 4 ? 0.5 : -0.5) * b.dimensions.z()));
+      }
+      break;
+    case SceneBody::Cylinder:
+      for (int i = 0; i < 32; ++i) {
+        const double t = 2.0 * kPi * i / 32;
+        for (double z : {-0.5, 0.5}) {
+          pts.push_back(b.pose * Vec3(b.dimensions.x() * std::cos(t),
+                                      b.dimensions.x() * std::sin(t), z * b.dimensions.z()));
+        }
+      }
+      break;
+  }
+  return pts;
+}
+}  // namespace
+
 void boundingSphere(const std::vector<SceneBody>& bodies, Vec3& centre, double& radius) {
   std::vector<Vec3> pts;
   for (const SceneBody& b : bodies) {
-    if (b.kind == SceneBody::ConvexHull) {
-      for (const Vec3& p : b.hullPoints) pts.push_back(b.pose * p);
-      continue;
-    }
-    const Vec3 h = b.kind == SceneBody::Cylinder
-                       ? Vec3(b.dimensions.x(), b.dimensions.x(), 0.5 * b.dimensions.z())
-                       : Vec3(0.5 * b.dimensions);
-    for (int i = 0; i < 8; ++i) {
-      pts.push_back(b.pose * Vec3((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
-                                  (i & 4 ? 1 : -1) * h.z()));
-    }
+    const std::vector<Vec3> outline = outlinePoints(b);
+    pts.insert(pts.end(), outline.begin(), outline.end());
   }
   if (pts.empty()) {
     centre = Vec3::Zero();
@@ -651,9 +672,23 @@ Image Renderer::render(const Scene& scene) {
   };
   std::vector<internal::ScreenLabel> labels;
   for (const TrackedBody& b : scene.overlay.tracked) {
-    if (!b.anchor || b.label.empty()) continue;
-    if (auto px = toPixel(*b.anchor))
-      labels.push_back({px->x(), px->y(), b.label, {0.1, 0.1, 0.1}, true});
+    if (b.label.empty()) continue;
+    if (b.anchor) {
+      if (auto px = toPixel(*b.anchor))
+        labels.push_back({px->x(), px->y(), b.label, {0.1, 0.1, 0.1}, true});
+    } else if (b.body >= 0 && b.body < static_cast<int>(scene.bodies.size())) {
+      // centred over the body's image, just above its top
+      double top = 1e300, left = 1e300, right = -1e300;
+      for (const Vec3& p : outlinePoints(scene.bodies[static_cast<std::size_t>(b.body)])) {
+        if (auto px = toPixel(p)) {
+          top = std::min(top, px->y());
+          left = std::min(left, px->x());
+          right = std::max(right, px->x());
+        }
+      }
+      if (right >= left)
+        labels.push_back({0.5 * (left + right), top, b.label, {0.1, 0.1, 0.1}, true});
+    }
   }
   for (const Arrow& a : scene.arrows) {
     if (a.label.empty()) continue;

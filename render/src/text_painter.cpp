@@ -150,6 +150,20 @@ void TextPainter::draw(Image& image, const FrameOverlay& overlay,
              fontPx};
   const Rgb dark{0.08, 0.08, 0.1}, grey{0.3, 0.3, 0.35};
 
+  // labels at projected points (under the panel)
+  pt.font(pt.sans, 0.95);
+  for (const ScreenLabel& label : labels) {
+    if (label.text.empty()) continue;
+    const double tw = pt.width(label.text);
+    const double bw = tw + 0.8 * fontPx, bh = 1.3 * fontPx;
+    double bx = label.above ? label.x - 0.5 * bw : label.x + 0.4 * fontPx;
+    double by = label.above ? label.y - bh - 0.3 * fontPx : label.y - 0.5 * bh;
+    bx = std::clamp(bx, 0.0, std::max(0.0, w - bw));
+    by = std::clamp(by, 0.0, std::max(0.0, h - bh));
+    pt.roundedBox(bx, by, bw, bh, 0.3 * fontPx, 0.7);
+    pt.text(bx + 0.4 * fontPx, by + 0.5 * bh + 0.33 * fontPx, label.text, label.colour);
+  }
+
   // info panel lines
   std::vector<Line> lines;
   if (!overlay.title.empty()) {
@@ -228,20 +242,6 @@ void TextPainter::draw(Image& image, const FrameOverlay& overlay,
       x += (line.swatch && i == 0) ? labelWidth : pt.width(run.text);
     }
     y += lh;
-  }
-
-  // labels at projected points
-  pt.font(pt.sans, 0.95);
-  for (const ScreenLabel& label : labels) {
-    if (label.text.empty()) continue;
-    const double tw = pt.width(label.text);
-    const double bw = tw + 0.8 * fontPx, bh = 1.3 * fontPx;
-    double bx = label.above ? label.x - 0.5 * bw : label.x + 0.4 * fontPx;
-    double by = label.above ? label.y - bh - 0.3 * fontPx : label.y - 0.5 * bh;
-    bx = std::clamp(bx, 0.0, std::max(0.0, w - bw));
-    by = std::clamp(by, 0.0, std::max(0.0, h - bh));
-    pt.roundedBox(bx, by, bw, bh, 0.3 * fontPx, 0.7);
-    pt.text(bx + 0.4 * fontPx, by + 0.5 * bh + 0.33 * fontPx, label.text, label.colour);
   }
 
   // caption, bottom centre

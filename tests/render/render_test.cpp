@@ -70,6 +70,32 @@ int countDifferentPixels(const Image& a, const Image& b, int threshold) {
   return n;
 }
 
+// Image box of a disk body (rim points) under an independent pinhole model:
+// camera basis (s, u, -f), focal length from the vertical field of view.
+struct PixelBox {
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+};
+PixelBox projectDisk(const Camera& cam, const SceneBody& body) {
+  const Vec3 f = (cam.target - cam.eye).normalized();
+  const Vec3 s = f.cross(cam.up).normalized();
+  const Vec3 u = s.cross(f);
+  const double focal = 0.5 * kHeight / std::tan(0.5 * cam.fovYDeg * M_PI / 180.0);
+  const double R = body.dimensions.x(), H = body.dimensions.z();
+  PixelBox box;
+  for (int i = 0; i < 64; ++i) {
+    const double t = 2.0 * M_PI * i / 64;
+    for (double z : {-0.5 * H, 0.5 * H}) {
+      const Vec3 p = body.pose * Vec3(R * std::cos(t), R * std::sin(t), z) - cam.eye;
+      const double depth = p.dot(f);
+      const double x = 0.5 * kWidth + focal * p.dot(s) / depth;
+      const double y = 0.5 * kHeight - focal * p.dot(u) / depth;
+      box.x0 = std::min(box.x0, x), box.x1 = std::max(box.x1, x);
+      box.y0 = std::min(box.y0, y), box.y1 = std::max(box.y1, y);
+    }
+  }
+  return box;
+}
+
 TEST(Renderer, SmallSceneGivesPngOfRequestedSizeNotBlank) {
   Renderer renderer(smallOptions());
   const std::string dir = tempDir("size");
@@ -152,24 +178,8 @@ TEST(Renderer, BodyAppearsWhereThePinholeProjectionPutsIt) {
   without.bodies.clear();
   const Image a = renderer.render(with), b = renderer.render(without);
 
-  // pinhole: camera basis (s, u, -f), focal length from the vertical fov
-  const Camera& cam = with.camera;
-  const Vec3 f = (cam.target - cam.eye).normalized();
-  const Vec3 s = f.cross(cam.up).normalized();
-  const Vec3 u = s.cross(f);
-  const double focal = 0.5 * kHeight / std::tan(0.5 * cam.fovYDeg * M_PI / 180.0);
-  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
-  const SceneBody& body = with.bodies[0];
-  for (int i = 0; i < 64; ++i) {
-    const double t = 2.0 * M_PI * i / 64;
-    for (double z : {-0.005, 0.005}) {
-      const Vec3 p = body.pose * Vec3(0.05 * std::cos(t), 0.05 * std::sin(t), z) - cam.eye;
-      const double depth = p.dot(f);
-      const double x = 0.5 * kWidth + focal * p.dot(s) / depth;
-      const double y = 0.5 * kHeight - focal * p.dot(u) / depth;
-      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
-    }
-  }
+  const PixelBox box = projectDisk(with.camera, with.bodies[0]);
+  const double x0 = box.x0, x1 = box.x1, y0 = box.y0, y1 = box.y1;
   // the box filter of supersampling spreads an edge by at most one pixel
   constexpr double kEdgePx = 1.5;
   int inside = 0, outside = 0;
@@ -236,6 +246,39 @@ TEST(Renderer, OverlayTextIsDrawn) {
   // two more panel lines of text: well over a hundred changed pixels
   constexpr int kMinPixels = 100;
   EXPECT_GT(countDifferentPixels(renderer.render(plain), renderer.render(text), 40), kMinPixels);
+}
+
+// A tracked body's label without an anchor sits just above the body's image.
+TEST(Renderer, BodyLabelIsDrawnAboveTheBody) {
+  Renderer renderer(smallOptions());
+  Scene plain = coinScene(0.3, Vec3(0.03, 0.02, 0.005));
+  plain.overlay = FrameOverlay();
+  Scene labelled = plain;
+  TrackedBody tracked;
+  tracked.label = "exact";
+  tracked.body = 0;
+  labelled.overlay.tracked.push_back(tracked);
+  const Image a = renderer.render(plain), b = renderer.render(labelled);
+  const PixelBox box = projectDisk(plain.camera, plain.bodies[0]);
+  // the info panel gains a line too (top left, below its first line); look
+  // only right of the panel's swatch column and below its two lines
+  int above = 0, elsewhere = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) continue;
+      const bool inPanel = x < 80 && y < 40;
+      if (inPanel) continue;
+      // label box: centred on the body, bottom edge above the body's top
+      // (one pixel of filter spread)
+      const bool overBody =
+          y + 0.5 < box.y0 + 1.0 && std::abs(x + 0.5 - 0.5 * (box.x0 + box.x1)) < 40;
+      (overBody ? above : elsewhere) += 1;
+    }
+  }
+  constexpr int kMinLabelPixels = 50;  // five letters and their box
+  EXPECT_GT(above, kMinLabelPixels);
+  EXPECT_EQ(elsewhere, 0);
 }
 
 TEST(Renderer, BadInputIsRejected) {

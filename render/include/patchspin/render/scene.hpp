@@ -67,7 +67,10 @@ struct TrackedBody {
   Rgb colour{0.0, 0.0, 0.0};        // swatch colour, usually the body colour
   std::optional<double> slipRatio;  // v/(R omega) [-]
   std::optional<Vec3> w;            // slip direction (unit vector), Sect. 3
-  std::optional<Vec3> anchor;       // world point where the label is drawn, e.g. above the body
+  // Where the label is drawn: above the world point anchor if set, else just
+  // above the image of Scene::bodies[body] if body >= 0, else nowhere.
+  std::optional<Vec3> anchor;
+  int body = -1;
 };
 
 // Text drawn over the frame.
