@@ -691,4 +691,55 @@ void plotPareto(const std::string& csvPath, const std::string& pngPath, const Pa
   runGnuplot(s.str(), pngPath, o);
 }
 
+// ---- CSV readers -------------------------------------------------------------
+
+std::vector<TimeSeries> readTimeSeriesCsv(const std::string& csvPath) {
+  const Csv csv = readCsv(csvPath);
+  std::vector<TimeSeries> out;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    const std::string& label = csv.text(i, "label");
+    auto it =
+        std::find_if(out.begin(), out.end(), [&](const TimeSeries& t) { return t.label == label; });
+    if (it == out.end()) {
+      out.push_back(TimeSeries{label, {}, {}, {}});
+      it = out.end() - 1;
+    }
+    it->t.push_back(csv.number(i, "t"));
+    it->slipRatio.push_back(csv.number(i, "slipRatio"));
+    it->r.push_back(csv.number(i, "r"));
+  }
+  return out;
+}
+
+std::vector<SpherePath> readSpherePathsCsv(const std::string& csvPath) {
+  const Csv csv = readCsv(csvPath);
+  std::vector<SpherePath> out;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    const std::string& label = csv.text(i, "label");
+    auto it =
+        std::find_if(out.begin(), out.end(), [&](const SpherePath& p) { return p.label == label; });
+    if (it == out.end()) {
+      out.push_back(SpherePath{label, {}});
+      it = out.end() - 1;
+    }
+    it->w.emplace_back(csv.number(i, "w1"), csv.number(i, "w2"), csv.number(i, "w3"));
+  }
+  return out;
+}
+
+std::vector<LimitDirection> readLimitDirectionsCsv(const std::string& csvPath) {
+  const Csv csv = readCsv(csvPath);
+  const bool labelled = csv.has("label");
+  std::vector<LimitDirection> out;
+  for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+    LimitDirection l;
+    l.w = Vec3(csv.number(i, "w1"), csv.number(i, "w2"), csv.number(i, "w3"));
+    l.stability = parseStability(csv, i);
+    l.kind = parseKind(csv, i);
+    if (labelled && csv.index("label") < csv.rows[i].size()) l.label = csv.text(i, "label");
+    out.push_back(l);
+  }
+  return out;
+}
+
 }  // namespace patchspin::render

@@ -141,6 +141,42 @@ TEST(Plot, Pareto) {
   expectValidPng(dir + "/pareto.png");
 }
 
+TEST(Plot, CsvReadersReturnTheRowsWritten) {
+  const std::string dir = tempDir("readers");
+  {
+    std::ofstream out(dir + "/series.csv");
+    out << "# coin\nt,label,slipRatio,r\n0,exact,1.5,2\n0,stock,2.5,2\n0.1, exact ,nan,1.25\n";
+  }
+  const std::vector<TimeSeries> series = readTimeSeriesCsv(dir + "/series.csv");
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0].label, "exact");
+  EXPECT_EQ(series[1].label, "stock");
+  ASSERT_EQ(series[0].t.size(), 2u);
+  EXPECT_EQ(series[0].t[1], 0.1);
+  EXPECT_TRUE(std::isnan(series[0].slipRatio[1]));
+  EXPECT_EQ(series[0].r[1], 1.25);
+  EXPECT_EQ(series[1].slipRatio[0], 2.5);
+  {
+    std::ofstream out(dir + "/paths.csv");
+    out << "label,w1,w2,w3\na,1,0,0\na,0,1,0\nb,0,0,-1\n";
+  }
+  const std::vector<SpherePath> paths = readSpherePathsCsv(dir + "/paths.csv");
+  ASSERT_EQ(paths.size(), 2u);
+  ASSERT_EQ(paths[0].w.size(), 2u);
+  EXPECT_EQ(paths[0].w[1], Vec3(0, 1, 0));
+  EXPECT_EQ(paths[1].w[0], Vec3(0, 0, -1));
+  const std::vector<LimitDirection> limits = readLimitDirectionsCsv(writeBifurcationCsv(dir));
+  ASSERT_FALSE(limits.empty());
+  EXPECT_EQ(limits[0].w, Vec3(-1, 0, 0));  // first data row of the sweep
+  EXPECT_EQ(limits[0].stability, Stability::Attracting);
+  EXPECT_EQ(limits[0].kind, LimitKind::Isolated);
+  {
+    std::ofstream out(dir + "/bad.csv");
+    out << "w1,w2,w3,stability,kind\n1,0,0,attracting,stable\n";
+  }
+  EXPECT_THROW(readLimitDirectionsCsv(dir + "/bad.csv"), RenderError);
+}
+
 TEST(Plot, ClearErrors) {
   const std::string dir = tempDir("errors");
   // missing gnuplot: the message says what to install

@@ -137,4 +137,17 @@ void plotPareto(const std::string& csvPath, const std::string& pngPath,
                 const ParetoOptions& pareto = ParetoOptions(),
                 const PlotOptions& options = PlotOptions());
 
+// ---- CSV readers for scripts (same CSV rules as above) ----------------------
+
+// label,t,slipRatio,r  -> one TimeSeries per label (first-appearance order);
+// slipRatio may be "nan" where undefined.
+std::vector<TimeSeries> readTimeSeriesCsv(const std::string& csvPath);
+
+// label,w1,w2,w3  -> one SpherePath per label, points in file order.
+std::vector<SpherePath> readSpherePathsCsv(const std::string& csvPath);
+
+// w1,w2,w3,stability,kind[,label]  (the bifurcation format's columns; other
+// columns ignored) -> limit directions.
+std::vector<LimitDirection> readLimitDirectionsCsv(const std::string& csvPath);
+
 }  // namespace patchspin::render
