@@ -553,26 +553,37 @@ Image Renderer::render(const Scene& scene) {
     glDisable(GL_LIGHTING);
     glDisable(GL_DEPTH_TEST);
     const double step = opt.gridSpacing > 0.0 ? opt.gridSpacing : niceStep(distance / 12.0);
-    const double reach = std::min(fogEnd, 400.0 * step);
+    // lines fade out with distance from the eye (minor ones sooner), so the
+    // grid never gets denser than a few pixels per cell towards the horizon
+    const double reach = std::min(3.0 * distance, 400.0 * step);
     const long n = static_cast<long>(std::ceil(reach / step));
     const long i0 = static_cast<long>(std::floor(c.x() / step));
     const long j0 = static_cast<long>(std::floor(c.y() / step));
+    const Vec3 eyeOnGround(cam.eye.x(), cam.eye.y(), h);
+    constexpr int kPieces = 48;
     for (int major = 0; major < 2; ++major) {
+      const double fade = (major ? 3.0 : 1.8) * distance;
+      const Rgb lineColour = scaled(opt.ground, major ? 0.6 : 0.78);
       glLineWidth(static_cast<GLfloat>((major ? 1.6 : 1.0) * ss));
-      colour(scaled(opt.ground, major ? 0.62 : 0.8));
-      glBegin(GL_LINES);
+      auto line = [&](const Vec3& a, const Vec3& b) {
+        glBegin(GL_LINE_STRIP);
+        for (int k = 0; k <= kPieces; ++k) {
+          const Vec3 p = a + (b - a) * (static_cast<double>(k) / kPieces);
+          const double x = (p - eyeOnGround).norm() / fade;
+          colour(lineColour, std::clamp(1.0 - x * x, 0.0, 1.0));
+          vertex(p);
+        }
+        glEnd();
+      };
       for (long k = -n; k <= n; ++k) {
         const long ix = i0 + k, iy = j0 + k;
         if ((ix % 5 == 0) == static_cast<bool>(major)) {
-          vertex(Vec3(ix * step, c.y() - reach, h));
-          vertex(Vec3(ix * step, c.y() + reach, h));
+          line(Vec3(ix * step, c.y() - reach, h), Vec3(ix * step, c.y() + reach, h));
         }
         if ((iy % 5 == 0) == static_cast<bool>(major)) {
-          vertex(Vec3(c.x() - reach, iy * step, h));
-          vertex(Vec3(c.x() + reach, iy * step, h));
+          line(Vec3(c.x() - reach, iy * step, h), Vec3(c.x() + reach, iy * step, h));
         }
       }
-      glEnd();
     }
     glDisable(GL_FOG);
   }
