@@ -25,6 +25,10 @@ constexpr int kMaxPanels = 3000;
 // A panel whose |K15 - G7| is at round-off level of its own |f| integral
 // cannot improve by splitting: 64 ulps of the panel's L1 mass.
 constexpr double kRoundOffPanel = 64.0 * std::numeric_limits<double>::epsilon();
+// Grid for the rough size of ∫ |g| dA, and the share of relTol granted to
+// all inner integrals together (see integratePolygon).
+constexpr int kGrid = 16;
+constexpr double kInnerShare = 1e-3;
 
 // Gauss-Kronrod G7-K15 nodes from Boost.Math (abscissae >= 0, 0 first). The
 // Gauss nodes are the Kronrod nodes with even index; checked once.
@@ -94,10 +98,10 @@ Panel<N> evaluatePanel(const F& f, double a, double b, long& evaluations) {
 
 // Globally adaptive G7-K15 (QUADPACK QAG style) of a vector function over the
 // union of [breaks[i], breaks[i+1]]: always bisect the panel with the largest
-// error estimate until  sum err <= relTol * sum l1.
+// error estimate until  sum err <= max(relTol * sum l1, absTol).
 template <int N, class F>
 VecN<N> integrateAdaptive(const F& f, const std::vector<double>& breaks, double relTol,
-                          QuadratureReport* report) {
+                          double absTol, QuadratureReport* report) {
   long evaluations = 0;
   std::priority_queue<Panel<N>> heap;
   VecN<N> done = VecN<N>::Zero();
@@ -112,7 +116,7 @@ VecN<N> integrateAdaptive(const F& f, const std::vector<double>& breaks, double 
   }
   bool capped = false;
   int panels = static_cast<int>(heap.size());
-  while (!heap.empty() && sumErr > relTol * sumL1) {
+  while (!heap.empty() && sumErr > std::max(relTol * sumL1, absTol)) {
     if (panels >= kMaxPanels) {
       capped = true;
       break;
@@ -192,6 +196,26 @@ VecN<N> integratePolygon(const std::vector<Vec2>& v, const G& g, const Vec2* spe
     std::sort(xs.begin(), xs.end());
   }
   xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  const double width = xs.back() - xs.front();
+  // Rough size S0 of ∫ |g| dA (midpoint rule on a kGrid^2 grid). An inner
+  // integral needs no better absolute accuracy than kInnerShare relTol S0 /
+  // width: its error, integrated over the outer range, stays below
+  // kInnerShare relTol S0. Without this floor, inner integrals over tiny
+  // ranges next to the ICR (where v = O(1) - O(1) carries round-off of
+  // relative size eps / |v|) chase round-off noise until the panel cap.
+  double s0 = 0.0;
+  for (int i = 0; i < kGrid; ++i) {
+    const double x = xs.front() + (i + 0.5) / kGrid * width;
+    double ylo = 0.0;
+    double yhi = 0.0;
+    polygonChains(v, x, ylo, yhi);
+    if (!(yhi > ylo)) continue;
+    for (int j = 0; j < kGrid; ++j) {
+      const double y = ylo + (j + 0.5) / kGrid * (yhi - ylo);
+      s0 += g(Vec2(x, y)).cwiseAbs().maxCoeff() * (width / kGrid) * ((yhi - ylo) / kGrid);
+    }
+  }
+  const double innerAbsTol = kInnerShare * relTol * s0 / width;
   QuadratureReport inner;
   auto outer = [&](double x) -> VecN<N> {
     double ylo = 0.0;
@@ -202,9 +226,9 @@ VecN<N> integratePolygon(const std::vector<Vec2>& v, const G& g, const Vec2* spe
     if (special != nullptr && special->y() > ylo && special->y() < yhi)
       ys = {ylo, special->y(), yhi};
     return integrateAdaptive<N>([&](double y) -> VecN<N> { return g(Vec2(x, y)); }, ys, relTol,
-                                &inner);
+                                innerAbsTol, &inner);
   };
-  VecN<N> result = integrateAdaptive<N>(outer, xs, relTol, report);
+  VecN<N> result = integrateAdaptive<N>(outer, xs, relTol, 0.0, report);
   if (report != nullptr) {
     report->evaluations += inner.evaluations;
     report->capped = report->capped || inner.capped;
@@ -230,21 +254,31 @@ VecN<N> integrateDisk(const Vec2& centre, double radius, const G& g, const Vec2*
     }
   }
   const double halfPi = 0.5 * kPi;
+  auto integrand = [&](double t, const Vec2& dir) -> VecN<N> {
+    const double st = std::sin(t);
+    const double ct = std::cos(t);
+    return (radius * radius * st * ct) * g(Vec2(centre + radius * st * dir));
+  };
+  // rough size of ∫ |g| dA and the inner absolute floor, as for polygons
+  double s0 = 0.0;
+  for (int i = 0; i < kGrid; ++i) {
+    const double phi = phi0 + (i + 0.5) / kGrid * 2.0 * kPi;
+    const Vec2 dir(std::cos(phi), std::sin(phi));
+    for (int j = 0; j < kGrid; ++j)
+      s0 += integrand((j + 0.5) / kGrid * halfPi, dir).cwiseAbs().maxCoeff() *
+            (2.0 * kPi / kGrid) * (halfPi / kGrid);
+  }
+  const double innerAbsTol = kInnerShare * relTol * s0 / (2.0 * kPi);
   QuadratureReport inner;
   auto outer = [&](double phi) -> VecN<N> {
     const Vec2 dir(std::cos(phi), std::sin(phi));
     std::vector<double> ts{0.0, halfPi};
     if (tSpecial > 0.0 && tSpecial < halfPi) ts = {0.0, tSpecial, halfPi};
-    return integrateAdaptive<N>(
-        [&](double t) -> VecN<N> {
-          const double st = std::sin(t);
-          const double ct = std::cos(t);
-          return (radius * radius * st * ct) * g(Vec2(centre + radius * st * dir));
-        },
-        ts, relTol, &inner);
+    return integrateAdaptive<N>([&](double t) { return integrand(t, dir); }, ts, relTol,
+                                innerAbsTol, &inner);
   };
-  VecN<N> result =
-      integrateAdaptive<N>(outer, std::vector<double>{phi0, phi0 + 2.0 * kPi}, relTol, report);
+  VecN<N> result = integrateAdaptive<N>(outer, std::vector<double>{phi0, phi0 + 2.0 * kPi},
+                                        relTol, 0.0, report);
   if (report != nullptr) {
     report->evaluations += inner.evaluations;
     report->capped = report->capped || inner.capped;
@@ -320,7 +354,7 @@ Vec3 bruteForceLineQ(double x0, double x1, double Pz, double mu, double rho, con
   Vec2 c;
   if (instantaneousCentre(w, rho, c) && c.x() > x0 && c.x() < x1) xs = {x0, c.x(), x1};
   auto g = [&](double x) -> Vec3 { return frictionKernel(w, rho, Vec2(x, 0.0)); };
-  return -mu * Pz / (x1 - x0) * integrateAdaptive<3>(g, xs, relTol, nullptr);
+  return -mu * Pz / (x1 - x0) * integrateAdaptive<3>(g, xs, relTol, 0.0, nullptr);
 }
 
 AreaMoments bruteForceAreaMoments(const PatchShape& shape, double relTol) {
