@@ -50,6 +50,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace patchspin::internal {
 namespace {
@@ -186,7 +187,7 @@ constexpr SeriesTables kSeries{};
 // sum_j c_i[j] x^j and its derivative for N tables at once, stopped when the
 // next terms (times j, for the derivative) are below relTol; x <= 0.1 here
 // and the coefficients are O(1), so relTol is an absolute bound on O(1) values.
-template <int N>
+template <int N, bool kDeriv>
 void sumSeries(const double* const (&c)[N], double x, double relTol, double* f, double* df) {
   for (int i = 0; i < N; ++i) {
     f[i] = c[i][0];
@@ -198,27 +199,29 @@ void sumSeries(const double* const (&c)[N], double x, double relTol, double* f, 
     double size = 0.0;
     for (int i = 0; i < N; ++i) {
       f[i] += c[i][j] * xj;
-      df[i] += j * c[i][j] * xj1;
+      if (kDeriv) df[i] += j * c[i][j] * xj1;
       size += std::fabs(c[i][j]);
     }
-    if (j >= 2 && (j + 1) * size * xj <= relTol) {
+    if (j >= 2 && (kDeriv ? j + 1 : 1) * size * xj <= relTol) {
       break;
     }
     xj1 = xj;
   }
 }
 
+template <bool kDeriv>
 Radial3 insideSeries(double m, double relTol) {
   Radial3 r;
   const double* const c[3] = {kSeries.inA, kSeries.inB, kSeries.inC};
-  sumSeries<3>(c, m, relTol, r.f, r.df);
+  sumSeries<3, kDeriv>(c, m, relTol, r.f, r.df);
   return r;
 }
 
+template <bool kDeriv>
 Radial3 farSeries(double p, double relTol) {
   Radial3 r;
   const double* const c[3] = {kSeries.farA, kSeries.farBt, kSeries.farEt};
-  sumSeries<3>(c, p, relTol, r.f, r.df);
+  sumSeries<3, kDeriv>(c, p, relTol, r.f, r.df);
   return r;
 }
 
@@ -228,17 +231,20 @@ Radial3 farSeries(double p, double relTol) {
 //   B = 2/9 [2 (2 - m) E - mcK]              dB/dm = 1/(3m) [(1 - 2m) E - mcK]
 //   C = 2/(15 m^2) [(2 - m) mcK - 2 (m^2 - m + 1) E]
 //   dC/dm = 1/(15 m^3) [(8 - 3m - 2m^2) E - (m + 8) mcK]
+template <bool kDeriv>
 Radial3 insideClosedForm(double m, double mc, double relTol) {
   const EllipticKE ke = completeEllipticKE(m, mc, relTol);
   const double E = ke.E, K1 = mcK(ke, mc);
   const double im = 1.0 / m, im2 = im * im;
   Radial3 r;
   r.f[0] = 4.0 / 3.0 * im * (K1 - (1.0 + m) * E);
-  r.df[0] = 2.0 / 3.0 * im2 * ((2.0 - m) * E - 2.0 * K1);
   r.f[1] = 2.0 / 9.0 * (2.0 * (2.0 - m) * E - K1);
-  r.df[1] = 1.0 / 3.0 * im * ((1.0 - 2.0 * m) * E - K1);
   r.f[2] = 2.0 / 15.0 * im2 * ((2.0 - m) * K1 - 2.0 * (m * m - m + 1.0) * E);
-  r.df[2] = 1.0 / 15.0 * im2 * im * ((8.0 - 3.0 * m - 2.0 * m * m) * E - (m + 8.0) * K1);
+  if (kDeriv) {
+    r.df[0] = 2.0 / 3.0 * im2 * ((2.0 - m) * E - 2.0 * K1);
+    r.df[1] = 1.0 / 3.0 * im * ((1.0 - 2.0 * m) * E - K1);
+    r.df[2] = 1.0 / 15.0 * im2 * im * ((8.0 - 3.0 * m - 2.0 * m * m) * E - (m + 8.0) * K1);
+  }
   return r;
 }
 
@@ -249,32 +255,36 @@ Radial3 insideClosedForm(double m, double mc, double relTol) {
 //   dB/dp = 1/(3 p^2 sp) [(2 - p) E - 2 pcK]
 //   C = 2/(15 sp) [(2 - p) pcK - 2 (p^2 - p + 1) E]
 //   dC/dp = 1/(15 p sp) [(2 + 3p - 8p^2) E - 2 (2p + 1) pcK]
+template <bool kDeriv>
 Radial3 outsideClosedForm(double p, double pc, double relTol) {
   const EllipticKE ke = completeEllipticKE(p, pc, relTol);
   const double E = ke.E, K1 = mcK(ke, pc);
   const double sp = std::sqrt(p), isp = 1.0 / sp, ip = isp * isp;
-  // d/dm = -p^2 d/dp
   Radial3 r;
   r.f[0] = 4.0 / 3.0 * isp * (K1 - (1.0 + p) * E);
-  r.df[0] = -2.0 / 3.0 * sp * ((1.0 - 2.0 * p) * E - K1);
   r.f[1] = 2.0 / 9.0 * ip * isp * (2.0 * (2.0 * p - 1.0) * E + (2.0 - 3.0 * p) * K1);
-  r.df[1] = -1.0 / 3.0 * isp * ((2.0 - p) * E - 2.0 * K1);
   r.f[2] = 2.0 / 15.0 * isp * ((2.0 - p) * K1 - 2.0 * (p * p - p + 1.0) * E);
-  r.df[2] = -1.0 / 15.0 * sp * ((2.0 + 3.0 * p - 8.0 * p * p) * E - 2.0 * (2.0 * p + 1.0) * K1);
+  if (kDeriv) {
+    // d/dm = -p^2 d/dp
+    r.df[0] = -2.0 / 3.0 * sp * ((1.0 - 2.0 * p) * E - K1);
+    r.df[1] = -1.0 / 3.0 * isp * ((2.0 - p) * E - 2.0 * K1);
+    r.df[2] = -1.0 / 15.0 * sp * ((2.0 + 3.0 * p - 8.0 * p * p) * E - 2.0 * (2.0 * p + 1.0) * K1);
+  }
   return r;
 }
 
 // A, B, C and d/dm for the near parametrisation; nn = |n|^2, w33 = w3^2
 // (m = nn / w33, passed separately for accurate 1 - m and 1 - 1/m).
+template <bool kDeriv>
 Radial3 nearRadial(double m, double nn, double w33, double relTol) {
   if (m <= kInsideSeriesM) {
-    return insideSeries(m, relTol);
+    return insideSeries<kDeriv>(m, relTol);
   }
   if (nn <= w33) {
-    return insideClosedForm(m, 1.0 - m, relTol);
+    return insideClosedForm<kDeriv>(m, 1.0 - m, relTol);
   }
   const double p = w33 / nn;
-  return outsideClosedForm(p, 1.0 - p, relTol);
+  return outsideClosedForm<kDeriv>(p, 1.0 - p, relTol);
 }
 
 // Hertz (57), unit load on the unit disk: AH = a_H / delta and T0H with d/dm.
@@ -308,14 +318,19 @@ Radial2 hertzNear(double m, double nn, double w33) {
 }
 
 // Hertz far (p = 1/delta^2 <= kFarSeriesP): aH and T0Ht from the tables.
+template <bool kDeriv>
 Radial2 hertzFar(double p, double relTol) {
   Radial2 r;
   const double* const c[2] = {kSeries.hzA, kSeries.hzT};
-  sumSeries<2>(c, p, relTol, r.f, r.df);
+  sumSeries<2, kDeriv>(c, p, relTol, r.f, r.df);
   return r;
 }
 
 // ------------------------------------------------------------- assembly
+// radial derivatives are needed only when T carries a gradient
+template <class T>
+constexpr bool kDeriv = std::is_same<T, Dual3>::value;
+
 // The slip direction reduced to the disk: vector g (c' near, nh far), and
 // n = (rho (-w2, w1) - w3 C)/R.
 template <class T>
@@ -353,7 +368,7 @@ void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relT
     gx = red.nx * invW3;
     gy = red.ny * invW3;
     const T m = gx * gx + gy * gy;
-    const Radial3 r = nearRadial(valueOf(m), red.nn, red.w33, relTol);
+    const Radial3 r = nearRadial<kDeriv<T>>(valueOf(m), red.nn, red.w33, relTol);
     fa = s * lift(r.f[0], r.df[0], m);
     Bq = s * lift(r.f[1], r.df[1], m);
     Cq = s * lift(r.f[2], r.df[2], m);
@@ -364,7 +379,7 @@ void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relT
     gy = red.ny * invNorm;
     const T tau = w[2] * invNorm;
     const T p = tau * tau;
-    const Radial3 r = farSeries(valueOf(p), relTol);
+    const Radial3 r = farSeries<kDeriv<T>>(valueOf(p), relTol);
     fa = lift(r.f[0], r.df[0], p);
     const T bt = lift(r.f[1], r.df[1], p);
     const T et = lift(r.f[2], r.df[2], p);
@@ -415,7 +430,7 @@ void diskHertz(const Vec2& centre, double R, double rho, const T* w, double relT
     gy = red.ny * invNorm;
     const T tau = w[2] * invNorm;
     const T p = tau * tau;
-    const Radial2 r = hertzFar(valueOf(p), relTol);
+    const Radial2 r = hertzFar<kDeriv<T>>(valueOf(p), relTol);
     fa = lift(r.f[0], r.df[0], p);
     t1 = tau * lift(r.f[1], r.df[1], p);
   }
