@@ -59,7 +59,7 @@ constexpr double kPi = 3.14159265358979323846;
 // ICR within sqrt(kInsideSeriesM) R of the centre -> power series in m. The
 // closed form loses ~1/m^2 to cancellation near m = 0 (C has a 1/m^2
 // prefactor), i.e. a factor 100 at the switch (~1e-14); the series needs
-// ~16 terms there. (The AGM branch is the cheaper one, so it gets the most.)
+// ~16 terms there.
 constexpr double kInsideSeriesM = 0.1;
 // ICR beyond R / sqrt(kFarSeriesP) from the centre -> power series in p. The
 // closed form loses ~delta^4 = 100 at the switch; the series needs ~16 terms.

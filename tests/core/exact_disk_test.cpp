@@ -450,6 +450,54 @@ TEST(ExactDiskBasis, ToleranceKnobBoundsTheError) {
   }
 }
 
+// ICR exactly on the rim (m = 1 to the last bit: K = inf, only its limit
+// (1 - m) K = 0 enters): finite, and equal to its neighbours.
+TEST(ExactDiskBasis, IcrExactlyOnTheRim) {
+  const Disk d{"unit", Vec2::Zero(), 1.0, 1.0};
+  const Vec3 w(0.0, -1.0, 1.0);  // c = rho (-w2, w1) / w3 = (1, 0) exactly
+  ExactBasis b;
+  exactDiskBasis(d.centre, d.R, d.rho, w, true, b);
+  Mat3 J;
+  const Vec3 h = exactDiskHertz(d.centre, d.R, d.rho, w, &J);
+  ASSERT_TRUE(b.F.allFinite() && b.dF[0].allFinite() && b.dF[1].allFinite() && b.dF[2].allFinite());
+  ASSERT_TRUE(h.allFinite() && J.allFinite());
+  for (double f : {1.0 - 1e-12, 1.0 + 1e-12}) {
+    const Vec3 wn = wForIcr(d, f, 0.0) * std::sqrt(2.0);
+    ExactBasis bn;
+    exactDiskBasis(d.centre, d.R, d.rho, wn, true, bn);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(columnError(d, b.F, bn.F, k), kSwitchTol) << "f=" << f;
+      const double size = std::max(b.dF[k].cwiseAbs().maxCoeff(), columnScale(d, k));
+      EXPECT_LE((b.dF[k] - bn.dF[k]).cwiseAbs().maxCoeff() / size, 1e-9) << "f=" << f;
+    }
+    EXPECT_LE((h - exactDiskHertz(d.centre, d.R, d.rho, wn, nullptr)).cwiseAbs().maxCoeff(), kSwitchTol);
+  }
+}
+
+// Never NaN: random geometry over many orders of magnitude and w with exact
+// zeros (pure spin, pure translation, ICR at the centre).
+TEST(ExactDiskBasis, FiniteForExtremeInputs) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> zero(0, 3);
+  for (int i = 0; i < 3000; ++i) {
+    const double R = std::pow(10.0, 6.0 * u(rng)), rho = R * std::pow(10.0, 3.0 * u(rng));
+    const Vec2 C = R * std::pow(10.0, 3.0 * u(rng)) * Vec2(u(rng), u(rng));
+    Vec3 w(u(rng), u(rng), u(rng));
+    const int z = zero(rng);
+    if (z < 3) w[z] = 0.0;
+    if (i % 7 == 0) w = Vec3(C.y() / rho, -C.x() / rho, 1.0);  // ICR at the centre
+    w *= std::pow(10.0, 100.0 * u(rng));
+    ExactBasis b;
+    exactDiskBasis(C, R, rho, w, true, b);
+    Mat3 J;
+    const Vec3 h = exactDiskHertz(C, R, rho, w, &J);
+    ASSERT_TRUE(b.F.allFinite() && b.dF[0].allFinite() && b.dF[1].allFinite() && b.dF[2].allFinite() &&
+                h.allFinite() && J.allFinite())
+        << "R=" << R << " rho=" << rho << " C=" << C.transpose() << " w=" << w.transpose();
+  }
+}
+
 TEST(ExactDiskBasis, RejectsBadInput) {
   ExactBasis b;
   const Vec3 w(0.1, 0.2, 0.3);
