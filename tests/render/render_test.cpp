@@ -99,9 +99,13 @@ PixelBox projectDisk(const Camera& cam, const SceneBody& body) {
 TEST(Renderer, SmallSceneGivesPngOfRequestedSizeNotBlank) {
   Renderer renderer(smallOptions());
   const std::string dir = tempDir("size");
-  FrameWriter writer(dir);
+  FrameWriter writer(dir, 25.0);
   const std::string path = writer.write(renderer.render(coinScene()));
   EXPECT_EQ(path, (std::filesystem::path(dir) / "frame_00000.png").string());
+  EXPECT_EQ(writer.write(renderer.render(coinScene(0.4))),
+            (std::filesystem::path(dir) / "frame_00001.png").string());
+  EXPECT_EQ(writer.count(), 2);
+  EXPECT_DOUBLE_EQ(writer.frameTime(50), 2.0);
   const Image back = readPng(path);
   EXPECT_EQ(back.width, kWidth);
   EXPECT_EQ(back.height, kHeight);
@@ -279,6 +283,63 @@ TEST(Renderer, BodyLabelIsDrawnAboveTheBody) {
   constexpr int kMinLabelPixels = 50;  // five letters and their box
   EXPECT_GT(above, kMinLabelPixels);
   EXPECT_EQ(elsewhere, 0);
+}
+
+// Trails fade: the newest end is drawn stronger than the oldest.
+TEST(Renderer, TrailFadesFromOldToNew) {
+  RenderOptions o = smallOptions();
+  Renderer renderer(o);
+  Scene plain;
+  plain.camera.eye = Vec3(0.0, -0.001, 0.4);  // looking straight down
+  plain.camera.target = Vec3::Zero();
+  Scene trailed = plain;
+  Trail trail;
+  trail.colour = {0.0, 0.0, 0.0};
+  trail.widthPx = 3.0;
+  for (int i = 0; i <= 100; ++i) trail.points.push_back(Vec3(-0.15 + 0.003 * i, 0.0, 0.0));
+  trailed.trails.push_back(trail);
+  const Image a = renderer.render(plain), b = renderer.render(trailed);
+  // summed darkening in the left (old) and right (new) thirds of the image
+  double oldEnd = 0.0, newEnd = 0.0;
+  for (int y = kHeight / 2 - 6; y < kHeight / 2 + 6; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const double d = int(a.pixel(x, y)[1]) - int(b.pixel(x, y)[1]);
+      if (x < kWidth / 3) oldEnd += d;
+      if (x >= 2 * kWidth / 3) newEnd += d;
+    }
+  }
+  // alpha grows linearly along the trail: mean alpha in the thirds is about
+  // 1/6 and 5/6 of the maximum, a ratio of 5; ask for a clear factor of 2
+  constexpr double kMinRatio = 2.0;
+  EXPECT_GT(newEnd, 0.0);
+  EXPECT_GT(newEnd, kMinRatio * oldEnd);
+}
+
+// A force arrow starting inside a body is still drawn (on top of it).
+TEST(Renderer, ArrowIsDrawnOverTheBody) {
+  Renderer renderer(smallOptions());
+  Scene plain = coinScene();
+  plain.overlay = FrameOverlay();
+  Scene arrowed = plain;
+  Arrow arrow;
+  arrow.origin = Vec3(0.0, 0.0, 0.005);  // inside the coin
+  arrow.vector = Vec3(0.03, 0.0, 0.0);   // ends inside the coin too (R = 0.05)
+  arrowed.arrows.push_back(arrow);
+  const PixelBox box = projectDisk(plain.camera, plain.bodies[0]);
+  const Image a = renderer.render(plain), b = renderer.render(arrowed);
+  int inside = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) {
+        EXPECT_TRUE(x + 0.5 > box.x0 && x + 0.5 < box.x1 && y + 0.5 > box.y0 && y + 0.5 < box.y1)
+            << x << "," << y;
+        ++inside;
+      }
+    }
+  }
+  constexpr int kMinArrowPixels = 10;  // a 3 cm arrow seen from 30 cm covers far more
+  EXPECT_GT(inside, kMinArrowPixels);
 }
 
 TEST(Renderer, BadInputIsRejected) {

@@ -50,18 +50,26 @@ class Renderer {
 };
 
 // Writes <directory>/<prefix>00000.png, <prefix>00001.png, ... (digits wide),
-// creating the directory if needed.
+// creating the directory if needed. Frame i shows time i / fps.
 class FrameWriter {
  public:
-  explicit FrameWriter(std::string directory, std::string prefix = "frame_", int digits = 5);
+  explicit FrameWriter(std::string directory, double fps = 30.0, std::string prefix = "frame_",
+                       int digits = 5);
   // Writes the next frame and returns its path.
   std::string write(const Image& image);
   // Path of frame number index (whether or not it exists yet).
   std::string framePath(int index) const;
   int count() const { return count_; }
+  double fps() const { return fps_; }
+  // Time shown by frame number index [s].
+  double frameTime(int index) const { return index / fps_; }
+  // Shell command that turns the frames into a video (.mp4) or an animated
+  // .gif with ffmpeg, e.g. for the README.
+  std::string ffmpegCommand(const std::string& output) const;
 
  private:
   std::string directory_;
+  double fps_;
   std::string prefix_;
   int digits_;
   int count_ = 0;
