@@ -1,0 +1,192 @@
+// `patchspin limits`, `simulate --engine reference` and `sweep`: JSON/CSV
+// output against the library and against the closed forms of Sect. 6.1, and
+// one-line errors for bad arguments.
+#include "run_tool.hpp"
+
+#include <patchspin/analysis.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace patchspin {
+namespace {
+
+using testing::runTool;
+
+// JSON carries 17 significant digits: the tool prints what the library computes.
+constexpr double kPrintTol = 1e-12;
+
+// Thin uniform disk R = 0.1, m = 2, Jz = m R^2/2 = 0.01, mu = 0.3, g = 9.81,
+// F = 0.05 mu m g = 0.2943 N: Sect. 6.1 Case 3 (F < mu m g / 9).
+const char* kCase3 = "limits --patch disk:0.1 --mass 2 --inertia 0.01 --mu 0.3 --g 9.81 --force 0.2943,0 "
+                     "--model ellipsoidal --json";
+
+TEST(LimitsToolTest, Case3JsonMatchesClosedForms) {
+  const auto run = runTool(PATCHSPIN_TOOL, kCase3);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  ASSERT_EQ(j["limit_directions"].size(), 4u);
+  EXPECT_TRUE(j["continuum"].is_null());
+  EXPECT_FALSE(j["tipping"].get<bool>());
+  // (119): w3,4 = (9F/(mu m g), 0, +-sqrt(1 - .^2)), R* = -8/9 mu g, dominant
+  const double mug = 0.3 * 9.81, w1 = 9.0 * 0.05;
+  int dominant = 0;
+  for (const auto& d : j["limit_directions"]) {
+    ASSERT_EQ(d["w"].size(), 3u);
+    ASSERT_EQ(d["eigenvalues"].size(), 2u);
+    EXPECT_TRUE(d["attracting"].get<bool>());
+    if (d["type"] == "dominant") {
+      ++dominant;
+      EXPECT_NEAR(d["w"][0].get<double>(), w1, 1e-12);
+      EXPECT_NEAR(std::abs(d["w"][2].get<double>()), std::sqrt(1 - w1 * w1), 1e-12);
+      EXPECT_NEAR(d["rdot"].get<double>(), -8.0 / 9.0 * mug, 1e-12);
+    }
+  }
+  EXPECT_EQ(dominant, 2);
+}
+
+TEST(LimitsToolTest, AgreesWithLibraryForThickBodyExact) {
+  const auto run = runTool(PATCHSPIN_TOOL,
+                           "limits --patch rect:0.1,0.06 --mass 1.5 --inertia 0.002 --com 0.005,0,0.02 --mu 0.4 "
+                           "--force 0.5,0.2 --torque 0,0,0.01 --model exact --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  FlatBody body;
+  body.shape = PatchShape::rectangle(0.1, 0.06);
+  body.mass = 1.5;
+  body.Jz = 0.002;
+  body.com = Vec3(0.005, 0.0, 0.02);
+  body.mu = 0.4;
+  body.force = Vec2(0.5, 0.2);
+  body.torque = Vec3(0.0, 0.0, 0.01);
+  const LimitAnalysis a = findLimitDirections(FlatBodyModel(body, Model::Exact));
+  ASSERT_EQ(j["limit_directions"].size(), a.directions.size());
+  for (std::size_t i = 0; i < a.directions.size(); ++i) {
+    const auto& d = j["limit_directions"][i];
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(d["w"][k].get<double>(), a.directions[i].w[k], kPrintTol);
+    EXPECT_NEAR(d["rdot"].get<double>(), a.directions[i].rdot, kPrintTol);
+    EXPECT_EQ(d["type"].get<std::string>(), toString(a.directions[i].type));
+  }
+}
+
+TEST(LimitsToolTest, ForceFreeDiskReportsContinuum) {
+  const auto run = runTool(PATCHSPIN_TOOL,
+                           "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model ellipsoidal --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  ASSERT_FALSE(j["continuum"].is_null());
+  ASSERT_EQ(j["continuum"]["sets"].size(), 1u);
+  EXPECT_EQ(j["continuum"]["sets"][0]["kind"], "circle");
+  EXPECT_NEAR(j["continuum"]["sets"][0]["radius"].get<double>(), 1.0, 1e-12);
+  EXPECT_EQ(j["limit_directions"].size(), 2u);  // the poles
+}
+
+TEST(LimitsToolTest, TableIsReadable) {
+  const auto run = runTool(PATCHSPIN_TOOL, "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 0.2943,0");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("dominant"), std::string::npos);
+  EXPECT_NE(run.out.find("saddle"), std::string::npos);
+  EXPECT_NE(run.out.find("(111)"), std::string::npos);
+}
+
+// Free thin disk, exact law: stops with eps -> 0.6530 (Farkas et al. 2003);
+// at r = 1e-5 r0 the approach (exponent ~0.6 per decade) leaves < 1e-3.
+TEST(SimulateToolTest, ReferenceFreeDiskJson) {
+  const auto run = runTool(PATCHSPIN_TOOL,
+                           "simulate --engine reference --model exact --shape cylinder:0.05,0.0001 --mass 1 "
+                           "--mu 0.3 --v0 0.5,0 --omega0 20 --record-at 0.00001 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(j["stopped"].get<bool>());
+  EXPECT_NEAR(j["eps_stop"].get<double>(), 0.6530, 1e-3);
+  ASSERT_EQ(j["w_stop"].size(), 3u);
+  ASSERT_EQ(j["displacement"].size(), 2u);
+  EXPECT_GT(j["rotation"].get<double>(), 0.0);
+  // the same as the library's SimulationSpec path
+  SimulationSpec spec;
+  spec.R = 0.05;
+  spec.H = 0.0001;
+  spec.v0 = Vec2(0.5, 0.0);
+  spec.omega0 = 20.0;
+  spec.recordAt = 1e-5;
+  const SimulationResult r = simulateReference(spec);
+  EXPECT_NEAR(j["t_stop"].get<double>(), r.tStop, kPrintTol);
+  EXPECT_NEAR(j["w_stop"][2].get<double>(), r.wStop.z(), kPrintTol);
+}
+
+// A box pushed along y by less than mu m g stays put; w_stop is expressed in
+// the force frame (x along the force).
+TEST(SimulateToolTest, ReferenceBoxFrames) {
+  const auto rest = runTool(PATCHSPIN_TOOL,
+                            "simulate --engine reference --model ellipsoidal --shape box:0.1,0.08,0.04 --mass 1 "
+                            "--mu 0.5 --force 0,2 --json");
+  ASSERT_EQ(rest.exitCode, 0) << rest.err;
+  const auto jr = nlohmann::json::parse(rest.out);
+  EXPECT_TRUE(jr["stopped"].get<bool>());
+  EXPECT_EQ(jr["displacement"][0].get<double>(), 0.0);
+  EXPECT_TRUE(jr["eps_stop"].is_null());
+  // sliding along the force (pure translation): w_stop = (1, 0, 0)
+  const auto slide = runTool(PATCHSPIN_TOOL,
+                             "simulate --engine reference --model exact --shape box:0.1,0.08,0.04 --mass 1 "
+                             "--mu 0.5 --force 0,2 --v0 0,1 --json");
+  ASSERT_EQ(slide.exitCode, 0) << slide.err;
+  const auto js = nlohmann::json::parse(slide.out);
+  EXPECT_NEAR(js["w_stop"][0].get<double>(), 1.0, 1e-9);
+  // u' = F/m - mu g along y: t = v0 / (mu g - F/m)
+  EXPECT_NEAR(js["t_stop"].get<double>(), 1.0 / (0.5 * 9.81 - 2.0), 1e-9);
+}
+
+TEST(SweepToolTest, ThinDiskCasesOverF) {
+  const std::string out = std::string(::testing::TempDir()) + "/sweep_test.csv";
+  const auto run = runTool(PATCHSPIN_TOOL, "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --mu 0.3 --F 0.05:1.25:5 "
+                                           "--scaled --threads 2 --out " + out);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.err.find("100%"), std::string::npos);  // progress indicator
+  std::ifstream file(out);
+  std::string line;
+  std::getline(file, line);
+  EXPECT_EQ(line.rfind("F,T,n_directions,", 0), 0u);
+  // xi = 0.05 (Case 3: 4), 0.35, 0.65, 0.95 (Case 2: 2), 1.25 (Case 1: 2, one repelling)
+  const int expectedCount[] = {4, 2, 2, 2, 2};
+  const int expectedAttracting[] = {4, 2, 2, 2, 1};
+  for (int i = 0; i < 5; ++i) {
+    ASSERT_TRUE(std::getline(file, line)) << i;
+    std::stringstream s(line);
+    std::string F, T, n, na;
+    std::getline(s, F, ',');
+    std::getline(s, T, ',');
+    std::getline(s, n, ',');
+    std::getline(s, na, ',');
+    EXPECT_NEAR(std::stod(F), 0.05 + 0.3 * i, 1e-12);
+    EXPECT_EQ(std::stoi(n), expectedCount[i]) << line;
+    EXPECT_EQ(std::stoi(na), expectedAttracting[i]) << line;
+  }
+  std::remove(out.c_str());
+}
+
+TEST(AnalysisToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
+  const char* bad[] = {
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 1",              // wrong count
+      "limits --patch disk:0.1 --mass -2 --inertia 0.01",                       // negative mass
+      "limits --patch disk:0.1 --mass 2 --inertia 0,1,2",                       // Jz = 0
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model stock",          // not an analysis law
+      "simulate --engine reference --model stock --shape cylinder:0.05,0.01",   // stock needs Bullet
+      "simulate --shape sphere:1",                                              // unknown shape
+      "simulate --shape cylinder:0.05,0.01 --record-at 2",                      // bad fraction
+      "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --F 0:1",                 // bad range
+  };
+  for (const char* args : bad) {
+    const auto run = runTool(PATCHSPIN_TOOL, args);
+    EXPECT_NE(run.exitCode, 0) << args;
+    EXPECT_FALSE(run.err.empty()) << args;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << args << ": " << run.err;
+  }
+}
+
+}  // namespace
+}  // namespace patchspin
