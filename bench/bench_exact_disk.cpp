@@ -9,12 +9,11 @@
 //                                  centre (series), 1 ICR in the rim band
 //                                  (elliptic K, E), 2 ICR far (series)
 //   BM_ExactDiskHertz/<jac>        Hertz pressure (57)
-#include <patchspin/internal/exact.hpp>
-
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <patchspin/internal/exact.hpp>
 #include <random>
 #include <vector>
 
@@ -31,7 +30,8 @@ const std::vector<Vec3>& sampleDirections() {
     std::mt19937 rng(20261122);
     std::normal_distribution<double> n;
     std::vector<Vec3> out;
-    for (std::size_t i = 0; i < kSample; ++i) out.push_back(Vec3(n(rng), n(rng), n(rng)).normalized());
+    for (std::size_t i = 0; i < kSample; ++i)
+      out.push_back(Vec3(n(rng), n(rng), n(rng)).normalized());
     return out;
   }();
   return dirs;
@@ -90,8 +90,8 @@ void BM_ExactDiskBasisTol(benchmark::State& state) {
 BENCHMARK(BM_ExactDiskBasisTol)->Arg(4)->Arg(7)->Arg(10);
 
 void BM_ExactDiskBasisRegion(benchmark::State& state) {
-  static const std::vector<Vec3> regions[3] = {regionDirections(0.0, 0.31), regionDirections(0.32, 3.1),
-                                               regionDirections(3.2, 50.0)};
+  static const std::vector<Vec3> regions[3] = {
+      regionDirections(0.0, 0.31), regionDirections(0.32, 3.1), regionDirections(3.2, 50.0)};
   const auto& dirs = regions[state.range(0)];
   internal::ExactBasis out;
   std::size_t i = 0;
@@ -110,8 +110,8 @@ void BM_ExactDiskHertz(benchmark::State& state) {
   Mat3 J;
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        internal::exactDiskHertz(Vec2::Zero(), kR, kRho, dirs[i++ & (kSample - 1)], jac ? &J : nullptr));
+    benchmark::DoNotOptimize(internal::exactDiskHertz(
+        Vec2::Zero(), kR, kRho, dirs[i++ & (kSample - 1)], jac ? &J : nullptr));
     benchmark::ClobberMemory();
   }
   state.SetLabel(jac ? "with jacobian" : "value only");

@@ -53,6 +53,8 @@ inline EllipticKE completeEllipticKE(double m, double mc, double relTol = 1e-17)
 }
 
 // (1 - m) K(m) with its limit 0 at m = 1 (K has only a log singularity).
-inline double mcK(const EllipticKE& ke, double mc) { return mc > 0.0 ? mc * ke.K : 0.0; }
+inline double mcK(const EllipticKE& ke, double mc) {
+  return mc > 0.0 ? mc * ke.K : 0.0;
+}
 
 }  // namespace patchspin::internal

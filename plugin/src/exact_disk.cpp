@@ -44,13 +44,12 @@
 //
 // Jacobians: forward-mode dual numbers in w through the smooth
 // parametrisations, with the radial functions' derivatives in closed form.
-#include "elliptic.hpp"
-
-#include <patchspin/internal/exact.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <patchspin/internal/exact.hpp>
 #include <type_traits>
+
+#include "elliptic.hpp"
 
 namespace patchspin::internal {
 namespace {
@@ -83,24 +82,33 @@ inline Dual3 operator+(const Dual3& a, const Dual3& b) {
 inline Dual3 operator-(const Dual3& a, const Dual3& b) {
   return {a.v - b.v, {a.d[0] - b.d[0], a.d[1] - b.d[1], a.d[2] - b.d[2]}};
 }
-inline Dual3 operator-(const Dual3& a) { return {-a.v, {-a.d[0], -a.d[1], -a.d[2]}}; }
+inline Dual3 operator-(const Dual3& a) {
+  return {-a.v, {-a.d[0], -a.d[1], -a.d[2]}};
+}
 inline Dual3 operator*(const Dual3& a, const Dual3& b) {
   return {a.v * b.v,
           {a.d[0] * b.v + a.v * b.d[0], a.d[1] * b.v + a.v * b.d[1], a.d[2] * b.v + a.v * b.d[2]}};
 }
-inline Dual3 operator*(double s, const Dual3& a) { return {s * a.v, {s * a.d[0], s * a.d[1], s * a.d[2]}}; }
-inline Dual3 operator*(const Dual3& a, double s) { return s * a; }
+inline Dual3 operator*(double s, const Dual3& a) {
+  return {s * a.v, {s * a.d[0], s * a.d[1], s * a.d[2]}};
+}
+inline Dual3 operator*(const Dual3& a, double s) {
+  return s * a;
+}
 inline Dual3 operator/(const Dual3& a, const Dual3& b) {
   const double inv = 1.0 / b.v;
   const double q = a.v / b.v;  // same rounding as the double instantiation
-  return {q, {(a.d[0] - q * b.d[0]) * inv, (a.d[1] - q * b.d[1]) * inv, (a.d[2] - q * b.d[2]) * inv}};
+  return {q,
+          {(a.d[0] - q * b.d[0]) * inv, (a.d[1] - q * b.d[1]) * inv, (a.d[2] - q * b.d[2]) * inv}};
 }
 inline Dual3 reciprocal(const Dual3& a) {
   const double r = 1.0 / a.v;
   const double h = -r * r;
   return {r, {h * a.d[0], h * a.d[1], h * a.d[2]}};
 }
-inline double reciprocal(double a) { return 1.0 / a; }
+inline double reciprocal(double a) {
+  return 1.0 / a;
+}
 inline Dual3 operator/(const Dual3& a, double s) {
   return {a.v / s, {a.d[0] / s, a.d[1] / s, a.d[2] / s}};
 }
@@ -110,12 +118,18 @@ inline Dual3 sqrt(const Dual3& a) {
   return {r, {h * a.d[0], h * a.d[1], h * a.d[2]}};
 }
 
-inline double valueOf(double x) { return x; }
-inline double valueOf(const Dual3& x) { return x.v; }
+inline double valueOf(double x) {
+  return x;
+}
+inline double valueOf(const Dual3& x) {
+  return x.v;
+}
 using std::sqrt;
 
 // f(x) as T from its value f and derivative df at x.
-inline double lift(double f, double /*df*/, double /*x*/) { return f; }
+inline double lift(double f, double /*df*/, double /*x*/) {
+  return f;
+}
 inline Dual3 lift(double f, double df, const Dual3& x) {
   return {f, {df * x.d[0], df * x.d[1], df * x.d[2]}};
 }
@@ -161,9 +175,12 @@ struct SeriesTables {
       const double kk = k;
       if (k >= 1) inA[k - 1] = -4.0 * kPi * kk * alpha[k] / (3.0 - 2.0 * kk);
       inB[k] = kPi * alpha[k] * (1.0 - 2.0 * kk) / (3.0 - 2.0 * kk);
-      inC[k] = -kPi * (kk + 1.0) * (2.0 * kk + 1.0) * alpha[k + 1] / ((1.0 - 2.0 * kk) * (kk + 2.0));
+      inC[k] =
+          -kPi * (kk + 1.0) * (2.0 * kk + 1.0) * alpha[k + 1] / ((1.0 - 2.0 * kk) * (kk + 2.0));
       farA[k] = kPi * (2.0 * kk - 1.0) * alpha[k] / (kk + 1.0);
-      if (k >= 2) farBt[k - 1] = kPi * 2.0 * kk * (2.0 * kk - 2.0) * alpha[k] / ((2.0 * kk - 3.0) * (kk + 1.0));
+      if (k >= 2)
+        farBt[k - 1] =
+            kPi * 2.0 * kk * (2.0 * kk - 2.0) * alpha[k] / ((2.0 * kk - 3.0) * (kk + 1.0));
       if (k >= 1) farEt[k - 1] = kPi * 2.0 * kk * alpha[k] / ((2.0 * kk - 3.0) * (kk + 1.0));
     }
     double c[kTerms + 2] = {}, sq[kTerms + 2] = {};
@@ -178,7 +195,8 @@ struct SeriesTables {
       hzA[k - 1] = -3.0 / 16.0 * (4.0 * c[k - 1] - c[k] + sq[k] + 2.0 * sq[k - 1]);
     }
     for (int k = 2; k < kTerms + 2; ++k) {
-      hzT[k - 2] = 3.0 / 64.0 * (3.0 * c[k] - 8.0 * c[k - 1] + 8.0 * c[k - 2] + 6.0 * sq[k - 1] - 3.0 * sq[k]);
+      hzT[k - 2] = 3.0 / 64.0 *
+                   (3.0 * c[k] - 8.0 * c[k - 1] + 8.0 * c[k - 2] + 6.0 * sq[k - 1] - 3.0 * sq[k]);
     }
   }
 };
@@ -358,10 +376,10 @@ Reduced<T> reduce(const Vec2& centre, double R, double rho, const T* w) {
 template <class T>
 void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relTol, T F[3][3]) {
   const Reduced<T> red = reduce(centre, R, rho, w);
-  T gx, gy;     // c' (near) or nh (far)
-  T fa;         // force(1) = fa J g
-  T Bq, Cq;     // force(q) = Bq J + Cq J (2 g g^T - |g|^2 I)
-  T tqs;        // torque_C(q) = tqs g^T
+  T gx, gy;  // c' (near) or nh (far)
+  T fa;      // force(1) = fa J g
+  T Bq, Cq;  // force(q) = Bq J + Cq J (2 g g^T - |g|^2 I)
+  T tqs;     // torque_C(q) = tqs g^T
   if (!red.far) {
     const double s = valueOf(w[2]) > 0.0 ? 1.0 : -1.0;
     const T invW3 = reciprocal(w[2]);
@@ -387,7 +405,8 @@ void diskBasis(const Vec2& centre, double R, double rho, const T* w, double relT
     Cq = 0.5 * (tau * (bt + et));
     tqs = bt + et;
   }
-  // disk-centred wrench in physical units: force(1) ~ R^2, force(q), torque(1) ~ R^3, torque(q) ~ R^4
+  // disk-centred wrench in physical units: force(1) ~ R^2, force(q), torque(1) ~ R^3, torque(q) ~
+  // R^4
   const double R2 = R * R, R3 = R2 * R, R4 = R3 * R;
   const T f1x = -R2 * (fa * gy), f1y = R2 * (fa * gx);
   const T gxy = 2.0 * (gx * gy), gdd = gx * gx - gy * gy;
@@ -464,7 +483,9 @@ double checkInputs(const Vec2& centre, double R, double rho, const Vec3& w, doub
   return sigma;
 }
 
-double effectiveTol(double tolerance) { return tolerance > 0.0 ? tolerance : kFullAccuracy; }
+double effectiveTol(double tolerance) {
+  return tolerance > 0.0 ? tolerance : kFullAccuracy;
+}
 
 }  // namespace
 

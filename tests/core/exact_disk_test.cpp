@@ -4,17 +4,16 @@
 // in polar coordinates about the disk centre, kernel from w directly: no ICR
 // reduction, no series, no elliptic integrals), against the paper's closed
 // forms (52)-(53), (58)-(59), and against central finite differences.
-#include <patchspin/internal/exact.hpp>
-
-#include "closed_forms.hpp"
-#include "oracle.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <patchspin/internal/exact.hpp>
 #include <random>
 #include <string>
 #include <vector>
+
+#include "closed_forms.hpp"
+#include "oracle.hpp"
 
 namespace patchspin {
 namespace {
@@ -67,10 +66,10 @@ struct Disk {
 
 const std::vector<Disk>& disks() {
   static const std::vector<Disk> d = {
-      {"centred", Vec2(0.0, 0.0), 1.0, 2.0 / 3.0},           // O at the centre, rho of (47)
-      {"offCentre", Vec2(0.3, -0.2), 0.5, 0.4},               // O inside the disk
-      {"outsideO", Vec2(2.0, 1.5), 0.7, 1.1},                 // O outside the disk
-      {"farO", Vec2(-3.0, 4.0), 0.2, 0.5},                    // O 25 radii away
+      {"centred", Vec2(0.0, 0.0), 1.0, 2.0 / 3.0},  // O at the centre, rho of (47)
+      {"offCentre", Vec2(0.3, -0.2), 0.5, 0.4},     // O inside the disk
+      {"outsideO", Vec2(2.0, 1.5), 0.7, 1.1},       // O outside the disk
+      {"farO", Vec2(-3.0, 4.0), 0.2, 0.5},          // O 25 radii away
   };
   return d;
 }
@@ -175,7 +174,8 @@ TEST(ExactDiskBasis, MatchesBruteForceEverywhereOnTheSphere) {
       }
     }
   }
-  std::printf("exactDiskBasis vs oracle: worst relative error %.2e (%s)\n", worst, worstName.c_str());
+  std::printf("exactDiskBasis vs oracle: worst relative error %.2e (%s)\n", worst,
+              worstName.c_str());
 }
 
 TEST(ExactDiskHertz, MatchesBruteForceEverywhereOnTheSphere) {
@@ -188,11 +188,12 @@ TEST(ExactDiskHertz, MatchesBruteForceEverywhereOnTheSphere) {
       const Vec3 h = exactDiskHertz(d.centre, d.R, d.rho, c.w, nullptr);
       ASSERT_TRUE(h.allFinite()) << d.name << " " << c.name;
       testing::QuadratureReport report;
-      const Vec3 ref = -testing::bruteForceQDisk(d.centre, d.R, p, 1.0, d.rho, c.w, kOracleTol, &report);
+      const Vec3 ref =
+          -testing::bruteForceQDisk(d.centre, d.R, p, 1.0, d.rho, c.w, kOracleTol, &report);
       EXPECT_FALSE(report.capped);
       const double err = (h - ref).cwiseAbs().maxCoeff() / scale;
-      EXPECT_LE(err, kContractTol) << d.name << " " << c.name << " " << h.transpose() << " vs "
-                                   << ref.transpose();
+      EXPECT_LE(err, kContractTol)
+          << d.name << " " << c.name << " " << h.transpose() << " vs " << ref.transpose();
       worst = std::max(worst, err);
     }
   }
@@ -211,12 +212,13 @@ TEST(ExactDiskBasis, LinearPressureWrenchMatchesBruteForce) {
       p.cx = g.x();
       p.cy = g.y();
       const double mu = 0.4;
-      const double scale = mu * kPi * d.R * d.R * (1.0 + slope) * (1.0 + (d.centre.norm() + d.R) / d.rho);
+      const double scale =
+          mu * kPi * d.R * d.R * (1.0 + slope) * (1.0 + (d.centre.norm() + d.R) / d.rho);
       for (const Case& c : cases(d)) {
         const Vec3 fast = -mu * basis(d, c.w) * p.coefficients();
         testing::QuadratureReport report;
-        const Vec3 ref = testing::bruteForceQDisk(d.centre, d.R, testing::linearField(p), mu, d.rho, c.w,
-                                                  kOracleTol, &report);
+        const Vec3 ref = testing::bruteForceQDisk(d.centre, d.R, testing::linearField(p), mu, d.rho,
+                                                  c.w, kOracleTol, &report);
         EXPECT_FALSE(report.capped);
         EXPECT_LE((fast - ref).cwiseAbs().maxCoeff() / scale, kContractTol)
             << d.name << " " << c.name << " slope " << slope;
@@ -241,20 +243,23 @@ TEST(ExactDiskBasis, UniformPressureMatchesPaperEq52And53) {
     for (double sgn : {1.0, -1.0}) {
       // (50): eps = (rho/R) |w_xy| / |w3|
       const double phi = 0.7;
-      const Vec3 w = Vec3(e * R / rho * std::cos(phi), e * R / rho * std::sin(phi), sgn).normalized();
+      const Vec3 w =
+          Vec3(e * R / rho * std::cos(phi), e * R / rho * std::sin(phi), sgn).normalized();
       ExactBasis b;
       exactDiskBasis(Vec2::Zero(), R, rho, w, false, b);
       const Vec3 fast = -b.F.col(0) / (kPi * R * R);  // Q for mu = Pz = 1
       const Vec3 paper = testing::uniformDiskQ(R, 1.0, 1.0, rho, w);
-      EXPECT_LE((fast - paper).cwiseAbs().maxCoeff(), kClosedFormTol) << "eps=" << e << " sign " << sgn;
+      EXPECT_LE((fast - paper).cwiseAbs().maxCoeff(), kClosedFormTol)
+          << "eps=" << e << " sign " << sgn;
     }
   }
   // the paper's formulas themselves against brute force at a few eps
   for (double e : {0.4, 1.0, 2.0}) {
     const Vec3 w = Vec3(e * R / rho, 0.0, 1.0).normalized();
-    const Vec3 ref = testing::bruteForceQDisk(Vec2::Zero(), R, [&](const Vec2&) { return 1.0 / (kPi * R * R); },
-                                              1.0, rho, w, kOracleTol);
-    EXPECT_LE((testing::uniformDiskQ(R, 1.0, 1.0, rho, w) - ref).cwiseAbs().maxCoeff(), kContractTol)
+    const Vec3 ref = testing::bruteForceQDisk(
+        Vec2::Zero(), R, [&](const Vec2&) { return 1.0 / (kPi * R * R); }, 1.0, rho, w, kOracleTol);
+    EXPECT_LE((testing::uniformDiskQ(R, 1.0, 1.0, rho, w) - ref).cwiseAbs().maxCoeff(),
+              kContractTol)
         << "eps=" << e;
   }
 }
@@ -271,16 +276,18 @@ TEST(ExactDiskHertz, MatchesPaperEq58And59) {
   for (double e : eps) {
     for (double sgn : {1.0, -1.0}) {
       const double phi = -2.1;
-      const Vec3 w = Vec3(e * R / rho * std::cos(phi), e * R / rho * std::sin(phi), sgn).normalized();
+      const Vec3 w =
+          Vec3(e * R / rho * std::cos(phi), e * R / rho * std::sin(phi), sgn).normalized();
       const Vec3 fast = -exactDiskHertz(Vec2::Zero(), R, rho, w, nullptr);
       const Vec3 paper = testing::hertzDiskQ(R, 1.0, 1.0, rho, w);
-      EXPECT_LE((fast - paper).cwiseAbs().maxCoeff(), kClosedFormTol) << "eps=" << e << " sign " << sgn;
+      EXPECT_LE((fast - paper).cwiseAbs().maxCoeff(), kClosedFormTol)
+          << "eps=" << e << " sign " << sgn;
     }
   }
   for (double e : {0.0, 0.5, 1.0, 3.0}) {
     const Vec3 w = Vec3(0.0, e * R / rho, 1.0).normalized();
-    const Vec3 ref = testing::bruteForceQDisk(Vec2::Zero(), R, testing::hertzField(Vec2::Zero(), R, 1.0),
-                                              1.0, rho, w, kOracleTol);
+    const Vec3 ref = testing::bruteForceQDisk(
+        Vec2::Zero(), R, testing::hertzField(Vec2::Zero(), R, 1.0), 1.0, rho, w, kOracleTol);
     EXPECT_LE((testing::hertzDiskQ(R, 1.0, 1.0, rho, w) - ref).cwiseAbs().maxCoeff(), kContractTol)
         << "eps=" << e;
   }
@@ -327,8 +334,10 @@ TEST(ExactDiskBasis, JacobianMatchesFiniteDifferences) {
         // stationary by symmetry (e.g. phi = x at pure spin about the centre)
         const double size = std::max(b.dF[k].cwiseAbs().maxCoeff(), columnScale(d, k));
         const double err = (b.dF[k] - fd).cwiseAbs().maxCoeff() / size;
-        EXPECT_LE(err, rim ? kFdRimTol : kFdTol) << d.name << " " << c.name << " column " << k
-                                                 << "\ndF=\n" << b.dF[k] << "\nfd=\n" << fd;
+        EXPECT_LE(err, rim ? kFdRimTol : kFdTol)
+            << d.name << " " << c.name << " column " << k << "\ndF=\n"
+            << b.dF[k] << "\nfd=\n"
+            << fd;
         if (!rim && err > worst) worstName = d.name + " " + c.name;
         (rim ? worstRim : worst) = std::max(rim ? worstRim : worst, err);
         EXPECT_LE((b.dF[k] * c.w).norm() / size, kHomogeneityTol) << d.name << " " << c.name;
@@ -349,16 +358,20 @@ TEST(ExactDiskHertz, JacobianMatchesFiniteDifferences) {
       ASSERT_LE((value - exactDiskHertz(d.centre, d.R, d.rho, c.w, nullptr)).norm(), 1e-15);
       ASSERT_TRUE(J.allFinite());
       const bool rim = c.name.rfind("rim", 0) == 0;
-      const Mat3 fd = fdJacobian([&](const Vec3& v) { return exactDiskHertz(d.centre, d.R, d.rho, v, nullptr); },
-                                 c.w, (rim ? kFdRimStepRel : kFdStepRel) * wScale(d), !rim);
+      const Mat3 fd = fdJacobian(
+          [&](const Vec3& v) { return exactDiskHertz(d.centre, d.R, d.rho, v, nullptr); }, c.w,
+          (rim ? kFdRimStepRel : kFdStepRel) * wScale(d), !rim);
       const double size = std::max(J.cwiseAbs().maxCoeff(), scale);
       const double err = (J - fd).cwiseAbs().maxCoeff() / size;
-      EXPECT_LE(err, rim ? kFdRimTol : kFdTol) << d.name << " " << c.name << "\nJ=\n" << J << "\nfd=\n" << fd;
+      EXPECT_LE(err, rim ? kFdRimTol : kFdTol) << d.name << " " << c.name << "\nJ=\n"
+                                               << J << "\nfd=\n"
+                                               << fd;
       (rim ? worstRim : worst) = std::max(rim ? worstRim : worst, err);
       EXPECT_LE((J * c.w).norm() / size, kHomogeneityTol);
     }
   }
-  std::printf("exactDiskHertz jacobian vs finite differences: worst %.2e (rim %.2e)\n", worst, worstRim);
+  std::printf("exactDiskHertz jacobian vs finite differences: worst %.2e (rim %.2e)\n", worst,
+              worstRim);
 }
 
 // ------------------------------------------------------------- continuity
@@ -371,12 +384,14 @@ TEST(ExactDiskBasis, ContinuousAcrossBranchSwitchesAndPureTranslation) {
     for (double f2 : {kSwitchInside, 1.0, kSwitchFar}) {
       for (double phi : {0.3, 2.0, -1.9}) {
         const double f = std::sqrt(f2);
-        const Vec3 wm = wForIcr(d, f * (1.0 - 0.5e-12), phi), wp = wForIcr(d, f * (1.0 + 0.5e-12), phi);
+        const Vec3 wm = wForIcr(d, f * (1.0 - 0.5e-12), phi),
+                   wp = wForIcr(d, f * (1.0 + 0.5e-12), phi);
         ExactBasis bm, bp;
         exactDiskBasis(d.centre, d.R, d.rho, wm, true, bm);
         exactDiskBasis(d.centre, d.R, d.rho, wp, true, bp);
         for (int k = 0; k < 3; ++k) {
-          EXPECT_LE((bm.F.col(k) - bp.F.col(k)).cwiseAbs().maxCoeff() / columnScale(d, k), kSwitchTol)
+          EXPECT_LE((bm.F.col(k) - bp.F.col(k)).cwiseAbs().maxCoeff() / columnScale(d, k),
+                    kSwitchTol)
               << d.name << " delta^2/R^2=" << f2 << " phi=" << phi;
           // the jacobian is continuous too (it has a log-type modulus of
           // continuity at the rim: ~1e-12 |log 1e-12| there), relative to its size
@@ -393,8 +408,10 @@ TEST(ExactDiskBasis, ContinuousAcrossBranchSwitchesAndPureTranslation) {
       exactDiskBasis(d.centre, d.R, d.rho, wt + Vec3(0, 0, 1e-13 * wScale(d)), true, bp);
       exactDiskBasis(d.centre, d.R, d.rho, wt - Vec3(0, 0, 1e-13 * wScale(d)), true, bm);
       for (int k = 0; k < 3; ++k) {
-        EXPECT_LE((bp.F.col(k) - b0.F.col(k)).cwiseAbs().maxCoeff() / columnScale(d, k), kSwitchTol);
-        EXPECT_LE((bm.F.col(k) - b0.F.col(k)).cwiseAbs().maxCoeff() / columnScale(d, k), kSwitchTol);
+        EXPECT_LE((bp.F.col(k) - b0.F.col(k)).cwiseAbs().maxCoeff() / columnScale(d, k),
+                  kSwitchTol);
+        EXPECT_LE((bm.F.col(k) - b0.F.col(k)).cwiseAbs().maxCoeff() / columnScale(d, k),
+                  kSwitchTol);
         const double size = std::max(b0.dF[k].cwiseAbs().maxCoeff(), columnScale(d, k));
         EXPECT_LE((bp.dF[k] - bm.dF[k]).cwiseAbs().maxCoeff() / size, kSwitchTol);
       }
@@ -407,7 +424,8 @@ TEST(ExactDiskHertz, ContinuousAcrossBranchSwitches) {
     const double scale = 1.0 + (d.centre.norm() + d.R) / d.rho;
     for (double f2 : {1.0, kSwitchFar}) {
       const double f = std::sqrt(f2);
-      const Vec3 wm = wForIcr(d, f * (1.0 - 0.5e-12), 0.8), wp = wForIcr(d, f * (1.0 + 0.5e-12), 0.8);
+      const Vec3 wm = wForIcr(d, f * (1.0 - 0.5e-12), 0.8),
+                 wp = wForIcr(d, f * (1.0 + 0.5e-12), 0.8);
       Mat3 Jm, Jp;
       const Vec3 hm = exactDiskHertz(d.centre, d.R, d.rho, wm, &Jm);
       const Vec3 hp = exactDiskHertz(d.centre, d.R, d.rho, wp, &Jp);
@@ -470,7 +488,8 @@ TEST(ExactDiskBasis, IcrExactlyOnTheRim) {
       const double size = std::max(b.dF[k].cwiseAbs().maxCoeff(), columnScale(d, k));
       EXPECT_LE((b.dF[k] - bn.dF[k]).cwiseAbs().maxCoeff() / size, 1e-9) << "f=" << f;
     }
-    EXPECT_LE((h - exactDiskHertz(d.centre, d.R, d.rho, wn, nullptr)).cwiseAbs().maxCoeff(), kSwitchTol);
+    EXPECT_LE((h - exactDiskHertz(d.centre, d.R, d.rho, wn, nullptr)).cwiseAbs().maxCoeff(),
+              kSwitchTol);
   }
 }
 
@@ -492,8 +511,8 @@ TEST(ExactDiskBasis, FiniteForExtremeInputs) {
     exactDiskBasis(C, R, rho, w, true, b);
     Mat3 J;
     const Vec3 h = exactDiskHertz(C, R, rho, w, &J);
-    ASSERT_TRUE(b.F.allFinite() && b.dF[0].allFinite() && b.dF[1].allFinite() && b.dF[2].allFinite() &&
-                h.allFinite() && J.allFinite())
+    ASSERT_TRUE(b.F.allFinite() && b.dF[0].allFinite() && b.dF[1].allFinite() &&
+                b.dF[2].allFinite() && h.allFinite() && J.allFinite())
         << "R=" << R << " rho=" << rho << " C=" << C.transpose() << " w=" << w.transpose();
   }
 }
