@@ -27,6 +27,10 @@ constexpr double kExactTol = 1e-10;
 // Moments of (36) are integrals of smooth or bounded functions: 1e-12 (oracle
 // at 1e-13, core closed forms).
 constexpr double kMomentTol = 1e-12;
+// Accuracy asked of the oracle for moments (one digit below kMomentTol).
+constexpr double kOracleRelTol = 1e-13;
+// A few ulps of O(1) quantities (a handful of flops).
+constexpr double kRoundOff = 1e-14;
 
 // Slip directions on the sphere (theta latitude, phi longitude), Eq. (15),
 // including the poles and the equator.
@@ -79,7 +83,7 @@ TEST(UniformDisk, BranchesAndLimits) {
   EXPECT_NEAR(uniformDiskTorque(1 - kNearOne), uniformDiskTorque(1.0), kBranchTol);
   EXPECT_NEAR(uniformDiskTorque(1 + kNearOne), uniformDiskTorque(1.0), kBranchTol);
   EXPECT_NEAR(uniformDiskForce(1e-8), 0.0, 1e-7);
-  EXPECT_NEAR(uniformDiskTorque(0.0), 1.0, 1e-15);
+  EXPECT_NEAR(uniformDiskTorque(0.0), 1.0, kRoundOff);
   // eps -> inf: expanding E, K in m = eps^-2 gives P = 1 - m/8 + O(m^2) and
   // T = O(eps^-1). The printed eps >= 1 forms cancel terms of size eps^2, so
   // they lose ~eps^2 ulps: 1e-10 at eps = 1e3 (useless beyond ~1e6).
@@ -119,11 +123,11 @@ TEST(UniformDisk, MatchesExactModel) {
 // ---- Eq. (57)-(59): Hertz pressure on a disk centred at O -------------------------
 
 TEST(HertzDisk, BranchesAndLimits) {
-  EXPECT_NEAR(hertzDiskForce(1.0), 9 * kPi / 32, 1e-15);  // both branches of (58) at eps = 1
+  EXPECT_NEAR(hertzDiskForce(1.0), 9 * kPi / 32, kRoundOff);  // both branches of (58) at eps = 1
   EXPECT_NEAR(hertzDiskForce(1 + 1e-12), 9 * kPi / 32, 1e-10);
-  EXPECT_NEAR(hertzDiskTorque(1.0), 3.0 / 8.0, 1e-15);  // (59) at eps = 1
+  EXPECT_NEAR(hertzDiskTorque(1.0), 3.0 / 8.0, kRoundOff);  // (59) at eps = 1
   EXPECT_NEAR(hertzDiskTorque(1 + 1e-12), 3.0 / 8.0, 1e-10);
-  EXPECT_NEAR(hertzDiskTorque(0.0), 1.0, 1e-15);
+  EXPECT_NEAR(hertzDiskTorque(0.0), 1.0, kRoundOff);
   // eps -> inf: (58) ~ 1 - O(eps^-2), (59) ~ O(eps^-1); large eps loses digits
   // to cancellation in the closed form (~eps^3 terms cancel): 1e-6 at eps = 1e3.
   EXPECT_NEAR(hertzDiskForce(1e3), 1.0, 1e-5);
@@ -136,7 +140,7 @@ TEST(HertzDisk, PiXY) {
   const double R = 0.45, Pz = 2.0;
   const PatchShape disk = PatchShape::disk(R);
   const double oracle =
-      bruteForceIntegral(disk, [&](const Vec2& q) { return q.norm() * hertzField(Vec2::Zero(), R, Pz)(q); }, 1e-13) / Pz;
+      bruteForceIntegral(disk, [&](const Vec2& q) { return q.norm() * hertzField(Vec2::Zero(), R, Pz)(q); }, kOracleRelTol) / Pz;
   EXPECT_NEAR(hertzDiskPiXY(R), oracle, kMomentTol * R);
   EXPECT_NEAR(piMomentsHertz(disk, HertzPressure{Pz}).pi_xy, oracle, kMomentTol * R);
 }
@@ -242,14 +246,14 @@ TEST(MovedReference, PaperMatrices) {
   const Mat3 W = referencePointMap(Vec2(L / 8, 0.0), rho);
   Mat3 Wprinted;
   Wprinted << 1, 0, 0, 0, 1, 0.5, 0, 0, 1;
-  EXPECT_TRUE(W.isApprox(Wprinted, 1e-15));
+  EXPECT_TRUE(W.isApprox(Wprinted, kRoundOff));
   const Mat3 Pi1 = thinStripPi(1.0 / 8);
   Mat3 PiPrinted, reducedPrinted;
   PiPrinted << 1, 0, 0, 0, 1, -0.25, 0, -0.5, 17.0 / 16;
   reducedPrinted << 1, 0, 0, 0, 1, 0.25, 0, 0, 15.0 / 16;
-  EXPECT_TRUE(Pi1.isApprox(PiPrinted, 1e-15));
-  EXPECT_TRUE((W.transpose() * Pi1 * W).isApprox(reducedPrinted, 1e-15));
-  EXPECT_TRUE(thinStripPi(0.0).isApprox(Mat3::Identity(), 1e-15));  // Sect. 4.5.4
+  EXPECT_TRUE(Pi1.isApprox(PiPrinted, kRoundOff));
+  EXPECT_TRUE((W.transpose() * Pi1 * W).isApprox(reducedPrinted, kRoundOff));
+  EXPECT_TRUE(thinStripPi(0.0).isApprox(Mat3::Identity(), kRoundOff));  // Sect. 4.5.4
 }
 
 // The core's Pi about O' for a real thin rectangle, rho = L/4, against (68).
@@ -263,11 +267,11 @@ TEST(MovedReference, CorePiOfThinRectangle) {
   const FrictionPatch patch(moved, LinearPressure::uniform(moved, 1.0), 0.3, rho);
   const Mat3 expected = thinStripPi(1.0 / 8);
   const Mat3& Pi1 = patch.Pi();
-  EXPECT_NEAR(Pi1(2, 1), expected(2, 1), 1e-14);
+  EXPECT_NEAR(Pi1(2, 1), expected(2, 1), kRoundOff);
   EXPECT_NEAR(Pi1(1, 2), expected(1, 2), 2 * std::sqrt(2.0) * h / L);
   EXPECT_NEAR(Pi1(2, 2), expected(2, 2), 4 * h / L);
-  EXPECT_NEAR(Pi1(0, 2), 0.0, 1e-14);
-  EXPECT_NEAR(Pi1(2, 0), 0.0, 1e-14);
+  EXPECT_NEAR(Pi1(0, 2), 0.0, kRoundOff);
+  EXPECT_NEAR(Pi1(2, 0), 0.0, kRoundOff);
   // and to 1e-12 against brute-force moments of the real rectangle
   const PiMoments ref = bruteForcePiMoments(moved, [](const Vec2&) { return 1.0; });
   EXPECT_TRUE(Pi1.isApprox(ellipsoidalPi(ref, rho), kMomentTol));
@@ -299,7 +303,7 @@ TEST(LinearDisk, PiMomentsMatchOracleAndCore) {
     const FrictionPatch patch(disk, p, 0.5);
     EXPECT_TRUE(patch.Pi().isApprox(linearDiskPi(R, p0, cx, cy), kMomentTol))
         << patch.Pi() << "\nvs\n" << linearDiskPi(R, p0, cx, cy);
-    EXPECT_TRUE(ellipsoidalPi(closed, 2 * R / 3).isApprox(linearDiskPi(R, p0, cx, cy), 1e-15));
+    EXPECT_TRUE(ellipsoidalPi(closed, 2 * R / 3).isApprox(linearDiskPi(R, p0, cx, cy), kRoundOff));
   }
 }
 

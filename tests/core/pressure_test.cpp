@@ -36,6 +36,10 @@ constexpr double kForwardRelTol = 1e-13 * kMaxCondition;
 // enumeration for polygons, a 1-D search for disks); 1e-9 relative is far
 // below anything a solver would notice and far above round-off.
 constexpr double kProjectionRelTol = 1e-9;
+// Accuracy asked of the oracle (one digit below kIntegralRelTol).
+constexpr double kOracleRelTol = 1e-13;
+// A few ulps of O(1) quantities (a handful of flops).
+constexpr double kRoundOff = 1e-14;
 
 std::vector<PatchShape> testShapes() {
   return {
@@ -54,9 +58,9 @@ std::vector<PatchShape> testShapes() {
 //   Pz = ∫p dA, Tx = -∫y p dA, Ty = ∫x p dA.
 PatchLoads bruteForceLoads(const PatchShape& shape, const testing::ScalarField& p) {
   PatchLoads l;
-  l.Pz = bruteForceIntegral(shape, p, 1e-13);
-  l.Tx = -bruteForceIntegral(shape, [&](const Vec2& q) { return q.y() * p(q); }, 1e-13);
-  l.Ty = bruteForceIntegral(shape, [&](const Vec2& q) { return q.x() * p(q); }, 1e-13);
+  l.Pz = bruteForceIntegral(shape, p, kOracleRelTol);
+  l.Tx = -bruteForceIntegral(shape, [&](const Vec2& q) { return q.y() * p(q); }, kOracleRelTol);
+  l.Ty = bruteForceIntegral(shape, [&](const Vec2& q) { return q.x() * p(q); }, kOracleRelTol);
   return l;
 }
 
@@ -125,7 +129,7 @@ TEST(Loads, FromLoadsRecoversPressure) {
 TEST(Loads, UniformPressure) {
   for (const PatchShape& shape : testShapes()) {
     const LinearPressure p = LinearPressure::uniform(shape, 3.0);
-    EXPECT_NEAR(p.p0, 3.0 / shape.area(), 1e-15 * p.p0);
+    EXPECT_NEAR(p.p0, 3.0 / shape.area(), kRoundOff * p.p0);
     EXPECT_EQ(p.cx, 0.0);
     EXPECT_EQ(p.cy, 0.0);
   }
@@ -149,7 +153,7 @@ TEST(Admissible, MinPressure) {
     SCOPED_TRACE(shape.describe());
     const LinearPressure p = randomPressure(shape, rng);
     const double got = minPressure(shape, p);
-    EXPECT_NEAR(got, directMinPressure(shape, p), 1e-14);
+    EXPECT_NEAR(got, directMinPressure(shape, p), kRoundOff);
     if (shape.isDisk()) {
       double sampled = std::numeric_limits<double>::infinity();
       for (int i = 0; i < kRimSamples; ++i) {
@@ -157,8 +161,8 @@ TEST(Admissible, MinPressure) {
         sampled = std::min(sampled, p.at(shape.centre() + shape.radius() * Vec2(std::cos(a), std::sin(a))));
       }
       const double gap = std::hypot(p.cx, p.cy) * shape.radius() * (1 - std::cos(kPi / kRimSamples));
-      EXPECT_GE(sampled, got - 1e-14);
-      EXPECT_LE(sampled, got + gap + 1e-14);
+      EXPECT_GE(sampled, got - kRoundOff);
+      EXPECT_LE(sampled, got + gap + kRoundOff);
     }
   }
 }
@@ -261,10 +265,10 @@ TEST(NearestAdmissible, IsTheProjection) {
         for (const PatchLoads& s : admissible) {
           const Vec3 ss = scaled(s, rho);
           // nearest: no sample is closer
-          EXPECT_LE(d, (xs - ss).norm() * (1 + kProjectionRelTol) + 1e-15)
+          EXPECT_LE(d, (xs - ss).norm() * (1 + kProjectionRelTol) + kRoundOff)
               << "sample closer than the returned load";
           // projection onto a convex cone: (x - r).(s - r) <= 0
-          EXPECT_LE((xs - rs).dot(ss - rs), kProjectionRelTol * d * (ss - rs).norm() + 1e-15);
+          EXPECT_LE((xs - rs).dot(ss - rs), kProjectionRelTol * d * (ss - rs).norm() + kRoundOff);
         }
       }
     }
@@ -325,7 +329,7 @@ TEST(PiMoments, EllipsoidalPiLayout) {
   const double rho = 0.7;
   Mat3 expected;
   expected << 1, 0, 0.4, 0, 1, 0.3, 0.2 / rho, 0.1 / rho, 0.5 / rho;
-  EXPECT_TRUE(ellipsoidalPi(m, rho).isApprox(expected, 1e-15));
+  EXPECT_TRUE(ellipsoidalPi(m, rho).isApprox(expected, kRoundOff));
 }
 
 TEST(PiMoments, HertzMatchesBruteForce) {
