@@ -1,0 +1,639 @@
+// Tests of the exact model on convex polygons, Eq. (16), with linear pressure
+// basis (1, x, y): internal::exactPolygonBasis against an independent
+// brute-force oracle written here (nested adaptive Gauss-Kronrod in Cartesian
+// coordinates, no polar sums about the ICR), closed forms for pure
+// translation and pure spin, and central finite differences for dF.
+#include <patchspin/internal/exact.hpp>
+
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace patchspin {
+namespace {
+
+using internal::ExactBasis;
+using internal::exactPolygonBasis;
+using Polygon = std::vector<Vec2>;
+using Vec9 = Eigen::Matrix<double, 9, 1>;
+
+// The contract: relative error <= 1e-10 everywhere on the sphere of w.
+// Errors are normwise per column: |F.col(k) - oracle.col(k)|_inf / scale_k,
+// scale_k = area * max|phi_k| * (1 + max|P| / rho), an upper bound of every
+// entry of F.col(k) (|v/|v|| = 1 and |P x v/|v|| <= |P|). The oracle is run to
+// kOracleTol (1e-12 per entry, as |K15 - G7|, which overestimates the K15
+// error by orders of magnitude), the implementation is expected near 1e-13 (rounding of
+// the edge sum grows like kappa^3 eps up to the branch switch at kappa = 8,
+// measured <= 3e-13), so the 1e-10 contract is checked with a wide margin.
+constexpr double kContractTol = 1e-10;
+constexpr double kOracleTol = 1e-12;
+
+// ---- oracle ----
+
+// Unit friction kernel of Eq. (1), (16) as defined in exact.hpp; 0 where v = 0:
+//   v = (w1 - w3 y / rho, w2 + w3 x / rho) = (w3 / rho) (-(y - cy), x - cx).
+// The second form (used when w3 != 0) avoids the cancellation of the first
+// near the ICR, which would make the kernel noisy there (relative noise
+// eps |w| / |v|) and stall the adaptive quadrature.
+Vec3 kernel(const Vec3& w, double rho, double x, double y) {
+  double vx, vy;
+  if (w.z() != 0.0) {
+    const double cx = -rho * w.y() / w.z(), cy = rho * w.x() / w.z();
+    vx = -(w.z() / rho) * (y - cy);
+    vy = (w.z() / rho) * (x - cx);
+  } else {
+    vx = w.x();
+    vy = w.y();
+  }
+  const double n = std::hypot(vx, vy);
+  if (n == 0.0) return Vec3::Zero();
+  return Vec3(vx / n, vy / n, (x * vy - y * vx) / (rho * n));
+}
+
+// G7-K15 on [a, b] for a 9-vector integrand; err = |K15 - G7| per entry.
+template <class F>
+Vec9 gaussKronrod15(F& f, double a, double b, Vec9& err) {
+  using boost::math::quadrature::gauss;
+  using boost::math::quadrature::gauss_kronrod;
+  const auto& xk = gauss_kronrod<double, 15>::abscissa();
+  const auto& wk = gauss_kronrod<double, 15>::weights();
+  const auto& wg = gauss<double, 7>::weights();
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  Vec9 f0 = f(mid);
+  Vec9 kron = wk[0] * f0, gs = wg[0] * f0;
+  for (std::size_t i = 1; i < xk.size(); ++i) {
+    const Vec9 pair = f(mid - half * xk[i]) + f(mid + half * xk[i]);
+    kron += wk[i] * pair;
+    // the 7 Gauss nodes are the Kronrod nodes of even index (0, 2, 4, 6)
+    if (i % 2 == 0) gs += wg[i / 2] * pair;
+  }
+  err = half * (kron - gs).cwiseAbs();
+  return half * kron;
+}
+
+// Number of oracle integrals that stopped at kMaxPanels before meeting their
+// tolerance; the oracle tests require 0.
+int gOracleCapped = 0;
+
+// Globally adaptive G7-K15 over [a, b], split first at the breakpoints
+// inside (a, b): bisect the panel with the largest error estimate until the
+// summed |K15 - G7| is <= tol in every entry (kMaxPanels bounds the work;
+// the kernel's jump lies on panel ends, so refinement is only needed at the
+// log-type endpoint singularities, a few panels per binary digit).
+template <class F>
+Vec9 integrateSplit(F& f, double a, double b, std::vector<double> breaks, const Vec9& tol) {
+  constexpr std::size_t kMaxPanels = 4000;
+  struct Panel {
+    double a, b, score;
+    Vec9 value, err;
+  };
+  std::vector<Panel> panels;
+  auto makePanel = [&](double lo, double hi) {
+    Panel p{lo, hi, 0.0, Vec9::Zero(), Vec9::Zero()};
+    p.value = gaussKronrod15(f, lo, hi, p.err);
+    p.score = (p.err.array() / tol.array()).maxCoeff();
+    return p;
+  };
+  auto byScore = [](const Panel& x, const Panel& y) { return x.score < y.score; };
+  breaks.push_back(a);
+  breaks.push_back(b);
+  std::sort(breaks.begin(), breaks.end());
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double lo = std::max(a, breaks[i]), hi = std::min(b, breaks[i + 1]);
+    if (hi > lo) panels.push_back(makePanel(lo, hi));
+  }
+  std::make_heap(panels.begin(), panels.end(), byScore);
+  while (!panels.empty()) {
+    Vec9 total = Vec9::Zero();
+    for (const Panel& p : panels) total += p.err;
+    if ((total.array() <= tol.array()).all()) break;
+    if (panels.size() >= kMaxPanels) {
+      ++gOracleCapped;
+      break;
+    }
+    std::pop_heap(panels.begin(), panels.end(), byScore);
+    const Panel worst = panels.back();
+    panels.pop_back();
+    const double m = 0.5 * (worst.a + worst.b);
+    if (!(m > worst.a && m < worst.b)) {  // cannot split further: keep it
+      panels.push_back(worst);
+      panels.back().score = 0.0;
+      std::push_heap(panels.begin(), panels.end(), byScore);
+      continue;
+    }
+    for (const Panel& half : {makePanel(worst.a, m), makePanel(m, worst.b)}) {
+      panels.push_back(half);
+      std::push_heap(panels.begin(), panels.end(), byScore);
+    }
+  }
+  Vec9 sum = Vec9::Zero();
+  for (const Panel& p : panels) sum += p.value;
+  return sum;
+}
+
+// y-range of the convex polygon on the vertical line at x.
+void chordAt(const Polygon& poly, double x, double& lo, double& hi) {
+  lo = INFINITY;
+  hi = -INFINITY;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[(i + 1) % poly.size()];
+    if (a.x() == b.x()) continue;  // vertical edge: its neighbours give the range
+    const double t = (x - a.x()) / (b.x() - a.x());
+    if (t < 0.0 || t > 1.0) continue;
+    const double y = a.y() + t * (b.y() - a.y());
+    lo = std::min(lo, y);
+    hi = std::max(hi, y);
+  }
+}
+
+double maxAbsPhi(const Polygon& poly, int k) {
+  double m = 0.0;
+  for (const Vec2& p : poly) m = std::max(m, k == 0 ? 1.0 : std::abs(p[k - 1]));
+  return m;
+}
+
+double polygonArea(const Polygon& poly) {
+  double a2 = 0.0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const Vec2& a = poly[i];
+    const Vec2& b = poly[(i + 1) % poly.size()];
+    a2 += a.x() * b.y() - a.y() * b.x();
+  }
+  return 0.5 * a2;
+}
+
+// Column scales (see kContractTol).
+Vec3 columnScales(const Polygon& poly, double rho) {
+  double rmax = 0.0;
+  for (const Vec2& p : poly) rmax = std::max(rmax, p.norm());
+  Vec3 s;
+  for (int k = 0; k < 3; ++k) s[k] = polygonArea(poly) * maxAbsPhi(poly, k) * (1.0 + rmax / rho);
+  return s;
+}
+
+// F by brute force: x outer, split at the vertices and the ICR's x; y inner
+// between the chains, split at the ICR's y, so that the kernel's only
+// discontinuity (the ICR) lies on panel boundaries.
+Mat3 oracleF(const Polygon& poly, double rho, const Vec3& w) {
+  const bool hasIcr = w.z() != 0.0;
+  const double cx = hasIcr ? -rho * w.y() / w.z() : 0.0, cy = hasIcr ? rho * w.x() / w.z() : 0.0;
+  double xmin = INFINITY, xmax = -INFINITY;
+  std::vector<double> xbreaks;
+  for (const Vec2& p : poly) {
+    xmin = std::min(xmin, p.x());
+    xmax = std::max(xmax, p.x());
+    xbreaks.push_back(p.x());
+  }
+  if (hasIcr) xbreaks.push_back(cx);
+  // per-entry tolerance kOracleTol * scale_k; the inner integrals get 1e-2 of
+  // it per unit length so that their error is smooth noise far below the
+  // outer panels' tolerance
+  const Vec3 scale = columnScales(poly, rho);
+  Vec9 tol;
+  for (int k = 0; k < 3; ++k) tol.segment<3>(3 * k).setConstant(kOracleTol * scale[k]);
+  const Vec9 innerTol = 1e-2 * tol / (xmax - xmin);
+  auto inner = [&](double x) -> Vec9 {
+    double lo, hi;
+    chordAt(poly, x, lo, hi);
+    if (!(hi > lo)) return Vec9::Zero();
+    auto fy = [&](double y) -> Vec9 {
+      const Vec3 k = kernel(w, rho, x, y);
+      Vec9 out;
+      out << k, x * k, y * k;
+      return out;
+    };
+    std::vector<double> ybreaks;
+    if (hasIcr) ybreaks.push_back(cy);
+    return integrateSplit(fy, lo, hi, ybreaks, innerTol);
+  };
+  const Vec9 v = integrateSplit(inner, xmin, xmax, xbreaks, tol);
+  Mat3 F;
+  F.col(0) = v.segment<3>(0);
+  F.col(1) = v.segment<3>(3);
+  F.col(2) = v.segment<3>(6);
+  return F;
+}
+
+// max over columns of the normwise relative error
+double relativeError(const Mat3& F, const Mat3& ref, const Vec3& scale) {
+  double e = 0.0;
+  for (int k = 0; k < 3; ++k) e = std::max(e, (F.col(k) - ref.col(k)).cwiseAbs().maxCoeff() / scale[k]);
+  return e;
+}
+
+// w whose ICR c = rho (-w2, w1) / w3 is the given point, spin sign s.
+Vec3 wForIcr(const Vec2& c, double rho, double s) {
+  return Vec3(s * c.y(), -s * c.x(), s * rho).normalized();
+}
+
+// ---- shapes ----
+
+Polygon translated(Polygon p, const Vec2& t) {
+  for (Vec2& v : p) v += t;
+  return p;
+}
+Polygon unitSquare() { return {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}; }
+Polygon rectangle() { return {{-1.0, -0.25}, {1.0, -0.25}, {1.0, 0.25}, {-1.0, 0.25}}; }
+Polygon triangle() { return {{0.1, -0.3}, {1.1, 0.0}, {0.3, 0.8}}; }
+Polygon irregularPentagon() {
+  return {{-0.6, -0.4}, {0.3, -0.55}, {0.8, 0.1}, {0.35, 0.6}, {-0.5, 0.45}};
+}
+Polygon regularOctagon() {
+  Polygon p;
+  for (int i = 0; i < 8; ++i) {
+    const double a = 2.0 * M_PI * i / 8.0 + 0.2;
+    p.emplace_back(0.1 + 0.6 * std::cos(a), -0.05 + 0.6 * std::sin(a));
+  }
+  return p;
+}
+
+struct NamedPolygon {
+  std::string name;
+  Polygon poly;
+  double rho;
+};
+
+std::vector<NamedPolygon> testPolygons() {
+  return {
+      {"square, O at centre", unitSquare(), 0.38},
+      {"rectangle 2x0.5, O at centre", rectangle(), 0.5},
+      {"triangle, O outside", triangle(), 0.6},
+      {"irregular pentagon, O inside", irregularPentagon(), 0.4},
+      {"octagon, O inside off-centre", regularOctagon(), 0.3},
+      {"square, O far outside", translated(unitSquare(), Vec2(2.5, -1.5)), 0.4},
+      {"square, O at a vertex", translated(unitSquare(), Vec2(0.5, 0.5)), 0.5},
+      {"rectangle, O on an edge", translated(rectangle(), Vec2(0.3, 0.25)), 0.6},
+  };
+}
+
+// Slip directions covering the sphere's special places for a polygon.
+std::vector<std::pair<std::string, Vec3>> testDirections(const Polygon& poly, double rho) {
+  std::vector<std::pair<std::string, Vec3>> ws;
+  ws.push_back({"pure spin +", Vec3(0, 0, 1)});
+  ws.push_back({"pure spin -", Vec3(0, 0, -1)});
+  ws.push_back({"translation x", Vec3(1, 0, 0)});
+  ws.push_back({"translation oblique", Vec3(-0.6, 0.8, 0)});
+  const Vec2 dir = Vec2(0.8, -0.6);
+  for (double w3 : {1e-3, 1e-6, 1e-9, -1e-9}) {
+    const double s = std::sqrt(1.0 - w3 * w3);
+    ws.push_back({"w3 = " + std::to_string(w3), Vec3(s * dir.x(), s * dir.y(), w3)});
+  }
+  const Vec2& a = poly[0];
+  const Vec2& b = poly[1];
+  const Vec2 mid = 0.5 * (a + b);
+  const Vec2 e = (b - a).normalized();
+  const Vec2 n(-e.y(), e.x());  // inward normal of edge 0
+  const double L = (b - a).norm();
+  ws.push_back({"ICR at vertex", wForIcr(a, rho, 1.0)});
+  ws.push_back({"ICR at vertex, spin -", wForIcr(poly[2], rho, -1.0)});
+  ws.push_back({"ICR on edge", wForIcr(mid, rho, 1.0)});
+  ws.push_back({"ICR on edge line outside", wForIcr(b + 0.3 * L * e, rho, 1.0)});
+  ws.push_back({"ICR just inside edge", wForIcr(mid + 1e-9 * L * n, rho, 1.0)});
+  ws.push_back({"ICR just outside edge", wForIcr(mid - 1e-9 * L * n, rho, -1.0)});
+  ws.push_back({"ICR just off vertex", wForIcr(a + 1e-8 * L * Vec2(0.6, -0.8), rho, 1.0)});
+  Vec2 centroid = Vec2::Zero();
+  for (const Vec2& p : poly) centroid += p;
+  centroid /= static_cast<double>(poly.size());
+  ws.push_back({"ICR at vertex mean", wForIcr(centroid, rho, 1.0)});
+  ws.push_back({"ICR at 3 L outside", wForIcr(mid - 3.0 * L * n, rho, 1.0)});
+  ws.push_back({"ICR at 30 L outside", wForIcr(mid - 30.0 * L * n, rho, -1.0)});
+  std::mt19937 rng(12345);
+  std::normal_distribution<double> normal;
+  for (int i = 0; i < 3; ++i) {
+    Vec3 w(normal(rng), normal(rng), normal(rng));
+    ws.push_back({"random " + std::to_string(i), w.normalized()});
+  }
+  return ws;
+}
+
+// ---- tests ----
+
+TEST(ExactPolygonBasis, MatchesBruteForceOracleEverywhere) {
+  double worst = 0.0;
+  gOracleCapped = 0;
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    for (const auto& [label, w] : testDirections(np.poly, np.rho)) {
+      ExactBasis out;
+      exactPolygonBasis(np.poly, np.rho, w, false, out);
+      ASSERT_TRUE(out.F.allFinite()) << np.name << " / " << label;
+      const Mat3 ref = oracleF(np.poly, np.rho, w);
+      const double err = relativeError(out.F, ref, scale);
+      worst = std::max(worst, err);
+      EXPECT_LE(err, kContractTol) << np.name << " / " << label << "\nF =\n"
+                                   << out.F << "\noracle =\n"
+                                   << ref;
+    }
+  }
+  EXPECT_EQ(gOracleCapped, 0) << "oracle did not converge";
+  std::printf("worst relative error vs oracle: %.2e\n", worst);
+}
+
+// With the Jacobian requested, F must be the same numbers (up to rounding of
+// the dual-number arithmetic, which reorders no sums: kSameTol = 1e-14).
+TEST(ExactPolygonBasis, ValueIndependentOfJacobianRequest) {
+  constexpr double kSameTol = 1e-14;
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    for (const auto& [label, w] : testDirections(np.poly, np.rho)) {
+      ExactBasis a, b;
+      exactPolygonBasis(np.poly, np.rho, w, false, a);
+      exactPolygonBasis(np.poly, np.rho, w, true, b);
+      EXPECT_LE(relativeError(a.F, b.F, scale), kSameTol) << np.name << " / " << label;
+    }
+  }
+}
+
+// Pure translation w = (cos t, sin t, 0): v/|v| = (cos t, sin t) is constant, so
+//   F.col(k) = ∫ phi_k (cos t, sin t, (x sin t - y cos t) / rho) dA,
+// i.e. polygon area moments (Green's theorem formulas, computed here).
+TEST(ExactPolygonBasis, PureTranslationMatchesAreaMoments) {
+  constexpr double kClosedFormTol = 1e-13;  // both sides are a few rounded sums
+  for (const NamedPolygon& np : testPolygons()) {
+    // moments A, Sx, Sy, Ixx, Ixy, Iyy by Green's theorem
+    double A = 0, Sx = 0, Sy = 0, Ixx = 0, Ixy = 0, Iyy = 0;
+    const Polygon& p = np.poly;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec2& a = p[i];
+      const Vec2& b = p[(i + 1) % p.size()];
+      const double cr = a.x() * b.y() - b.x() * a.y();
+      A += cr / 2;
+      Sx += (a.x() + b.x()) * cr / 6;
+      Sy += (a.y() + b.y()) * cr / 6;
+      Ixx += (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) * cr / 12;
+      Iyy += (a.y() * a.y() + a.y() * b.y() + b.y() * b.y()) * cr / 12;
+      Ixy += (a.x() * b.y() + 2 * a.x() * a.y() + 2 * b.x() * b.y() + b.x() * a.y()) * cr / 24;
+    }
+    const Vec3 scale = columnScales(p, np.rho);
+    for (double t : {0.0, 0.7, 2.0, -2.5}) {
+      const double c = std::cos(t), s = std::sin(t);
+      Mat3 ref;
+      ref.col(0) << A * c, A * s, (Sx * s - Sy * c) / np.rho;
+      ref.col(1) << Sx * c, Sx * s, (Ixx * s - Ixy * c) / np.rho;
+      ref.col(2) << Sy * c, Sy * s, (Ixy * s - Iyy * c) / np.rho;
+      ExactBasis out;
+      exactPolygonBasis(p, np.rho, Vec3(c, s, 0.0), true, out);
+      EXPECT_LE(relativeError(out.F, ref, scale), kClosedFormTol) << np.name << " t=" << t;
+    }
+  }
+}
+
+// Pure spin about O, w = (0, 0, 1): k = (-y, x, r^2/rho) / r, so
+//   F.col(0) = (∫ -y/r, ∫ x/r, ∫ r / rho) dA,
+// the moment integrals of Eq. (36) (paper's Eq. (42) third column). Checked
+// with the oracle's Cartesian quadrature of these scalar integrands, split
+// at O where r is not smooth.
+TEST(ExactPolygonBasis, PureSpinAboutOriginGivesRadialMoments) {
+  for (const NamedPolygon& np : testPolygons()) {
+    const Polygon& p = np.poly;
+    // radial moments via the 9-vector oracle with a custom integrand
+    double xmin = INFINITY, xmax = -INFINITY;
+    std::vector<double> xb{0.0};
+    for (const Vec2& v : p) {
+      xmin = std::min(xmin, v.x());
+      xmax = std::max(xmax, v.x());
+      xb.push_back(v.x());
+    }
+    const Vec3 scale = columnScales(p, np.rho);
+    const Vec9 tol = Vec9::Constant(kOracleTol * scale[0]);
+    const Vec9 innerTol = 1e-2 * tol / (xmax - xmin);
+    auto inner = [&](double x) -> Vec9 {
+      double lo, hi;
+      chordAt(p, x, lo, hi);
+      if (!(hi > lo)) return Vec9::Zero();
+      auto fy = [&](double y) -> Vec9 {
+        const double r = std::hypot(x, y);
+        Vec9 out = Vec9::Zero();
+        if (r > 0) out.head<3>() << -y / r, x / r, r / np.rho;
+        return out;
+      };
+      return integrateSplit(fy, lo, hi, {0.0}, innerTol);
+    };
+    gOracleCapped = 0;
+    const Vec3 moments = integrateSplit(inner, xmin, xmax, xb, tol).head<3>();
+    ASSERT_EQ(gOracleCapped, 0) << "oracle did not converge";
+    for (double s : {1.0, -1.0}) {
+      ExactBasis out;
+      exactPolygonBasis(p, np.rho, Vec3(0, 0, s), false, out);
+      EXPECT_LE((out.F.col(0) - s * moments).cwiseAbs().maxCoeff() / scale[0], kContractTol)
+          << np.name << " spin " << s << "\n"
+          << out.F.col(0).transpose() << "\n"
+          << (s * moments).transpose();
+    }
+  }
+}
+
+// F is continuous across w3 = 0 (c passes through infinity): at w3 = +-eps
+// it differs from the pure-translation value by O(eps) (the kernel changes by
+// O(eps |P| / rho)). kContinuitySlope bounds that Lipschitz constant relative
+// to the column scale, with margin: the kernel's change is <= 2 eps |P|/rho.
+TEST(ExactPolygonBasis, ContinuousAcrossPureTranslation) {
+  constexpr double kContinuitySlope = 10.0;
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    double rmax = 0.0;
+    for (const Vec2& v : np.poly) rmax = std::max(rmax, v.norm());
+    ExactBasis zero;
+    exactPolygonBasis(np.poly, np.rho, Vec3(0.6, 0.8, 0.0), true, zero);
+    for (double eps : {1e-300, 1e-200, 1e-15, 1e-12, 1e-8, -1e-8, -1e-15, -1e-300}) {
+      ExactBasis out;
+      exactPolygonBasis(np.poly, np.rho, Vec3(0.6, 0.8, eps), true, out);
+      ASSERT_TRUE(out.F.allFinite());
+      const double bound = kContinuitySlope * std::abs(eps) * (1.0 + rmax / np.rho) + 1e-15;
+      EXPECT_LE(relativeError(out.F, zero.F, scale), bound) << np.name << " eps " << eps;
+      // the Jacobian is continuous there too (both sides use the same rule)
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_LE((out.dF[k] - zero.dF[k]).cwiseAbs().maxCoeff() / scale[k], 1e-6)
+            << np.name << " eps " << eps;
+      }
+    }
+  }
+}
+
+// The two branches (edge sum / quadrature) meet at kappa = |c - g| / Rpoly = 8
+// (g = vertex mean, Rpoly = circumradius about g). Just inside and just
+// outside the switch (c moved by 2e-14 of its distance, so F itself moves
+// by ~1e-14), F and dF must agree to the accuracy of both branches: F to
+// kSwitchTol (measured <= 6e-13 over shapes and rho), dF to
+// kSwitchJacobianTol: the dual-number derivative of the cancelling edge sum
+// is multiplied by dc/dw ~ kappa^2 / rho, measured <= 1.4e-10 (2x0.5
+// rectangle, rho = 0.1) and ~1e-11 for the shapes here.
+TEST(ExactPolygonBasis, BranchesAgreeAtTheSwitch) {
+  constexpr double kSwitchTol = 1e-12;
+  constexpr double kSwitchJacobianTol = 1e-10;
+  constexpr double kSwitchRatio = 8.0;  // mirrors kFarRatio in exact_polygon.cpp
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    Vec2 g = Vec2::Zero();
+    for (const Vec2& v : np.poly) g += v;
+    g /= static_cast<double>(np.poly.size());
+    double R = 0;
+    for (const Vec2& v : np.poly) R = std::max(R, (v - g).norm());
+    for (double angle : {0.3, 1.9, 4.0}) {
+      const Vec2 dir(std::cos(angle), std::sin(angle));
+      ExactBasis in, out;
+      exactPolygonBasis(np.poly, np.rho, wForIcr(g + kSwitchRatio * (1 - 1e-14) * R * dir, np.rho, 1),
+                        true, in);
+      exactPolygonBasis(np.poly, np.rho, wForIcr(g + kSwitchRatio * (1 + 1e-14) * R * dir, np.rho, 1),
+                        true, out);
+      EXPECT_LE(relativeError(in.F, out.F, scale), kSwitchTol) << np.name << " angle " << angle;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_LE((in.dF[k] - out.dF[k]).cwiseAbs().maxCoeff() / scale[k], kSwitchJacobianTol)
+            << np.name << " angle " << angle << " column " << k;
+      }
+    }
+  }
+}
+
+// dF[k] against central differences of F.col(k) in w (w unnormalized: F is
+// homogeneous of degree 0). Step h = 1e-5: truncation h^2 |F'''| / 6 and
+// rounding eps |F| / h are both ~1e-11 relative when the ICR is at least
+// kMinIcrClearance from the boundary (F'' is log-singular where the ICR
+// crosses an edge), so kFdTol = 1e-7 relative to the column scale.
+TEST(ExactPolygonBasis, JacobianMatchesFiniteDifferences) {
+  constexpr double kStep = 1e-5;
+  constexpr double kFdTol = 1e-7;
+  constexpr double kMinIcrClearance = 0.05;
+  constexpr double kEulerTol = 1e-13;  // dF[k] w = 0 up to rounding
+  std::mt19937 rng(2024);
+  std::normal_distribution<double> normal;
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    int checked = 0;
+    for (int trial = 0; trial < 200 && checked < 25; ++trial) {
+      Vec3 w(normal(rng), normal(rng), normal(rng));
+      if (trial % 3 == 0) w.z() *= 1e-2;  // include the far branch
+      w.normalize();
+      if (w.z() != 0.0) {
+        const Vec2 c(-np.rho * w.y() / w.z(), np.rho * w.x() / w.z());
+        double clearance = INFINITY;
+        for (std::size_t i = 0; i < np.poly.size(); ++i) {
+          const Vec2& a = np.poly[i];
+          const Vec2& b = np.poly[(i + 1) % np.poly.size()];
+          const double t = std::clamp((c - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+          clearance = std::min(clearance, (a + t * (b - a) - c).norm());
+        }
+        if (clearance < kMinIcrClearance) continue;
+      }
+      ++checked;
+      ExactBasis out;
+      exactPolygonBasis(np.poly, np.rho, w, true, out);
+      for (int j = 0; j < 3; ++j) {
+        ExactBasis plus, minus;
+        Vec3 wp = w, wm = w;
+        wp[j] += kStep;
+        wm[j] -= kStep;
+        exactPolygonBasis(np.poly, np.rho, wp, false, plus);
+        exactPolygonBasis(np.poly, np.rho, wm, false, minus);
+        const Mat3 fd = (plus.F - minus.F) / (2 * kStep);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_LE((out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k], kFdTol)
+              << np.name << " w = " << w.transpose() << " column " << k << " dw" << j;
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_LE((out.dF[k] * w).cwiseAbs().maxCoeff() / scale[k], kEulerTol) << np.name;
+      }
+    }
+    EXPECT_GE(checked, 20) << np.name;
+  }
+}
+
+// At an ICR on an edge or a vertex F is still C^1 (its second derivative is
+// log-singular there), so the Jacobian must be finite and match central
+// differences to O(hc log hc), hc = kStep |dc/dw| <= 1e-5 the step of the ICR
+// for these shapes (|dc/dw3| = |c|/w3 <= ~50): ~1e-5 * 12, so
+// kFdTolSingular = 1e-4 (rounding eps/kStep ~ 1e-9 is negligible).
+TEST(ExactPolygonBasis, JacobianContinuousWithIcrOnBoundary) {
+  constexpr double kStep = 1e-7;
+  constexpr double kFdTolSingular = 1e-4;
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    const Vec2 a = np.poly[0], b = np.poly[1];
+    for (const Vec2& c : {a, Vec2(0.5 * (a + b)), Vec2(0.3 * a + 0.7 * b)}) {
+      const Vec3 w = wForIcr(c, np.rho, 1.0);
+      ExactBasis out;
+      exactPolygonBasis(np.poly, np.rho, w, true, out);
+      for (int j = 0; j < 3; ++j) {
+        ExactBasis plus, minus;
+        Vec3 wp = w, wm = w;
+        wp[j] += kStep;
+        wm[j] -= kStep;
+        exactPolygonBasis(np.poly, np.rho, wp, false, plus);
+        exactPolygonBasis(np.poly, np.rho, wm, false, minus);
+        const Mat3 fd = (plus.F - minus.F) / (2 * kStep);
+        for (int k = 0; k < 3; ++k) {
+          ASSERT_TRUE(out.dF[k].allFinite());
+          EXPECT_LE((out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k], kFdTolSingular)
+              << np.name << " c = " << c.transpose() << " column " << k << " dw" << j;
+        }
+      }
+    }
+  }
+}
+
+// Never NaN: a dense deterministic sweep of w, including extreme magnitudes
+// of the components, for every test polygon; F bounded by its column scale.
+TEST(ExactPolygonBasis, FiniteAndBoundedEverywhere) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> expo(-300, 0);
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    for (int i = 0; i < 400; ++i) {
+      Vec3 w(normal(rng), normal(rng), normal(rng));
+      w[i % 3] *= std::pow(10.0, expo(rng));
+      if (i % 7 == 0) w *= 1e-150;
+      ExactBasis out;
+      exactPolygonBasis(np.poly, np.rho, w, true, out, i % 2 ? 0.0 : 1e-6);
+      ASSERT_TRUE(out.F.allFinite()) << np.name << " w = " << w.transpose();
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(out.dF[k].allFinite()) << np.name << " w = " << w.transpose();
+        EXPECT_LE(out.F.col(k).cwiseAbs().maxCoeff(), scale[k] * (1 + 1e-12));
+      }
+    }
+  }
+}
+
+// The tolerance knob trades far-branch quadrature order for speed; the
+// result must still meet the requested tolerance (relative to the scale).
+TEST(ExactPolygonBasis, ToleranceKnobIsHonoured) {
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    for (double tol : {1e-4, 1e-6, 1e-9}) {
+      for (double kappaAngle : {0.2, 2.2}) {
+        for (double dist : {10.0, 30.0, 300.0}) {
+          const Vec3 w =
+              wForIcr(dist * Vec2(std::cos(kappaAngle), std::sin(kappaAngle)), np.rho, 1.0);
+          ExactBasis fast, exact;
+          exactPolygonBasis(np.poly, np.rho, w, false, fast, tol);
+          exactPolygonBasis(np.poly, np.rho, w, false, exact);
+          EXPECT_LE(relativeError(fast.F, exact.F, scale), tol) << np.name << " tol " << tol;
+        }
+      }
+    }
+  }
+}
+
+TEST(ExactPolygonBasis, RejectsInvalidInput) {
+  ExactBasis out;
+  const Polygon sq = unitSquare();
+  EXPECT_THROW(exactPolygonBasis(sq, 0.5, Vec3::Zero(), false, out), Error);
+  EXPECT_THROW(exactPolygonBasis(sq, 0.5, Vec3(NAN, 0, 1), false, out), Error);
+  EXPECT_THROW(exactPolygonBasis(sq, 0.0, Vec3(0, 0, 1), false, out), Error);
+  EXPECT_THROW(exactPolygonBasis(sq, -1.0, Vec3(0, 0, 1), false, out), Error);
+  EXPECT_THROW(exactPolygonBasis({sq[0], sq[1]}, 0.5, Vec3(0, 0, 1), false, out), Error);
+  EXPECT_THROW(exactPolygonBasis({sq[3], sq[2], sq[1], sq[0]}, 0.5, Vec3(0, 0, 1), false, out),
+               Error);
+  EXPECT_THROW(exactPolygonBasis(sq, 0.5, Vec3(0, 0, 1), false, out, -1.0), Error);
+}
+
+}  // namespace
+}  // namespace patchspin
