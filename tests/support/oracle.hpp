@@ -36,7 +36,11 @@ bool instantaneousCentre(const Vec3& w, double rho, Vec2& centre);
 // vertices' x and c_x), y inner between the lower and upper chains (split at
 // c_y). Disks: polar about the centre with radius s = R sin t (smooth also for
 // the Hertz pressure's sqrt edge), angle outer (starting at the ICR's angle),
-// t inner (split at the ICR). relTol is relative to ∫ |p k| dA.
+// t inner (split at the ICR). relTol is relative to ∫ |p k| dA; inner
+// integrals stop at an absolute floor of 1e-3 relTol ∫|p k| dA / (outer
+// width), so all of them together cost at most 1e-3 relTol.
+// Measured (2 shared cores): 15-45 ms per call with the ICR inside the
+// patch (~0.4 M kernel evaluations), < 1 ms with the ICR outside.
 Vec3 bruteForceQ(const PatchShape& shape, const ScalarField& pressure, double mu, double rho,
                  const Vec3& w, double relTol = 1e-12, QuadratureReport* report = nullptr);
 
