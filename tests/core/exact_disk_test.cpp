@@ -462,6 +462,11 @@ TEST(ExactDiskBasis, ToleranceKnobBoundsTheError) {
         for (int k = 0; k < 3; ++k) {
           worst = std::max(worst, columnError(d, fast, full, k));
         }
+        // Hertz: |result| <= 1 + max|P| / rho for a unit load
+        const double hertzScale = 1.0 + (d.centre.norm() + d.R) / d.rho;
+        const Vec3 hFull = exactDiskHertz(d.centre, d.R, d.rho, c.w, nullptr);
+        const Vec3 hFast = exactDiskHertz(d.centre, d.R, d.rho, c.w, nullptr, tol);
+        worst = std::max(worst, (hFull - hFast).cwiseAbs().maxCoeff() / hertzScale);
       }
     }
     EXPECT_LE(worst, tol) << "tolerance " << tol;
