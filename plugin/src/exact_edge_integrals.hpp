@@ -49,33 +49,35 @@ inline Dual2 sqrt(const Dual2& a) {
   return applyChain(a, s, s > 0.0 ? 0.5 / s : 0.0);
 }
 inline Dual2 log(const Dual2& a) { return applyChain(a, std::log(a.v), 1.0 / a.v); }
-inline Dual2 asinh(const Dual2& a) {
-  // d asinh(x) = dx / sqrt(1 + x^2); avoid overflow of x^2 for huge x
-  const double x = std::abs(a.v);
-  const double den = x > 1e150 ? x : std::sqrt(1.0 + x * x);
-  return applyChain(a, std::asinh(a.v), 1.0 / den);
-}
+inline Dual2 log1p(const Dual2& a) { return applyChain(a, std::log1p(a.v), 1.0 / (1.0 + a.v)); }
 
 // ---- J0 = asinh(tb / d) - asinh(ta / d), d = |delta| > 0, ta < tb ----
 //
-// Ra = sqrt(ta^2 + d^2), Rb = sqrt(tb^2 + d^2), L = tb - ta. With
-//   sinh(A - B) = sinh A cosh B - cosh A sinh B:
-//   J0 = asinh((tb Ra - ta Rb) / d^2)
-// For ta, tb of one sign (the numerator cancels) multiply out:
-//   (tb Ra - ta Rb) / d^2 = (tb^2 - ta^2) / (tb Ra + ta Rb) = L (ta + tb) / (tb Ra + ta Rb)
-// For opposite signs the numerator has no cancellation; when d^2 is so small
-// that the quotient overflows, use J0 = log(tb Ra - ta Rb) - 2 log d.
+// Ra = sqrt(ta^2 + d^2), Rb = sqrt(tb^2 + d^2), L = tb - ta, J1 = Rb - Ra.
+// asinh(t / d) = log((t + R) / d), so J0 = log of a ratio, written as
+// log1p(positive / positive) without cancellation (one transcendental call):
+//   ta >= 0:  J0 = log((tb + Rb) / (ta + Ra)) = log1p((L + J1) / (ta + Ra))
+//   tb <= 0:  J0 = log((Ra - ta) / (Rb - tb)) = log1p((L - J1) / (Rb - tb))
+//   ta < 0 < tb:  ta + Ra = d^2 / (Ra - ta), so J0 = log1p(N / d^2),
+//     N = (tb + Rb)(Ra - ta) - d^2 = tb Ra - ta Rb - ta tb + (Ra Rb - d^2),
+//     Ra Rb - d^2 = (ta^2 tb^2 + d^2 (ta^2 + tb^2)) / (Ra Rb + d^2),
+//   every term >= 0; if N / d^2 overflows, J0 = log((tb + Rb)(Ra - ta)) - 2 log d.
 template <class T>
-T asinhDifference(const T& ta, const T& tb, const T& Ra, const T& Rb, const T& delta, double L) {
-  using std::asinh;
+T asinhDifference(const T& ta, const T& tb, const T& Ra, const T& Rb, const T& J1,
+                  const T& delta, double L) {
   using std::log;
-  if (valueOf(ta) >= 0.0 || valueOf(tb) <= 0.0) return asinh(L * (ta + tb) / (tb * Ra + ta * Rb));
-  const T num = tb * Ra - ta * Rb;
-  const double d2 = valueOf(delta) * valueOf(delta);
-  if (d2 > 0.0 && valueOf(num) < 1e290 * d2) return asinh(num / (delta * delta));
+  using std::log1p;
+  if (valueOf(ta) >= 0.0) return log1p((L + J1) / (ta + Ra));
+  if (valueOf(tb) <= 0.0) return log1p((L - J1) / (Rb - tb));
+  const T d2 = delta * delta;
+  const T ta2 = ta * ta, tb2 = tb * tb, RaRb = Ra * Rb;
+  const T N = tb * Ra - ta * Rb - ta * tb + (ta2 * tb2 + d2 * (ta2 + tb2)) / (RaRb + d2);
+  if (valueOf(d2) > 0.0 && valueOf(N) < 1e290 * valueOf(d2)) return log1p(N / d2);
   const T d = valueOf(delta) > 0.0 ? delta : -delta;
-  return log(num) - 2.0 * log(d);
+  return log((tb + Rb) * (Ra - ta)) - 2.0 * log(d);
 }
+
+constexpr double kThird = 1.0 / 3.0;
 
 // Per-edge accumulators: force (x, y) and torque times rho for the pressure
 // basis (1, x, y) in the frame where c is given.
@@ -112,29 +114,30 @@ void addSignedTriangle(double ax, double ay, double bx, double by, const T& cx, 
   const double Lx = bx - ax, Ly = by - ay;
   const double L = std::sqrt(Lx * Lx + Ly * Ly);
   if (!(L > 0.0)) return;  // repeated vertex: no triangle
-  const double ex = Lx / L, ey = Ly / L;
+  const double invL = 1.0 / L;
+  const double ex = Lx * invL, ey = Ly * invL;
   const double nx = -ey, ny = ex;
   const T rax = ax - cx, ray = ay - cy;
   const T ta = rax * ex + ray * ey;
   const T tb = ta + L;
   T delta = rax * ey - ray * ex;
 
+  // J1 = Rb - Ra = L (ta + tb) / (Ra + Rb) without cancellation
+  const T J1 = L * (ta + tb) / (Ra + Rb);
+
   // J0 terms; delta below deltaZero (rounding level) counts as c on the line
   T deltaJ0 = 0.0, delta2J0 = 0.0;
   if (std::abs(valueOf(delta)) > deltaZero) {
-    deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, delta, L);
+    deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, J1, delta, L);
     delta2J0 = delta * deltaJ0;
   } else {
     delta = T(delta) - valueOf(delta);  // value 0, keep the derivative
   }
-
-  // J1 = Rb - Ra = L (ta + tb) / (Ra + Rb) without cancellation
-  const T J1 = L * (ta + tb) / (Ra + Rb);
   // T = tb Rb - ta Ra = L Rb + ta J1 (all terms one sign when ta, tb are)
   const T Tq = (valueOf(ta) >= 0.0 || valueOf(tb) <= 0.0) ? L * Rb + ta * J1 : tb * Rb - ta * Ra;
   const T J2 = 0.5 * (Tq - delta2J0);
   const T K0 = 0.5 * (Tq + delta2J0);
-  const T K1 = J1 * (Ra * Ra + Ra * Rb + Rb * Rb) / 3.0;
+  const T K1 = J1 * (Ra * Ra + Ra * Rb + Rb * Rb) * kThird;
   const T ce = cx * ex + cy * ey;
   const T cn = cx * nx + cy * ny;
 
@@ -142,7 +145,7 @@ void addSignedTriangle(double ax, double ay, double bx, double by, const T& cx, 
   //   F_xy = delta (n J1 + e delta J0) / 2
   //   Tz   = delta [ (ce J1 - cn delta J0) / 2 + K0 / 3 ]
   const T halfForceN = 0.5 * J1, halfForceE = 0.5 * deltaJ0;
-  const T torque0 = 0.5 * (ce * J1 - cn * deltaJ0) + K0 / 3.0;
+  const T torque0 = 0.5 * (ce * J1 - cn * deltaJ0) + K0 * kThird;
   sums.fx[0] += delta * (halfForceN * nx + halfForceE * ex);
   sums.fy[0] += delta * (halfForceN * ny + halfForceE * ey);
   sums.tz[0] += delta * torque0;
@@ -158,11 +161,11 @@ void addSignedTriangle(double ax, double ay, double bx, double by, const T& cx, 
     const T& pc = k == 1 ? cx : cy;
     const double ge = k == 1 ? ex : ey;
     const double gn = k == 1 ? nx : ny;
-    const T an = (pc * halfForceN) + (ge * J2 - gn * deltaJ1) / 3.0;       // along n
-    const T ae = (pc * halfForceE) + (ge * deltaJ1 - gn * delta2J0) / 3.0;  // along e
+    const T an = (pc * halfForceN) + (ge * J2 - gn * deltaJ1) * kThird;       // along n
+    const T ae = (pc * halfForceE) + (ge * deltaJ1 - gn * delta2J0) * kThird;  // along e
     const T tq = pc * torque0 +
-                 (ge * (ce * J2) - (ge * cn + gn * ce) * deltaJ1 + gn * (cn * delta2J0)) / 3.0 +
-                 (ge * K1 - gn * (delta * K0)) / 4.0;
+                 (ge * (ce * J2) - (ge * cn + gn * ce) * deltaJ1 + gn * (cn * delta2J0)) * kThird +
+                 (ge * K1 - gn * (delta * K0)) * 0.25;
     sums.fx[k] += delta * (an * nx + ae * ex);
     sums.fy[k] += delta * (an * ny + ae * ey);
     sums.tz[k] += delta * tq;

@@ -336,6 +336,26 @@ TEST(ExactPolygonBasis, MatchesBruteForceOracleEverywhere) {
   std::printf("worst relative error vs oracle: %.2e\n", worst);
 }
 
+// More vertices than the implementation keeps on the stack (32): a 40-gon,
+// O off-centre, against the oracle at a few places of the sphere.
+TEST(ExactPolygonBasis, ManyVerticesMatchOracle) {
+  Polygon poly;
+  for (int i = 0; i < 40; ++i) {
+    const double a = 2.0 * M_PI * i / 40.0;
+    poly.emplace_back(0.2 + 0.5 * std::cos(a), -0.1 + 0.35 * std::sin(a));
+  }
+  const double rho = 0.35;
+  const Vec3 scale = columnScales(poly, rho);
+  gOracleCapped = 0;
+  for (const Vec3& w : {Vec3(0, 0, 1), wForIcr(poly[3], rho, -1.0), wForIcr(Vec2(0.3, 0.1), rho, 1.0),
+                        Vec3(0.3, -0.2, 0.01).normalized()}) {
+    ExactBasis out;
+    exactPolygonBasis(poly, rho, w, false, out);
+    EXPECT_LE(relativeError(out.F, oracleF(poly, rho, w), scale), kContractTol) << w.transpose();
+  }
+  EXPECT_EQ(gOracleCapped, 0) << "oracle did not converge";
+}
+
 // With the Jacobian requested, F must be the same numbers (up to rounding of
 // the dual-number arithmetic, which reorders no sums: kSameTol = 1e-14).
 TEST(ExactPolygonBasis, ValueIndependentOfJacobianRequest) {
