@@ -32,14 +32,10 @@ using Mat36 = Eigen::Matrix<double, 3, 6>;
 using Mat63 = Eigen::Matrix<double, 6, 3>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
-// Inner projected-gradient iterations of the normal block when its
-// unconstrained impulse leaves the admissible-load set (tipping); the block
-// is 3x3 and scaled to unit diagonal, so a few dozen steps converge far
-// below the outer iterations' own error.
-constexpr int kProjectionIterations = 30;
-// Relative pressure violation (of the mean pressure Pz / A) at the end of a
-// step beyond which the body counts as tipping and the contact goes back to
-// Bullet's point handling; small against 1, large against round-off.
+// Distance of the centre of pressure beyond the patch, relative to the
+// patch diameter, at the end of a step beyond which the body counts as
+// tipping and the contact goes back to Bullet's point handling; small
+// against 1, large against round-off.
 constexpr double kTipRelTol = 1e-3;
 // Steps a tipped contact stays with Bullet before it may become a patch again.
 constexpr long kTipCooldownSteps = 10;
@@ -53,7 +49,6 @@ btVector3 toBt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()
 // body <-> loads of Eq. (94): the pressure's couple on the body is
 // (∫ y p, -∫ x p) = (-Tx, -Ty) with Tx = -∫ y p, Ty = ∫ x p (Eq. (3)).
 PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lamN[2]}; }
-Vec3 fromLoads(const PatchLoads& l) { return Vec3(l.Pz, -l.Tx, -l.Ty); }
 
 struct BodyJacobian {
   int id = -1;
@@ -75,12 +70,10 @@ struct PatchConstraint {
   double mu = 0.0, rho = 0.0, dt = 0.0;
   // effective masses: K6 = [[W, Knf], [Knf^T, Kff]]
   Mat3 W, Winv, Kff, Knf, Ks, G;
-  double rhoMetric = 0.0;  // metric length of the load projection [m]
-  double alpha = 0.0;      // projected-gradient step
   Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
   Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
   Vec3 warmSlip = Vec3::Zero();
-  bool interior = true;  // normal block inside the admissible set (bilateral)
+  bool interior = true;  // centre of pressure on the patch: normal block bilateral
   bool tipping = false;
   bool sticking = false;
   std::optional<FrictionPatch> friction;
@@ -123,6 +116,29 @@ void velocityOf(const btSolverBody& sb, Vec3& v, Vec3& w) {
   }
   v = toEigen(sb.m_linearVelocity + sb.m_externalForceImpulse + sb.m_deltaLinearVelocity);
   w = toEigen(sb.m_angularVelocity + sb.m_externalTorqueImpulse + sb.m_deltaAngularVelocity);
+}
+
+// The point of the patch nearest to p (p itself if inside).
+Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
+  if (shape.isDisk()) {
+    const Vec2 d = p - shape.centre();
+    const double n = d.norm();
+    return n <= shape.radius() ? p : Vec2(shape.centre() + d * (shape.radius() / n));
+  }
+  if (shape.contains(p)) return p;
+  const auto& v = shape.vertices();
+  Vec2 best = v[0];
+  double bestDist = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec2 a = v[i], e = v[(i + 1) % v.size()] - a;
+    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    const Vec2 q = a + t * e;
+    if ((q - p).norm() < bestDist) {
+      bestDist = (q - p).norm();
+      best = q;
+    }
+  }
+  return best;
 }
 
 Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
@@ -330,15 +346,6 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     pc.G = pc.Winv * pc.Knf;
     pc.Ks = pc.Kff - pc.Knf.transpose() * pc.G;
     pc.Ks = 0.5 * (pc.Ks + pc.Ks.transpose());
-    // load-projection metric close to W (unit-diagonal scaling), and the
-    // projected-gradient step 1 / (Gershgorin bound of D^-1/2 W D^-1/2)
-    const double wt = 0.5 * (pc.W(1, 1) + pc.W(2, 2));
-    pc.rhoMetric = std::sqrt(pc.W(0, 0) / wt);
-    const Vec3 s(1.0, pc.rhoMetric, pc.rhoMetric);
-    const Mat3 Ws = s.asDiagonal() * pc.W * s.asDiagonal();
-    double bound = 0.0;
-    for (int r = 0; r < 3; ++r) bound = std::max(bound, Ws.row(r).cwiseAbs().sum());
-    pc.alpha = 1.0 / bound;
 
     // position error: gap at O (< 0 penetrating) and tilt of the face
     //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
@@ -380,21 +387,25 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
   double worst = 0.0;
   for (PatchConstraint& pc : impl_->patches) {
     const PatchShape& shape = pc.geometry.shape;
-    // normal block: y = lamN - W^-1 (c_n - target); keep it admissible
+    // normal block: y = lamN - W^-1 (c_n - target), held exactly while its
+    // centre of pressure lies on the patch (a rigid contact can carry any
+    // p >= 0, not only a linear one); otherwise the centre of pressure is
+    // clamped to the patch and the body is tipping (back to Bullet next step)
     Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
     const Vec3 y = pc.lamN - pc.Winv * (c.head<3>() - pc.targetN);
-    Vec3 lamN = y;
-    pc.interior = y[0] > 0.0 && isAdmissible(shape, toLoads(y));
-    pc.tipping = y[0] > 0.0 && !isAdmissible(shape, toLoads(y), kTipRelTol);
-    if (!pc.interior) {
-      // projection of y onto the admissible cone in W's metric, by projected
-      // gradient in the scaled metric D = diag(1, rhoM^-2, rhoM^-2):
-      //   lam <- P_D(lam - alpha D^-1 W (lam - y))
-      lamN = fromLoads(nearestAdmissibleLoads(shape, toLoads(y), pc.rhoMetric));
-      const Vec3 dinv(1.0, pc.rhoMetric * pc.rhoMetric, pc.rhoMetric * pc.rhoMetric);
-      for (int k = 0; k < kProjectionIterations && lamN[0] > 0.0; ++k) {
-        const Vec3 step = lamN - pc.alpha * dinv.cwiseProduct(pc.W * (lamN - y));
-        lamN = fromLoads(nearestAdmissibleLoads(shape, toLoads(step), pc.rhoMetric));
+    Vec3 lamN = Vec3::Zero();
+    pc.interior = false;
+    pc.tipping = false;
+    if (y[0] > 0.0) {
+      // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
+      const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
+      if (shape.contains(cop)) {
+        lamN = y;
+        pc.interior = true;
+      } else {
+        const Vec2 clamped = nearestPointOn(shape, cop);
+        lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
+        pc.tipping = (cop - clamped).norm() > kTipRelTol * shape.diameter();
       }
     }
     Vec6 d = Vec6::Zero();
@@ -413,7 +424,11 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       in.K = K;
       in.L = L;
       in.warmSlip = pc.warmSlip;
-      const PatchLoads loads = pc.interior ? toLoads(pc.lamN) : nearestAdmissibleLoads(shape, toLoads(pc.lamN), pc.rho);
+      // friction pressure: the linear pressure of Eq. (94) carrying the loads,
+      // or, when that would be negative somewhere (centre of pressure outside
+      // the kern), the nearest admissible linear one (DESIGN item 2)
+      PatchLoads loads = toLoads(pc.lamN);
+      if (!isAdmissible(shape, loads)) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
       pc.friction->setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
       const FrictionBlockResult res = solveFrictionBlock(*pc.friction, pc.model, in);
       lamF = res.impulse;

@@ -2,6 +2,7 @@
 // model's free thin disk (limit ratio and stopping time), the ellipsoidal
 // model's drift to pure spin and its slip-spin limit direction under a small
 // push, and a box's spin-down under the exact spin torque.
+#include <patchspin/analysis.hpp>
 #include <patchspin/bullet/simulate.hpp>
 
 #include <gtest/gtest.h>
@@ -288,6 +289,79 @@ TEST(Simulate, RejectsPrecisionOtherThanTheBuilds) {
   EXPECT_THROW(simulate(s), Error);
   s = thinDisk("coulomb", 0.5, 10.0);
   EXPECT_THROW(simulate(s), Error);
+}
+
+// ---- agreement with the reference dynamics on attracting-dominant limit directions --
+// The analysis module (findLimitDirections) predicts the attracting-dominant
+// direction w* and its rate rdot; started there with slip r0, the body stays
+// on w* and stops at r0 / |rdot|. The Bullet run is compared with that
+// prediction (w within kLimitWTol, stop within kLimitStopTol, the issue's
+// bounds) and with simulateReference's run of the same spec (adaptive
+// Dormand-Prince, independent of Bullet): stop within kAgreementStopTol,
+// recorded w within kLimitWTol.
+constexpr double kLimitWTol = 0.02;
+constexpr double kLimitStopTol = 0.03;
+constexpr double kAgreementStopTol = 0.02;
+
+struct LimitCase {
+  const char* name;
+  SimulationSpec spec;
+};
+
+void checkLimitCase(LimitCase c) {
+  SimulationSpec& s = c.spec;
+  const FlatBodyModel model(flatBodyFromSpec(s), modelFromString(s.model));
+  const LimitAnalysis analysis = findLimitDirections(model);
+  const LimitDirection* best = nullptr;
+  for (const LimitDirection& d : analysis.directions)
+    if (d.attracting && d.type == LimitType::Dominant && d.w.z() > 0 && (!best || d.w.z() > best->w.z())) best = &d;
+  ASSERT_NE(best, nullptr) << c.name << ": no attracting-dominant limit direction with spin";
+  const Vec3 w = best->w;
+  const double r0 = 1.5;  // [m/s]
+  s.v0 = Vec2(r0 * w.x(), r0 * w.y());
+  s.omega0 = r0 * w.z() / model.rho();
+  s.keepTrajectory = true;
+  const SimulationResult bullet = simulate(s);
+  SimulationSpec ref = s;
+  ref.engine = "reference";
+  ref.keepTrajectory = false;
+  const SimulationResult reference = simulateReference(ref);
+  ASSERT_TRUE(bullet.stopped) << c.name;
+  ASSERT_TRUE(reference.stopped) << c.name;
+  const double tPredicted = r0 / std::abs(best->rdot);
+  double worst = 0;
+  for (const SimulationSample& q : bullet.trajectory) {
+    if (q.r < s.recordAt * r0) break;
+    worst = std::max(worst, (q.w - w).norm());
+  }
+  std::printf("[limit %s] w* (%.4f %.4f %.4f) rdot %.4f: bullet t_stop %.5f, reference %.5f, predicted %.5f; "
+              "worst |w - w*| %.2e, |w_stop(bullet) - w_stop(ref)| %.2e\n",
+              c.name, w.x(), w.y(), w.z(), best->rdot, bullet.tStop, reference.tStop, tPredicted, worst,
+              (bullet.wStop - reference.wStop).norm());
+  EXPECT_LT(worst, kLimitWTol) << c.name;
+  EXPECT_NEAR(bullet.tStop, tPredicted, kLimitStopTol * tPredicted) << c.name;
+  EXPECT_NEAR(bullet.tStop, reference.tStop, kAgreementStopTol * reference.tStop) << c.name;
+  EXPECT_LT((bullet.wStop - reference.wStop).norm(), kLimitWTol) << c.name;
+}
+
+TEST(Simulate, AgreesWithReferenceOnThinDiskPushedBelowMuMgOverNine) {
+  SimulationSpec s = thinDisk("ellipsoidal", 0.0, 0.0);
+  s.force = Vec2(0.05 * s.mu * s.mass * s.g, 0.0);
+  checkLimitCase({"thin disk f=0.05", s});
+}
+
+TEST(Simulate, AgreesWithReferenceOnThickDisk) {
+  SimulationSpec s = thinDisk("ellipsoidal", 0.0, 0.0);
+  s.H = 0.06;  // centre of mass 3 cm above the patch of radius 5 cm
+  s.force = Vec2(0.05 * s.mu * s.mass * s.g, 0.0);
+  checkLimitCase({"thick disk", s});
+}
+
+TEST(Simulate, AgreesWithReferenceOnDiskWithInPlaneTorque) {
+  SimulationSpec s = thinDisk("ellipsoidal", 0.0, 0.0);
+  s.force = Vec2(0.03 * s.mu * s.mass * s.g, 0.0);  // fixes the frame of w
+  s.torque = Vec3(0.0, 0.1 * s.mass * s.g * s.R, 0.0);  // centre of pressure 0.1 R off O
+  checkLimitCase({"in-plane torque", s});
 }
 
 }  // namespace

@@ -11,10 +11,18 @@
 // face against a static plane, a box face or another such face), Bullet's own
 // contact and friction rows for that manifold are replaced by two 3-DOF blocks
 // at the patch reference point O (the centroid of the face overlap):
-//   normal block    (normal velocity, two tilt rates), impulse kept in the
-//                   admissible-load set (pressure >= 0 on the patch), Eq. (94)-(96);
-//   friction block  the implicit slip-spin step of step.hpp with the patch's
-//                   pressure set from the normal block every iteration.
+//   normal block    (normal velocity, two tilt rates) held exactly while the
+//                   centre of pressure of its impulse lies on the patch (a
+//                   rigid contact carries any p >= 0); its impulses are the
+//                   Pz, Tx, Ty of Eq. (94)-(96);
+//   friction block  the implicit slip-spin step of step.hpp, its pressure
+//                   set from the normal block every iteration: the linear
+//                   pressure of Eq. (94), or the nearest admissible linear
+//                   one (pressure.hpp) while the centre of pressure lies
+//                   outside the kern where a linear p would turn negative.
+// When the centre of pressure would leave the patch the body tips, and the
+// contact goes back to Bullet's point handling (for a few steps, then again
+// whenever the faces are parallel).
 // Both run inside Bullet's solver iterations, after Bullet's own rows, so
 // patch bodies interact with joints, other contacts and stacks. Everything
 // else (other bodies, non-flat contacts, tipping bodies) goes through stock
