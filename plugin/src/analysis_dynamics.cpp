@@ -142,6 +142,18 @@ ReferenceRun integrateReference(const FlatBodyModel& model, const BodyState& ini
     }
   };
   sample(t, y);
+  // pressure watch: the smallest pressure on the patch at every step
+  const double meanPressure = -ground.force.z() / model.body().shape.area();
+  auto track = [&](const State& s) {
+    const Mat2 R = rotation(s[2]);
+    Vec3 xb;
+    xb << R.transpose() * s.segment<2>(3), s[5];
+    if (!(xb.norm() > 0.0)) return;
+    const ContactState c = model.contact(xb, xb.z() / model.rho(), loadsAt(ground, s[2]), false);
+    run.minPressureRatio = std::min(run.minPressureRatio, c.minPressure / meanPressure);
+    run.tipping = run.tipping || run.minPressureRatio < -1e-12;
+  };
+  track(y);
   bool recorded = r0 == 0.0;
   while (t < options.tMax) {
     h = std::min(h, options.tMax - t);
@@ -192,6 +204,7 @@ ReferenceRun integrateReference(const FlatBodyModel& model, const BodyState& ini
     y = yNew;
     k1 = k7;
     ++run.steps;
+    track(y);
     sample(t, y);
     if (rNew < options.stopFraction * std::max(r0, rStart)) {
       // slip ends at t + r / |r'| (r' -> R* < 0 along the limit direction)

@@ -193,6 +193,20 @@ TEST(ReferenceDynamics, StickingAndNeverSticking) {
   }
 }
 
+// Tipping watch (end of Sect. 6.2): a cylinder sliding without spin has
+// c_x R / p0 = 4 eta (eta = mu h / R, h the height of the centre of mass), so
+// the pressure at the rear edge is p0 (1 - 4 eta): min/mean = 1 - 4 eta.
+TEST(ReferenceDynamics, TippingWatch) {
+  for (double eta : {0.2, 0.3}) {
+    const FlatBodyModel model(disk(0.0, eta * kRadius / kMu), Model::Ellipsoidal);
+    BodyState start;
+    start.x = Vec3(0.4, 0.0, 0.0);
+    const ReferenceRun run = integrateReference(model, start);
+    EXPECT_NEAR(run.minPressureRatio, 1.0 - 4.0 * eta, 1e-9);
+    EXPECT_EQ(run.tipping, eta > 0.25);
+  }
+}
+
 // Friction never adds energy: without loads the kinetic energy
 // 1/2 x^T M x decreases along the run.
 TEST(ReferenceDynamics, EnergyDecreases) {

@@ -184,6 +184,10 @@ struct ReferenceRun {
   BodyState recordState;
   BodyState final;
   int steps = 0;
+  // smallest pressure on the patch over the run's steps, over the mean pressure
+  // Pz / A; negative: the linear pressure turned negative (the body would tip)
+  double minPressureRatio = 1.0;
+  bool tipping = false;
   std::vector<std::pair<double, BodyState>> samples;
 };
 
