@@ -131,10 +131,19 @@ void run(const LimitsArgs& a, const FlatBody& body) {
               an.linear ? "linear Pi: eigenproblem (111)" : "Pi(w): Newton on the sphere from a seed grid");
   std::printf("\n%-38s %12s  %-10s %-14s %s\n", "w = (u_x, u_y, rho w_z)/r", "R* [m/s^2]", "", "type",
               "eigenvalues of (31) [1/s]");
+  auto complexText = [](std::complex<double> z) {
+    char buf[64];
+    if (z.imag() == 0.0) {
+      std::snprintf(buf, sizeof buf, "%.6g", z.real());
+    } else {
+      std::snprintf(buf, sizeof buf, "%.6g%+.6gi", z.real(), z.imag());
+    }
+    return std::string(buf);
+  };
   for (const LimitDirection& d : an.directions) {
-    std::printf("(%+.6f, %+.6f, %+.6f)  %12.6g  %-10s %-14s %.6g%+.6gi, %.6g%+.6gi\n", d.w.x(), d.w.y(), d.w.z(),
-                d.rdot, d.attracting ? "attracting" : "repelling", toString(d.type), d.eigenvalues[0].real(),
-                d.eigenvalues[0].imag(), d.eigenvalues[1].real(), d.eigenvalues[1].imag());
+    std::printf("(%+.6f, %+.6f, %+.6f)  %12.6g  %-10s %-14s %s, %s\n", d.w.x(), d.w.y(), d.w.z(), d.rdot,
+                d.attracting ? "attracting" : "repelling", toString(d.type), complexText(d.eigenvalues[0]).c_str(),
+                complexText(d.eigenvalues[1]).c_str());
   }
   for (const LimitContinuum& c : an.continua) {
     if (c.sphere) {
