@@ -35,7 +35,10 @@ const char* paletteColour(std::size_t i) {
 }
 // categorical colours for the (F, T) plane (ColorBrewer Set3-like, light)
 const char* const kTiles[] = {"#8dd3c7", "#fdb462", "#bebada", "#fb8072", "#80b1d3",
-                              "#b3de69", "#fccde5", "#d9d9d9", "#bc80bd", "#ffed6f"};
+                              "#b3de69", "#fccde5", "#bc80bd", "#ccebc5", "#ffed6f",
+                              "#1f78b4", "#33a02c", "#e31a1c", "#ff7f00", "#6a3d9a",
+                              "#b15928", "#a6cee3", "#b2df8a", "#cab2d6", "#d9d9d9"};
+constexpr std::size_t kTileColours = sizeof kTiles / sizeof *kTiles;
 const char* kAttracting = "#2166ac";
 const char* kRepelling = "#b2182b";
 const char* kAttractingPale = "#9fbbd9";
@@ -180,12 +183,35 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
+// Splits a CSV line; a field in double quotes may hold commas, "" is a quote.
 std::vector<std::string> splitComma(const std::string& line) {
   std::vector<std::string> out;
-  std::stringstream ss(line);
   std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
+  bool inQuotes = false, wasQuoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (inQuotes) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        cell += '"';
+        ++i;
+      } else if (c == '"') {
+        inQuotes = false;
+      } else {
+        cell += c;
+      }
+    } else if (c == '"') {
+      inQuotes = true;
+      wasQuoted = true;
+      cell = trim(cell);  // spaces before the quote do not count
+    } else if (c == ',') {
+      out.push_back(wasQuoted ? cell : trim(cell));
+      cell.clear();
+      wasQuoted = false;
+    } else if (!(wasQuoted && (c == ' ' || c == '\t' || c == '\r'))) {
+      cell += c;
+    }
+  }
+  out.push_back(wasQuoted ? cell : trim(cell));
   return out;
 }
 
@@ -228,8 +254,9 @@ LimitKind parseKind(const Csv& csv, std::size_t row) {
   if (s == "dominant") return LimitKind::Dominant;
   if (s == "isolated") return LimitKind::Isolated;
   if (s == "saddle") return LimitKind::Saddle;
+  if (s == "nonhyperbolic") return LimitKind::Nonhyperbolic;
   throw RenderError(csv.path + ":" + std::to_string(csv.lineOf[row]) +
-                    ": kind must be dominant, isolated or saddle, got '" + s + "'");
+                    ": kind must be dominant, isolated, saddle or nonhyperbolic, got '" + s + "'");
 }
 
 // ---- limit-direction styles --------------------------------------------------
@@ -242,14 +269,36 @@ int pointType(LimitKind k) {
       return 6;  // open circle
     case LimitKind::Saddle:
       return 9;  // filled triangle
+    case LimitKind::Nonhyperbolic:
+      return 12;  // open diamond
   }
   return 7;
 }
 const char* kindName(LimitKind k) {
-  return k == LimitKind::Dominant ? "dominant" : k == LimitKind::Isolated ? "isolated" : "saddle";
+  switch (k) {
+    case LimitKind::Dominant:
+      return "dominant";
+    case LimitKind::Isolated:
+      return "isolated";
+    case LimitKind::Saddle:
+      return "saddle";
+    case LimitKind::Nonhyperbolic:
+      return "nonhyperbolic";
+  }
+  return "";
 }
 const char* kindShort(LimitKind k) {
-  return k == LimitKind::Dominant ? "dom" : k == LimitKind::Isolated ? "iso" : "sad";
+  switch (k) {
+    case LimitKind::Dominant:
+      return "dom";
+    case LimitKind::Isolated:
+      return "iso";
+    case LimitKind::Saddle:
+      return "sad";
+    case LimitKind::Nonhyperbolic:
+      return "nonhyp";
+  }
+  return "";
 }
 const char* stabilityName(Stability s) {
   return s == Stability::Attracting ? "attracting" : "repelling";
@@ -258,14 +307,17 @@ const char* stabilityColour(Stability s, bool pale = false) {
   if (s == Stability::Attracting) return pale ? kAttractingPale : kAttracting;
   return pale ? kRepellingPale : kRepelling;
 }
+// styles: (stability, kind) pairs numbered attracting first
+constexpr int kKinds = 4;
+constexpr int kStyles = 2 * kKinds;
 int styleIndex(Stability s, LimitKind k) {
-  return (s == Stability::Attracting ? 0 : 3) + static_cast<int>(k);
+  return (s == Stability::Attracting ? 0 : kKinds) + static_cast<int>(k);
 }
 Stability styleStability(int i) {
-  return i < 3 ? Stability::Attracting : Stability::Repelling;
+  return i < kKinds ? Stability::Attracting : Stability::Repelling;
 }
 LimitKind styleKind(int i) {
-  return static_cast<LimitKind>(i % 3);
+  return static_cast<LimitKind>(i % kKinds);
 }
 
 // key entries for the limit-direction styles present
@@ -478,26 +530,49 @@ void plotSlipRatio(const TimeSeriesPlot& plot, const std::string& pngPath, const
 
 namespace {
 
-struct LimitRow {
-  std::string model;
-  double F, T;
-  Vec3 w;
-  Stability stability;
-  LimitKind kind;
+// One parameter point of a `patchspin sweep` CSV.
+struct SweepPoint {
+  double F = 0.0, T = 0.0;
+  bool tipping = false;
+  std::vector<LimitDirection> directions;
 };
 
-std::vector<LimitRow> readLimitRows(const std::string& csvPath, std::vector<std::string>& models) {
+std::vector<SweepPoint> readSweep(const std::string& csvPath) {
   const Csv csv = readCsv(csvPath);
-  std::vector<LimitRow> rows;
+  std::vector<SweepPoint> points;
   for (std::size_t i = 0; i < csv.rows.size(); ++i) {
-    LimitRow r{
-        csv.text(i, "model"),   csv.number(i, "F"),
-        csv.number(i, "T"),     Vec3(csv.number(i, "w1"), csv.number(i, "w2"), csv.number(i, "w3")),
-        parseStability(csv, i), parseKind(csv, i)};
-    if (std::find(models.begin(), models.end(), r.model) == models.end()) models.push_back(r.model);
-    rows.push_back(r);
+    SweepPoint p;
+    p.F = csv.number(i, "F");
+    p.T = csv.number(i, "T");
+    if (csv.has("tipping")) p.tipping = csv.number(i, "tipping") != 0.0;
+    // "w1 w2 w3 rdot attracting|repelling type" entries separated by '|'
+    std::stringstream entries(csv.text(i, "directions"));
+    std::string entry;
+    while (std::getline(entries, entry, '|')) {
+      if (trim(entry).empty()) continue;
+      std::istringstream in(entry);
+      double w1, w2, w3, rdot;
+      std::string stability, type;
+      if (!(in >> w1 >> w2 >> w3 >> rdot >> stability >> type)) {
+        throw RenderError(csvPath + ":" + std::to_string(csv.lineOf[i]) +
+                          ": a direction must be 'w1 w2 w3 rdot attracting|repelling type', got '" +
+                          entry + "'");
+      }
+      // reuse the cell parsers on a one-row table
+      Csv one;
+      one.path = csvPath;
+      one.column = {{"stability", 0}, {"kind", 1}};
+      one.rows = {{stability, type}};
+      one.lineOf = {csv.lineOf[i]};
+      LimitDirection d;
+      d.w = Vec3(w1, w2, w3);
+      d.stability = parseStability(one, 0);
+      d.kind = parseKind(one, 0);
+      p.directions.push_back(d);
+    }
+    points.push_back(std::move(p));
   }
-  return rows;
+  return points;
 }
 
 std::string multiplotHeader(std::size_t panels, const PlotOptions& o) {
@@ -522,18 +597,21 @@ double gridStep(std::vector<double> values) {
 
 }  // namespace
 
-void plotBifurcationForce(const std::string& csvPath, const std::string& pngPath,
+void plotBifurcationForce(const std::vector<SweepPanel>& panelList, const std::string& pngPath,
                           const BifurcationOptions& b, const PlotOptions& o) {
   if (b.component < 0 || b.component > 3) {
     throw RenderError("plotBifurcationForce: component must be 0 (angle), 1, 2 or 3, got " +
                       std::to_string(b.component));
   }
-  std::vector<std::string> models;
-  const std::vector<LimitRow> rows = readLimitRows(csvPath, models);
+  if (panelList.empty()) throw RenderError("plotBifurcationForce: no sweeps");
+  std::vector<std::vector<SweepPoint>> sweeps;
+  for (const SweepPanel& panel : panelList) sweeps.push_back(readSweep(panel.csvPath));
   // the torque slice: given, or the smallest |T| present
-  double T0 = rows[0].T;
-  for (const LimitRow& r : rows) {
-    if (std::abs(r.T) < std::abs(T0)) T0 = r.T;
+  double T0 = sweeps[0][0].T;
+  for (const auto& sweep : sweeps) {
+    for (const SweepPoint& p : sweep) {
+      if (std::abs(p.T) < std::abs(T0)) T0 = p.T;
+    }
   }
   if (b.torque) T0 = *b.torque;
   // values equal up to printing round-off count as the same slice
@@ -543,15 +621,22 @@ void plotBifurcationForce(const std::string& csvPath, const std::string& pngPath
   s << header(pngPath, o);
   std::set<int> allStyles;
   std::string panels;
-  for (std::size_t m = 0; m < models.size(); ++m) {
+  for (std::size_t m = 0; m < sweeps.size(); ++m) {
     std::map<int, std::string> byStyle;
-    for (const LimitRow& r : rows) {
-      if (r.model != models[m] || std::abs(r.T - T0) > tTol) continue;
-      const int st = styleIndex(r.stability, r.kind);
-      const double y =
-          b.component == 0 ? std::atan2(r.w.z(), r.w.x()) * 180.0 / kPi : r.w[b.component - 1];
-      byStyle[st] += num(r.F) + " " + num(y) + "\n";
-      allStyles.insert(st);
+    bool any = false;
+    for (const SweepPoint& p : sweeps[m]) {
+      if (std::abs(p.T - T0) > tTol) continue;
+      any = true;
+      for (const LimitDirection& d : p.directions) {
+        const int st = styleIndex(d.stability, d.kind);
+        const double y =
+            b.component == 0 ? std::atan2(d.w.z(), d.w.x()) * 180.0 / kPi : d.w[b.component - 1];
+        byStyle[st] += num(p.F) + " " + num(y) + "\n";
+        allStyles.insert(st);
+      }
+    }
+    if (!any) {
+      throw RenderError(panelList[m].csvPath + ": no parameter points at T = " + num(T0));
     }
     std::string plots;
     for (const auto& [st, data] : byStyle) {
@@ -561,16 +646,16 @@ void plotBifurcationForce(const std::string& csvPath, const std::string& pngPath
                std::to_string(pointType(styleKind(st))) + " ps 1.1 lw 1.5 lc rgb " +
                gpString(stabilityColour(styleStability(st))) + " notitle";
     }
-    if (plots.empty()) {
-      throw RenderError(csvPath + ": model '" + models[m] + "' has no rows at T = " + num(T0));
-    }
-    panels += "set title " + gpString(models[m]) + " noenhanced\nplot " + plots + "__KEY__\n";
+    // an empty panel still needs something to plot
+    if (plots.empty()) plots = "NaN notitle";
+    panels +=
+        "set title " + gpString(panelList[m].title) + " noenhanced\nplot " + plots + "__KEY__\n";
   }
   // key (all styles present in any panel) on every panel
   const std::string key = limitKeyEntries(allStyles);
   std::string p = panels;
   for (std::size_t at; (at = p.find("__KEY__")) != std::string::npos;) p.replace(at, 7, key);
-  s << multiplotHeader(models.size(), o) << "set grid lc rgb '#dddddd'\n"
+  s << multiplotHeader(sweeps.size(), o) << "set grid lc rgb '#dddddd'\n"
     << "set xlabel "
     << gpString(b.forceLabel + (T0 != 0.0 ? "   (" + b.torqueLabel + " = " + num(T0) + ")" : ""))
     << "\n"
@@ -582,39 +667,59 @@ void plotBifurcationForce(const std::string& csvPath, const std::string& pngPath
   runGnuplot(s.str(), pngPath, o);
 }
 
-void plotBifurcationPlane(const std::string& csvPath, const std::string& pngPath,
+void plotBifurcationPlane(const std::vector<SweepPanel>& panelList, const std::string& pngPath,
                           const BifurcationOptions& b, const PlotOptions& o) {
-  std::vector<std::string> models;
-  const std::vector<LimitRow> rows = readLimitRows(csvPath, models);
-  // per (model, F, T): counts of each style
-  std::map<std::tuple<std::size_t, double, double>, std::array<int, 6>> points;
+  if (panelList.empty()) throw RenderError("plotBifurcationPlane: no sweeps");
+  // per (panel, F, T): counts of each style, and the tipping flag
+  std::map<std::tuple<std::size_t, double, double>, std::pair<std::array<int, kStyles>, bool>>
+      points;
   std::vector<double> Fs, Ts;
-  for (const LimitRow& r : rows) {
-    const std::size_t m =
-        static_cast<std::size_t>(std::find(models.begin(), models.end(), r.model) - models.begin());
-    auto& counts = points.try_emplace({m, r.F, r.T}, std::array<int, 6>{}).first->second;
-    ++counts[static_cast<std::size_t>(styleIndex(r.stability, r.kind))];
-    Fs.push_back(r.F);
-    Ts.push_back(r.T);
+  for (std::size_t m = 0; m < panelList.size(); ++m) {
+    for (const SweepPoint& p : readSweep(panelList[m].csvPath)) {
+      auto& entry = points[{m, p.F, p.T}];
+      for (const LimitDirection& d : p.directions) {
+        ++entry.first[static_cast<std::size_t>(styleIndex(d.stability, d.kind))];
+      }
+      entry.second = entry.second || p.tipping;
+      Fs.push_back(p.F);
+      Ts.push_back(p.T);
+    }
   }
   const double dF = gridStep(Fs), dT = gridStep(Ts);
-  // category text, e.g. "4: 2 A-dom, 1 A-iso, 1 A-sad"; categories numbered in
-  // order of appearance so colours agree across panels
-  std::vector<std::string> categories;
-  std::map<std::size_t, std::map<std::size_t, std::string>> tiles;  // model -> category -> rows
-  for (const auto& [key, counts] : points) {
+  // category text, e.g. "4: 2 A-dom, 1 A-iso, 1 A-sad"
+  std::map<std::tuple<std::size_t, double, double>, std::string> categoryOf;
+  std::map<std::string, int> frequency;
+  for (const auto& [key, value] : points) {
+    const auto& [counts, tipping] = value;
     int total = 0;
     std::string parts;
-    for (int st = 0; st < 6; ++st) {
+    for (int st = 0; st < kStyles; ++st) {
       if (!counts[st]) continue;
       total += counts[st];
       parts += std::string(parts.empty() ? "" : ", ") + std::to_string(counts[st]) + " " +
                (styleStability(st) == Stability::Attracting ? "A-" : "R-") +
                kindShort(styleKind(st));
     }
-    const std::string cat = std::to_string(total) + ": " + parts;
+    const std::string cat =
+        std::to_string(total) + ": " + (total ? parts : "none") + (tipping ? " (tips)" : "");
+    categoryOf[key] = cat;
+    ++frequency[cat];
+  }
+  // the most frequent categories first, each its own colour, the same in every
+  // panel; beyond the palette the rarest share one "other" entry
+  std::vector<std::string> categories;
+  for (const auto& [cat, n] : frequency) categories.push_back(cat);
+  std::stable_sort(
+      categories.begin(), categories.end(),
+      [&](const std::string& x, const std::string& y) { return frequency[x] > frequency[y]; });
+  if (categories.size() > kTileColours) {
+    categories.resize(kTileColours - 1);
+    categories.push_back("other");
+  }
+  std::map<std::size_t, std::map<std::size_t, std::string>> tiles;  // panel -> category -> rows
+  for (const auto& [key, cat] : categoryOf) {
     auto it = std::find(categories.begin(), categories.end(), cat);
-    if (it == categories.end()) it = categories.insert(categories.end(), cat);
+    if (it == categories.end()) it = categories.end() - 1;  // "other"
     const std::size_t c = static_cast<std::size_t>(it - categories.begin());
     tiles[std::get<0>(key)][c] += num(std::get<1>(key)) + " " + num(std::get<2>(key)) + " " +
                                   num(0.5 * dF) + " " + num(0.5 * dT) + "\n";
@@ -622,24 +727,22 @@ void plotBifurcationPlane(const std::string& csvPath, const std::string& pngPath
   std::ostringstream s;
   s << header(pngPath, o);
   std::string panels;
-  for (std::size_t m = 0; m < models.size(); ++m) {
+  for (std::size_t m = 0; m < panelList.size(); ++m) {
     std::string plots;
     for (const auto& [c, data] : tiles[m]) {
       const std::string name = "m" + std::to_string(m) + "_c" + std::to_string(c);
       datablock(s, name, data);
       plots += std::string(plots.empty() ? "" : ", ") + "$" + name +
-               " with boxxyerror fs solid 1.0 noborder lc rgb " +
-               gpString(kTiles[c % (sizeof kTiles / sizeof *kTiles)]) + " notitle";
+               " with boxxyerror fs solid 1.0 noborder lc rgb " + gpString(kTiles[c]) + " notitle";
     }
     // every category in every key, so panels read alike
     for (std::size_t c = 0; c < categories.size(); ++c) {
-      plots += ", keyentry with boxes fs solid 1.0 lc rgb " +
-               gpString(kTiles[c % (sizeof kTiles / sizeof *kTiles)]) + " title " +
+      plots += ", keyentry with boxes fs solid 1.0 lc rgb " + gpString(kTiles[c]) + " title " +
                gpString(categories[c]);
     }
-    panels += "set title " + gpString(models[m]) + " noenhanced\nplot " + plots + "\n";
+    panels += "set title " + gpString(panelList[m].title) + " noenhanced\nplot " + plots + "\n";
   }
-  s << multiplotHeader(models.size(), o) << "set xlabel " << gpString(b.forceLabel) << "\n"
+  s << multiplotHeader(panelList.size(), o) << "set xlabel " << gpString(b.forceLabel) << "\n"
     << "set ylabel " << gpString(b.torqueLabel) << "\nset key below Left reverse samplen 1.5\n"
     << "set style fill solid 1.0\nset tics out\nset grid front lc rgb '#ffffff' lw 0.5\n"
     << "set offsets 0,0,0,0\nset autoscale fix\n"

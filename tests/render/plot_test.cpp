@@ -43,33 +43,36 @@ void expectValidPng(const std::string& path) {
   EXPECT_GT(pixelVariance(image), kMinVariance);
 }
 
-// a bifurcation sweep shaped like the thin disk of Sect. 6.1: a pitchfork at
-// F = 1/9 and a change of stability at F = 1 (synthetic values, not physics)
-std::string writeBifurcationCsv(const std::string& dir) {
-  const std::string path = dir + "/sweep.csv";
-  std::ofstream out(path);
-  out << "# synthetic sweep\nmodel,F,T,w1,w2,w3,stability,kind\n";
+// `patchspin sweep` CSVs shaped like the thin disk of Sect. 6.1: a pitchfork
+// at F = Fc and a change of stability at F = 1 (synthetic values, not physics)
+std::vector<SweepPanel> writeSweeps(const std::string& dir) {
+  std::vector<SweepPanel> panels;
   for (const char* model : {"ellipsoidal", "exact"}) {
+    const std::string path = dir + "/sweep_" + model + ".csv";
+    std::ofstream out(path);
+    out << "F,T,n_directions,tipping,directions\n";
     for (int i = 0; i <= 12; ++i) {
       for (int j = 0; j <= 4; ++j) {
         const double F = 0.1 * i, T = 0.05 * j, Fc = 1.0 / 9.0 + T;
-        out << model << "," << F << "," << T << ",-1,0,0,attracting,isolated\n";
+        std::string dirs = "-1 0 0 -3 attracting isolated";
+        int n = 2;
         if (F > 1.0) {
-          out << model << "," << F << "," << T << ",1,0,0,repelling,isolated\n";
+          dirs += "|1 0 0 0.5 repelling isolated";
         } else if (F > Fc) {
-          out << model << "," << F << "," << T << ",1,0,0,attracting,dominant\n";
+          dirs += "|1 0 0 -1 attracting dominant";
         } else {
           const double w1 = F / Fc, w3 = std::sqrt(1.0 - w1 * w1);
-          out << model << "," << F << "," << T << ",1,0,0,attracting,saddle\n";
-          out << model << "," << F << "," << T << "," << w1 << ",0," << w3
-              << ",attracting,dominant\n";
-          out << model << "," << F << "," << T << "," << w1 << ",0," << -w3
-              << ",attracting,dominant\n";
+          dirs += "|1 0 0 -1 attracting saddle|" + std::to_string(w1) + " 0 " + std::to_string(w3) +
+                  " -1 attracting dominant|" + std::to_string(w1) + " 0 " + std::to_string(-w3) +
+                  " -1 attracting dominant";
+          n = 4;
         }
+        out << F << "," << T << "," << n << "," << (j == 4 && i == 12) << ",\"" << dirs << "\"\n";
       }
     }
+    panels.push_back({model, path});
   }
-  return path;
+  return panels;
 }
 
 TEST(Plot, SlipSphere) {
@@ -117,16 +120,28 @@ TEST(Plot, SlipRatioAgainstTime) {
 
 TEST(Plot, BifurcationAgainstForceAndOverPlane) {
   const std::string dir = tempDir("bifurcation");
-  const std::string csv = writeBifurcationCsv(dir);
-  plotBifurcationForce(csv, dir + "/force.png", BifurcationOptions(), smallOptions());
+  const std::vector<SweepPanel> sweeps = writeSweeps(dir);
+  plotBifurcationForce(sweeps, dir + "/force.png", BifurcationOptions(), smallOptions());
   expectValidPng(dir + "/force.png");
   BifurcationOptions component;
   component.component = 3;
   component.torque = 0.1;
-  plotBifurcationForce(csv, dir + "/force_w3.png", component, smallOptions());
+  plotBifurcationForce(sweeps, dir + "/force_w3.png", component, smallOptions());
   expectValidPng(dir + "/force_w3.png");
-  plotBifurcationPlane(csv, dir + "/plane.png", BifurcationOptions(), smallOptions());
+  plotBifurcationPlane(sweeps, dir + "/plane.png", BifurcationOptions(), smallOptions());
   expectValidPng(dir + "/plane.png");
+  // a malformed direction entry names file and line
+  {
+    std::ofstream out(dir + "/bad.csv");
+    out << "F,T,directions\n0,0,\"1 0 0 attracting dominant\"\n";
+  }
+  try {
+    plotBifurcationPlane({{"bad", dir + "/bad.csv"}}, dir + "/bad.png");
+    ADD_FAILURE() << "no error";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2: a direction must be"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Plot, Pareto) {
@@ -165,11 +180,21 @@ TEST(Plot, CsvReadersReturnTheRowsWritten) {
   ASSERT_EQ(paths[0].w.size(), 2u);
   EXPECT_EQ(paths[0].w[1], Vec3(0, 1, 0));
   EXPECT_EQ(paths[1].w[0], Vec3(0, 0, -1));
-  const std::vector<LimitDirection> limits = readLimitDirectionsCsv(writeBifurcationCsv(dir));
-  ASSERT_FALSE(limits.empty());
-  EXPECT_EQ(limits[0].w, Vec3(-1, 0, 0));  // first data row of the sweep
+  {
+    // quoted fields, with a comma and a doubled quote inside
+    std::ofstream out(dir + "/limits.csv");
+    out << "label,w1,w2,w3,stability,kind\n\"w_1, \"\"a\"\"\",-1,0,0,attracting,isolated\n"
+        << "  \"b\" ,0,0,1,repelling,nonhyperbolic\n";
+  }
+  const std::vector<LimitDirection> limits = readLimitDirectionsCsv(dir + "/limits.csv");
+  ASSERT_EQ(limits.size(), 2u);
+  EXPECT_EQ(limits[0].label, "w_1, \"a\"");
+  EXPECT_EQ(limits[0].w, Vec3(-1, 0, 0));
   EXPECT_EQ(limits[0].stability, Stability::Attracting);
   EXPECT_EQ(limits[0].kind, LimitKind::Isolated);
+  EXPECT_EQ(limits[1].label, "b");
+  EXPECT_EQ(limits[1].stability, Stability::Repelling);
+  EXPECT_EQ(limits[1].kind, LimitKind::Nonhyperbolic);
   {
     std::ofstream out(dir + "/bad.csv");
     out << "w1,w2,w3,stability,kind\n1,0,0,attracting,stable\n";
@@ -183,11 +208,11 @@ TEST(Plot, ClearErrors) {
   PlotOptions o = smallOptions();
   o.gnuplot = "/nonexistent/gnuplot";
   try {
-    plotPareto(writeBifurcationCsv(dir), dir + "/x.png", ParetoOptions(), o);
+    plotPareto(writeSweeps(dir)[0].csvPath, dir + "/x.png", ParetoOptions(), o);
     ADD_FAILURE() << "no error";
   } catch (const RenderError& e) {
-    // the CSV check comes first: the sweep file has no 'time' column
-    EXPECT_NE(std::string(e.what()).find("missing column 'time'"), std::string::npos) << e.what();
+    // the CSV check comes first: a sweep file has no 'model' column
+    EXPECT_NE(std::string(e.what()).find("missing column 'model'"), std::string::npos) << e.what();
   }
   {
     std::ofstream out(dir + "/bench.csv");

@@ -6,8 +6,9 @@
 // it fails, and a clear "install gnuplot-nox" message if it is missing.
 //
 // CSV inputs: a header row naming the columns (any order, extra columns
-// ignored, names case-sensitive), comma separated, no quoting; blank lines and
-// lines starting with '#' are skipped.
+// ignored, names case-sensitive), comma separated, fields may be in double
+// quotes ("" inside is a quote); blank lines and lines starting with '#' are
+// skipped.
 #pragma once
 
 #include <optional>
@@ -30,9 +31,10 @@ struct PlotOptions {
 // Limit direction types, Sect. 3 (Eq. (31)-(34)): the time direction in which
 // trajectories reach the discontinuity (attracting/repelling) and whether
 // almost all, one, or a one-parameter set of them do (dominant / isolated /
-// saddle-type).
+// saddle-type); nonhyperbolic when the linearisation does not decide
+// (patchspin::LimitType).
 enum class Stability { Attracting, Repelling };
-enum class LimitKind { Dominant, Isolated, Saddle };
+enum class LimitKind { Dominant, Isolated, Saddle, Nonhyperbolic };
 
 struct LimitDirection {
   Vec3 w = Vec3::UnitZ();  // unit vector (normalised if not)
@@ -57,8 +59,8 @@ struct SpherePlot {
 
 // Paths: solid on the visible hemisphere, dashed behind; a small circle marks
 // the start, a cross the end. Limit directions: blue attracting, red
-// repelling; filled circle dominant, open circle isolated, triangle saddle;
-// paler when behind the sphere.
+// repelling; filled circle dominant, open circle isolated, triangle saddle,
+// open diamond nonhyperbolic; paler when behind the sphere.
 void plotSlipSphere(const SpherePlot& plot, const std::string& pngPath,
                     const PlotOptions& options = PlotOptions());
 
@@ -88,14 +90,19 @@ void plotSlipRatio(const TimeSeriesPlot& plot, const std::string& pngPath,
 
 // ---- (c) bifurcation diagrams of limit directions (Fig. 11, 13) ------------
 
-// CSV, one row per limit direction found at a parameter point:
-//   model,F,T,w1,w2,w3,stability,kind
-//   model      free text; one panel per distinct value (first-appearance order)
-//   F, T       load parameters (force, torque) in the sweep's units
-//   w1,w2,w3   the limit direction (unit vector)
-//   stability  attracting | repelling
-//   kind       dominant | isolated | saddle
-// Example:  exact,0.5,0,0.91,0,0.41,attracting,dominant
+// Input: the CSV of `patchspin sweep --out FILE`, one file per model, one row
+// per parameter point. Columns used:
+//   F, T        the load parameters (in the sweep's units)
+//   directions  "w1 w2 w3 rdot attracting|repelling type|..." , one entry per
+//               limit direction, type dominant|isolated|saddle|nonhyperbolic
+//   tipping     optional, 1 if the pressure turns negative (marked in the
+//               (F, T) categories)
+// Example row:  0.5,0,2,...,0,1,"1 0 0 -2.1 attracting dominant|-1 0 0 -4.9 attracting isolated"
+struct SweepPanel {
+  std::string title;    // panel title, e.g. "ellipsoidal"
+  std::string csvPath;  // the sweep's CSV
+};
+
 struct BifurcationOptions {
   // what the F diagram plots for each direction: 0 = the angle atan2(w3, w1)
   // [deg] (separates the directions near the invariant circle w2 = 0 of
@@ -107,15 +114,15 @@ struct BifurcationOptions {
 };
 
 // Limit directions against F (angle or component, see above), styled by type
-// as in plotSlipSphere. One panel per model, side by side.
-void plotBifurcationForce(const std::string& csvPath, const std::string& pngPath,
+// as in plotSlipSphere. One panel per sweep, side by side.
+void plotBifurcationForce(const std::vector<SweepPanel>& panels, const std::string& pngPath,
                           const BifurcationOptions& bifurcation = BifurcationOptions(),
                           const PlotOptions& options = PlotOptions());
 
 // Over the (F, T) plane: each grid point coloured by the number and types of
 // its limit directions (e.g. "4: 2 A-dom, 1 A-iso, 1 A-sad"), tiles sized from the
-// grid spacing. One panel per model, side by side.
-void plotBifurcationPlane(const std::string& csvPath, const std::string& pngPath,
+// grid spacing; colours agree across panels. One panel per sweep, side by side.
+void plotBifurcationPlane(const std::vector<SweepPanel>& panels, const std::string& pngPath,
                           const BifurcationOptions& bifurcation = BifurcationOptions(),
                           const PlotOptions& options = PlotOptions());
 
@@ -146,8 +153,8 @@ std::vector<TimeSeries> readTimeSeriesCsv(const std::string& csvPath);
 // label,w1,w2,w3  -> one SpherePath per label, points in file order.
 std::vector<SpherePath> readSpherePathsCsv(const std::string& csvPath);
 
-// w1,w2,w3,stability,kind[,label]  (the bifurcation format's columns; other
-// columns ignored) -> limit directions.
+// w1,w2,w3,stability,kind[,label] -> limit directions (stability attracting |
+// repelling, kind dominant | isolated | saddle | nonhyperbolic).
 std::vector<LimitDirection> readLimitDirectionsCsv(const std::string& csvPath);
 
 }  // namespace patchspin::render
