@@ -5,7 +5,10 @@
 // the rest, ICR farther than 8 circumradii, the Gauss-Legendre branch).
 // Separate runs time each branch alone, and the tolerance knob on the far
 // branch reports its measured error against tolerance 0 next to the time.
+// BM_EllipsoidalReference times the ellipsoidal law (41) on the same
+// rectangle and directions, for the exact / ellipsoidal ratio.
 #include <patchspin/internal/exact.hpp>
+#include <patchspin/models.hpp>
 
 #include <benchmark/benchmark.h>
 
@@ -170,6 +173,27 @@ BENCHMARK(BM_ExactPolygonBasisFarBranch)
     ->Args({1, 0, 9})
     ->Args({1, 0, 6})
     ->Args({1, 1, 0});
+
+// Reference for the ratio: the ellipsoidal law (41) of the same rectangle
+// (uniform pressure, same rho and directions) through FrictionPatch.
+void BM_EllipsoidalReference(benchmark::State& state) {
+  const std::vector<Vec2> poly = rectangle();
+  const double rho = meanDistance(poly);
+  const patchspin::PatchShape shape = patchspin::PatchShape::polygon(poly);
+  const patchspin::FrictionPatch patch(shape, patchspin::LinearPressure::uniform(shape, 1.0), 0.5,
+                                       rho);
+  const std::vector<Vec3> ws = directions(poly, rho, Sample::Sphere);
+  Mat3 jac;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    Vec3 q = patch.ellipsoidalQ(ws[i], state.range(0) != 0 ? &jac : nullptr);
+    benchmark::DoNotOptimize(q);
+    benchmark::DoNotOptimize(jac);
+    i = (i + 1) % ws.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_EllipsoidalReference)->ArgNames({"jacobian"})->Arg(0)->Arg(1);
 
 }  // namespace
 

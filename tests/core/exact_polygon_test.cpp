@@ -270,6 +270,7 @@ std::vector<NamedPolygon> testPolygons() {
       {"square, O far outside", translated(unitSquare(), Vec2(2.5, -1.5)), 0.4},
       {"square, O at a vertex", translated(unitSquare(), Vec2(0.5, 0.5)), 0.5},
       {"rectangle, O on an edge", translated(rectangle(), Vec2(0.3, 0.25)), 0.6},
+      {"pentagon, O 50 sizes away", translated(irregularPentagon(), Vec2(40.0, -25.0)), 0.45},
   };
 }
 
@@ -356,8 +357,10 @@ TEST(ExactPolygonBasis, ManyVerticesMatchOracle) {
   EXPECT_EQ(gOracleCapped, 0) << "oracle did not converge";
 }
 
-// With the Jacobian requested, F must be the same numbers (up to rounding of
-// the dual-number arithmetic, which reorders no sums: kSameTol = 1e-14).
+// With the Jacobian requested, F must be the same numbers: the edge sum's
+// dual-number arithmetic rounds the values exactly as the plain one, and the
+// far rule may use one order more (both orders' errors are <= 2e-15 of the
+// scale, measured), so kSameTol = 1e-14.
 TEST(ExactPolygonBasis, ValueIndependentOfJacobianRequest) {
   constexpr double kSameTol = 1e-14;
   for (const NamedPolygon& np : testPolygons()) {
@@ -454,6 +457,8 @@ TEST(ExactPolygonBasis, PureSpinAboutOriginGivesRadialMoments) {
 // it differs from the pure-translation value by O(eps) (the kernel changes by
 // O(eps |P| / rho)). kContinuitySlope bounds that Lipschitz constant relative
 // to the column scale, with margin: the kernel's change is <= 2 eps |P|/rho.
+// dF (the kernel's derivative m m^T / |v|, m ~ 1 + |P|/rho) changes by
+// O(eps (1 + |P|/rho)^2) relative to the column scale, same slope.
 TEST(ExactPolygonBasis, ContinuousAcrossPureTranslation) {
   constexpr double kContinuitySlope = 10.0;
   for (const NamedPolygon& np : testPolygons()) {
@@ -469,8 +474,10 @@ TEST(ExactPolygonBasis, ContinuousAcrossPureTranslation) {
       const double bound = kContinuitySlope * std::abs(eps) * (1.0 + rmax / np.rho) + 1e-15;
       EXPECT_LE(relativeError(out.F, zero.F, scale), bound) << np.name << " eps " << eps;
       // the Jacobian is continuous there too (both sides use the same rule)
+      const double lever = 1.0 + rmax / np.rho;
+      const double boundJacobian = kContinuitySlope * std::abs(eps) * lever * lever + 1e-15;
       for (int k = 0; k < 3; ++k) {
-        EXPECT_LE((out.dF[k] - zero.dF[k]).cwiseAbs().maxCoeff() / scale[k], 1e-6)
+        EXPECT_LE((out.dF[k] - zero.dF[k]).cwiseAbs().maxCoeff() / scale[k], boundJacobian)
             << np.name << " eps " << eps;
       }
     }
@@ -513,10 +520,12 @@ TEST(ExactPolygonBasis, BranchesAgreeAtTheSwitch) {
 }
 
 // dF[k] against central differences of F.col(k) in w (w unnormalized: F is
-// homogeneous of degree 0). Step h = 1e-5: truncation h^2 |F'''| / 6 and
-// rounding eps |F| / h are both ~1e-11 relative when the ICR is at least
-// kMinIcrClearance from the boundary (F'' is log-singular where the ICR
-// crosses an edge), so kFdTol = 1e-7 relative to the column scale.
+// homogeneous of degree 0). w enters the kernel as w3 |P| / rho, so the step
+// is h = kStep / (1 + max|P| / rho) in every component: truncation
+// h^2 |F'''| / 6 and rounding eps |F| / h are then both ~1e-11 relative when
+// the ICR is at least kMinIcrClearance from the boundary (F'' is
+// log-singular where the ICR crosses an edge), so kFdTol = 1e-7 relative to
+// the column scale.
 TEST(ExactPolygonBasis, JacobianMatchesFiniteDifferences) {
   constexpr double kStep = 1e-5;
   constexpr double kFdTol = 1e-7;
@@ -543,16 +552,19 @@ TEST(ExactPolygonBasis, JacobianMatchesFiniteDifferences) {
         if (clearance < kMinIcrClearance) continue;
       }
       ++checked;
+      double rmax = 0.0;
+      for (const Vec2& v : np.poly) rmax = std::max(rmax, v.norm());
+      const double h = kStep / (1.0 + rmax / np.rho);
       ExactBasis out;
       exactPolygonBasis(np.poly, np.rho, w, true, out);
       for (int j = 0; j < 3; ++j) {
         ExactBasis plus, minus;
         Vec3 wp = w, wm = w;
-        wp[j] += kStep;
-        wm[j] -= kStep;
+        wp[j] += h;
+        wm[j] -= h;
         exactPolygonBasis(np.poly, np.rho, wp, false, plus);
         exactPolygonBasis(np.poly, np.rho, wm, false, minus);
-        const Mat3 fd = (plus.F - minus.F) / (2 * kStep);
+        const Mat3 fd = (plus.F - minus.F) / (2 * h);
         for (int k = 0; k < 3; ++k) {
           EXPECT_LE((out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k], kFdTol)
               << np.name << " w = " << w.transpose() << " column " << k << " dw" << j;
@@ -568,30 +580,37 @@ TEST(ExactPolygonBasis, JacobianMatchesFiniteDifferences) {
 
 // At an ICR on an edge or a vertex F is still C^1 (its second derivative is
 // log-singular there), so the Jacobian must be finite and match central
-// differences to O(hc log hc), hc = kStep |dc/dw| <= 1e-5 the step of the ICR
-// for these shapes (|dc/dw3| = |c|/w3 <= ~50): ~1e-5 * 12, so
-// kFdTolSingular = 1e-4 (rounding eps/kStep ~ 1e-9 is negligible).
+// differences to O(hc log hc) relative to its own size, hc the step of the
+// ICR: the w step is h = kIcrStep L / |dc/dw| (L the edge length,
+// |dc/dw| <= (rho/|w3|)(1 + |c|/rho)), so hc <= 1e-6 L and the error is
+// ~1e-6 * 14; rounding eps L / (h |dc/dw|) ~ 1e-10. kFdTolSingular = 1e-4.
 TEST(ExactPolygonBasis, JacobianContinuousWithIcrOnBoundary) {
-  constexpr double kStep = 1e-7;
+  constexpr double kIcrStep = 1e-6;
   constexpr double kFdTolSingular = 1e-4;
   for (const NamedPolygon& np : testPolygons()) {
-    const Vec3 scale = columnScales(np.poly, np.rho);
     const Vec2 a = np.poly[0], b = np.poly[1];
+    const double L = (b - a).norm();
     for (const Vec2& c : {a, Vec2(0.5 * (a + b)), Vec2(0.3 * a + 0.7 * b)}) {
       const Vec3 w = wForIcr(c, np.rho, 1.0);
+      const double dcdw = np.rho / std::abs(w.z()) * (1.0 + c.norm() / np.rho);
+      const double h = kIcrStep * L / dcdw;
       ExactBasis out;
       exactPolygonBasis(np.poly, np.rho, w, true, out);
+      double size = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(out.dF[k].allFinite());
+        size = std::max(size, out.dF[k].cwiseAbs().maxCoeff());
+      }
       for (int j = 0; j < 3; ++j) {
         ExactBasis plus, minus;
         Vec3 wp = w, wm = w;
-        wp[j] += kStep;
-        wm[j] -= kStep;
+        wp[j] += h;
+        wm[j] -= h;
         exactPolygonBasis(np.poly, np.rho, wp, false, plus);
         exactPolygonBasis(np.poly, np.rho, wm, false, minus);
-        const Mat3 fd = (plus.F - minus.F) / (2 * kStep);
+        const Mat3 fd = (plus.F - minus.F) / (2 * h);
         for (int k = 0; k < 3; ++k) {
-          ASSERT_TRUE(out.dF[k].allFinite());
-          EXPECT_LE((out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k], kFdTolSingular)
+          EXPECT_LE((out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / size, kFdTolSingular)
               << np.name << " c = " << c.transpose() << " column " << k << " dw" << j;
         }
       }
