@@ -103,6 +103,82 @@ struct Line {
   double scale = 1.0;
 };
 
+// A framed chart in the bottom-right corner: axes box, the reference line,
+// the series clipped to the box, the title and the axis ranges.
+void drawChart(Painter& pt, const OverlayChart& chart, int w, int h, double fontPx) {
+  cairo_t* cr = pt.cr;
+  const double bw = std::round(0.34 * w), bh = std::round(0.3 * h);
+  const double bx = w - bw - std::round(0.6 * fontPx), by = h - bh - std::round(0.6 * fontPx);
+  pt.roundedBox(bx, by, bw, bh, 0.4 * fontPx, 0.82);
+  // plot area inside the box
+  const double px0 = bx + 2.6 * fontPx, px1 = bx + bw - 0.8 * fontPx;
+  const double py0 = by + 1.7 * fontPx, py1 = by + bh - 1.5 * fontPx;
+  if (px1 <= px0 || py1 <= py0) return;
+  const double tSpan = chart.tMax > chart.tMin ? chart.tMax - chart.tMin : 1.0;
+  const double ySpan = chart.yMax > chart.yMin ? chart.yMax - chart.yMin : 1.0;
+  auto X = [&](double t) { return px0 + (t - chart.tMin) / tSpan * (px1 - px0); };
+  auto Y = [&](double y) { return py1 - (y - chart.yMin) / ySpan * (py1 - py0); };
+  const Rgb dark{0.08, 0.08, 0.1}, grey{0.35, 0.35, 0.4};
+  // axes frame and range labels
+  cairo_set_line_width(cr, 1.0);
+  cairo_set_source_rgba(cr, 0, 0, 0, 0.45);
+  cairo_rectangle(cr, px0, py0, px1 - px0, py1 - py0);
+  cairo_stroke(cr);
+  char buf[32];
+  pt.font(pt.mono, 0.75);
+  std::snprintf(buf, sizeof buf, "%g", chart.yMax);
+  pt.text(px0 - pt.width(buf) - 0.25 * fontPx, py0 + 0.3 * fontPx, buf, grey);
+  std::snprintf(buf, sizeof buf, "%g", chart.yMin);
+  pt.text(px0 - pt.width(buf) - 0.25 * fontPx, py1, buf, grey);
+  std::snprintf(buf, sizeof buf, "%g s", chart.tMin);
+  pt.text(px0, py1 + 1.0 * fontPx, buf, grey);
+  std::snprintf(buf, sizeof buf, "%g s", chart.tMax);
+  pt.text(px1 - pt.width(buf), py1 + 1.0 * fontPx, buf, grey);
+  pt.font(pt.sans, 0.85);
+  pt.text(px0, by + 1.2 * fontPx, chart.title, dark);
+  // everything below stays inside the plot area
+  cairo_save(cr);
+  cairo_rectangle(cr, px0, py0, px1 - px0, py1 - py0);
+  cairo_clip(cr);
+  if (chart.reference) {
+    const double yr = Y(*chart.reference);
+    const double dashes[] = {0.4 * fontPx, 0.3 * fontPx};
+    cairo_set_dash(cr, dashes, 2, 0.0);
+    cairo_set_source_rgba(cr, 0, 0, 0, 0.7);
+    cairo_move_to(cr, px0, yr);
+    cairo_line_to(cr, px1, yr);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0.0);
+    if (!chart.referenceLabel.empty()) {
+      pt.font(pt.mono, 0.75);
+      pt.text(px1 - pt.width(chart.referenceLabel) - 0.2 * fontPx, yr - 0.25 * fontPx,
+              chart.referenceLabel, dark);
+    }
+  }
+  cairo_set_line_width(cr, std::max(1.5, 0.18 * fontPx));
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const ChartSeries& s : chart.series) {
+    bool drawing = false;
+    for (std::size_t i = 0; i < s.t.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.t[i]) || !std::isfinite(s.y[i])) {
+        drawing = false;
+        continue;
+      }
+      // clamp far-out values so the path stays well defined
+      const double y = std::clamp(s.y[i], chart.yMin - ySpan, chart.yMax + ySpan);
+      if (drawing) {
+        cairo_line_to(cr, X(s.t[i]), Y(y));
+      } else {
+        cairo_move_to(cr, X(s.t[i]), Y(y));
+        drawing = true;
+      }
+    }
+    cairo_set_source_rgb(cr, s.colour.r, s.colour.g, s.colour.b);
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+}
+
 }  // namespace
 
 TextPainter::TextPainter(const std::string& fontFile, const std::string& monoFontFile) {
@@ -243,6 +319,9 @@ void TextPainter::draw(Image& image, const FrameOverlay& overlay,
     }
     y += lh;
   }
+
+  // live chart, bottom right
+  if (overlay.chart) drawChart(pt, *overlay.chart, w, h, fontPx);
 
   // caption, bottom centre
   if (!overlay.caption.empty()) {

@@ -342,6 +342,44 @@ TEST(Renderer, ArrowIsDrawnOverTheBody) {
   EXPECT_GT(inside, kMinArrowPixels);
 }
 
+// The live chart sits in the bottom-right corner and draws its series.
+TEST(Renderer, OverlayChartIsDrawnBottomRight) {
+  Renderer renderer(smallOptions());
+  Scene plain = coinScene();
+  Scene charted = plain;
+  OverlayChart chart;
+  chart.title = "ratio";
+  chart.tMax = 1.0;
+  chart.yMax = 2.0;
+  chart.reference = 0.653;
+  ChartSeries series;
+  series.colour = {1.0, 0.0, 0.0};
+  for (int i = 0; i <= 50; ++i) {
+    series.t.push_back(0.02 * i);
+    series.y.push_back(1.5 - 0.02 * i);
+  }
+  chart.series.push_back(series);
+  charted.overlay.chart = chart;
+  const Image a = renderer.render(plain), b = renderer.render(charted);
+  int changed = 0, outside = 0, red = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) continue;
+      ++changed;
+      // the box is 34 % x 30 % of the frame plus a margin: well inside the
+      // bottom-right 45 % x 45 %
+      if (x < 0.55 * kWidth || y < 0.55 * kHeight) ++outside;
+      if (q[0] > 200 && q[1] < 80 && q[2] < 80) ++red;
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  constexpr int kMinChartPixels = 200;  // frame, box and text of a 54 x 36 px panel
+  constexpr int kMinSeriesPixels = 10;  // a 1.5 px line across the plot area
+  EXPECT_GT(changed, kMinChartPixels);
+  EXPECT_GT(red, kMinSeriesPixels);
+}
+
 TEST(Renderer, BadInputIsRejected) {
   RenderOptions o = smallOptions();
   o.width = 0;

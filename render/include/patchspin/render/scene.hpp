@@ -73,13 +73,30 @@ struct TrackedBody {
   int body = -1;
 };
 
+// A small live chart in the bottom-right corner of the frame, e.g. v/(R omega)
+// of each tracked body up to the current time (drawn with cairo).
+struct ChartSeries {
+  Rgb colour{0.0, 0.0, 0.0};
+  std::vector<double> t;  // [s], increasing
+  std::vector<double> y;  // same length; NaN leaves a gap
+};
+struct OverlayChart {
+  std::string title;                // UTF-8, e.g. "v/(R\xcf\x89)"
+  double tMin = 0.0, tMax = 1.0;    // horizontal range [s]
+  double yMin = 0.0, yMax = 2.0;    // vertical range; the series are clipped to it
+  std::optional<double> reference;  // dashed horizontal line, e.g. 0.653
+  std::string referenceLabel;       // written at its right end
+  std::vector<ChartSeries> series;
+};
+
 // Text drawn over the frame.
 struct FrameOverlay {
   double time = 0.0;  // [s]
   std::string model;  // shown as "model: <model>"; omitted if empty
   std::string title;  // first line of the panel; omitted if empty
   std::vector<TrackedBody> tracked;
-  std::string caption;  // bottom line; omitted if empty
+  std::string caption;                // bottom line; omitted if empty
+  std::optional<OverlayChart> chart;  // bottom right; omitted if empty
 };
 
 // Pinhole camera.
