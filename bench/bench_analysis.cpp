@@ -1,8 +1,8 @@
 // Limit directions (linear Pi: eigenproblem (111); Pi(w): sphere solver; exact
 // law) and reference-dynamics steps per second.
-#include <patchspin/analysis.hpp>
-
 #include <benchmark/benchmark.h>
+
+#include <patchspin/analysis.hpp>
 
 namespace {
 
@@ -70,11 +70,17 @@ void referenceRun(benchmark::State& state, Model law) {
     steps += run.steps;
     benchmark::DoNotOptimize(run.final.position);
   }
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
-  state.counters["steps/run"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
+  state.counters["steps/s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["steps/run"] =
+      static_cast<double>(steps) / static_cast<double>(state.iterations());
 }
-void BM_ReferenceDynamicsEllipsoidal(benchmark::State& state) { referenceRun(state, Model::Ellipsoidal); }
-void BM_ReferenceDynamicsExact(benchmark::State& state) { referenceRun(state, Model::Exact); }
+void BM_ReferenceDynamicsEllipsoidal(benchmark::State& state) {
+  referenceRun(state, Model::Ellipsoidal);
+}
+void BM_ReferenceDynamicsExact(benchmark::State& state) {
+  referenceRun(state, Model::Exact);
+}
 BENCHMARK(BM_ReferenceDynamicsEllipsoidal)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ReferenceDynamicsExact)->Unit(benchmark::kMillisecond);
 

@@ -1,16 +1,14 @@
 // patchspin limits: all limit directions of a flat body on a plane, their
 // rate R* and type (Sect. 3.3, 5.5-5.6). Also exports the body options and
 // the JSON form of an analysis to `patchspin sweep` (cmd_sweep.cpp).
-#include "tool_common.hpp"
-
-#include <patchspin/analysis.hpp>
-
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <patchspin/analysis.hpp>
+
+#include "tool_common.hpp"
 
 namespace patchspin::tool {
 
@@ -46,7 +44,9 @@ FlatBody makeBody(const BodyArgs& a) {
   return body;
 }
 
-nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vec(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 }  // namespace
 
@@ -54,13 +54,18 @@ nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 // once the command line is parsed. withLoads: also --force and --torque.
 std::function<FlatBody()> addBodyOptions(CLI::App* cmd, bool withLoads) {
   auto a = std::make_shared<BodyArgs>();
-  cmd->add_option("--patch", a->patch, "disk:R | rect:LX,LY | poly:x1,y1,x2,y2,...  [m], patch frame")->required();
-  cmd->add_option("--mass", a->mass, "mass m [kg]")->required();
-  cmd->add_option("--inertia", a->inertia, "Jz[,Jxz,Jyz] about the centre of mass [kg m^2]; L = w_z (Jxz, Jyz, Jz)")
+  cmd->add_option("--patch", a->patch,
+                  "disk:R | rect:LX,LY | poly:x1,y1,x2,y2,...  [m], patch frame")
       ->required();
-  cmd->add_option("--com", a->com, "xc,yc,zc: centre of mass in the patch frame [m] (default 0,0,0)");
+  cmd->add_option("--mass", a->mass, "mass m [kg]")->required();
+  cmd->add_option("--inertia", a->inertia,
+                  "Jz[,Jxz,Jyz] about the centre of mass [kg m^2]; L = w_z (Jxz, Jyz, Jz)")
+      ->required();
+  cmd->add_option("--com", a->com,
+                  "xc,yc,zc: centre of mass in the patch frame [m] (default 0,0,0)");
   cmd->add_option("--mu", a->mu, "friction coefficient (default 0.3)");
-  cmd->add_option("--g", a->g, "gravity [m/s^2] (default 9.81); the normal force is -m g at the centre of mass");
+  cmd->add_option("--g", a->g,
+                  "gravity [m/s^2] (default 9.81); the normal force is -m g at the centre of mass");
   if (withLoads) {
     cmd->add_option("--force", a->force, "Fx,Fy: horizontal force at the centre of mass [N]");
     cmd->add_option("--torque", a->torque, "Tx,Ty,Tz: external couple [N m]");
@@ -125,12 +130,14 @@ void run(const LimitsArgs& a, const FlatBody& body) {
     std::printf("%s\n", limitsToJson(an).dump().c_str());
     return;
   }
-  std::printf("body      %s, m = %g kg, Jz = %g kg m^2, r_c = (%g, %g, %g) m\n", body.shape.describe().c_str(),
-              body.mass, body.Jz, body.com.x(), body.com.y(), body.com.z());
-  std::printf("model     %s, mu = %g, rho = %.6g m; %s\n", toString(law), body.mu, model.rho(),
-              an.linear ? "linear Pi: eigenproblem (111)" : "Pi(w): Newton on the sphere from a seed grid");
-  std::printf("\n%-38s %12s  %-10s %-14s %s\n", "w = (u_x, u_y, rho w_z)/r", "R* [m/s^2]", "", "type",
-              "eigenvalues of (31) [1/s]");
+  std::printf("body      %s, m = %g kg, Jz = %g kg m^2, r_c = (%g, %g, %g) m\n",
+              body.shape.describe().c_str(), body.mass, body.Jz, body.com.x(), body.com.y(),
+              body.com.z());
+  std::printf(
+      "model     %s, mu = %g, rho = %.6g m; %s\n", toString(law), body.mu, model.rho(),
+      an.linear ? "linear Pi: eigenproblem (111)" : "Pi(w): Newton on the sphere from a seed grid");
+  std::printf("\n%-38s %12s  %-10s %-14s %s\n", "w = (u_x, u_y, rho w_z)/r", "R* [m/s^2]", "",
+              "type", "eigenvalues of (31) [1/s]");
   auto complexText = [](std::complex<double> z) {
     char buf[64];
     if (z.imag() == 0.0) {
@@ -141,30 +148,37 @@ void run(const LimitsArgs& a, const FlatBody& body) {
     return std::string(buf);
   };
   for (const LimitDirection& d : an.directions) {
-    std::printf("(%+.6f, %+.6f, %+.6f)  %12.6g  %-10s %-14s %s, %s\n", d.w.x(), d.w.y(), d.w.z(), d.rdot,
-                d.attracting ? "attracting" : "repelling", toString(d.type), complexText(d.eigenvalues[0]).c_str(),
-                complexText(d.eigenvalues[1]).c_str());
+    std::printf("(%+.6f, %+.6f, %+.6f)  %12.6g  %-10s %-14s %s, %s\n", d.w.x(), d.w.y(), d.w.z(),
+                d.rdot, d.attracting ? "attracting" : "repelling", toString(d.type),
+                complexText(d.eigenvalues[0]).c_str(), complexText(d.eigenvalues[1]).c_str());
   }
   for (const LimitContinuum& c : an.continua) {
     if (c.sphere) {
       std::printf("continuum: every direction, R* = %.6g m/s^2\n", c.rdot);
     } else {
-      std::printf("continuum: circle n.w = %.6f, n = (%+.6f, %+.6f, %+.6f), radius %.6f, R* = %.6g m/s^2 (%s)\n",
-                  c.offset, c.normal.x(), c.normal.y(), c.normal.z(), c.radius(), c.rdot,
-                  c.attracting ? "attracting" : "repelling");
+      std::printf(
+          "continuum: circle n.w = %.6f, n = (%+.6f, %+.6f, %+.6f), radius %.6f, R* = %.6g m/s^2 "
+          "(%s)\n",
+          c.offset, c.normal.x(), c.normal.y(), c.normal.z(), c.radius(), c.rdot,
+          c.attracting ? "attracting" : "repelling");
     }
   }
-  if (an.tipping) std::printf("\nwarning: the pressure turns negative on the patch (the body would tip)\n");
-  if (!an.indexConsistent) std::printf("\nwarning: the index sum is not 2: a limit direction may be missing\n");
+  if (an.tipping)
+    std::printf("\nwarning: the pressure turns negative on the patch (the body would tip)\n");
+  if (!an.indexConsistent)
+    std::printf("\nwarning: the index sum is not 2: a limit direction may be missing\n");
 }
 
 const RegisterCommand registration([](CLI::App& app) {
   auto args = std::make_shared<LimitsArgs>();
-  CLI::App* cmd = app.add_subcommand("limits", "Limit directions of a flat body on a plane (Sect. 5, Eq. (106))");
+  CLI::App* cmd = app.add_subcommand(
+      "limits", "Limit directions of a flat body on a plane (Sect. 5, Eq. (106))");
   auto body = addBodyOptions(cmd, true);
   cmd->add_option("--model", args->model, "ellipsoidal (Eq. 41) | exact (Eq. 16)");
-  cmd->add_option("--seeds", args->seeds, "seed points of the sphere solver for Pi(w) (default 600)");
-  cmd->add_flag("--json", args->json, "print one JSON object {limit_directions, continuum, tipping}");
+  cmd->add_option("--seeds", args->seeds,
+                  "seed points of the sphere solver for Pi(w) (default 600)");
+  cmd->add_flag("--json", args->json,
+                "print one JSON object {limit_directions, continuum, tipping}");
   cmd->callback([args, body] { run(*args, body()); });
 });
 

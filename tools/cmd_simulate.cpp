@@ -1,27 +1,28 @@
 // patchspin simulate: one body sliding and spinning on a plane until it
 // sticks, by the reference dynamics (analysis) or by Bullet.
-#include "tool_common.hpp"
-
 #include <patchspin/analysis.hpp>
 #include <patchspin/simulation.hpp>
+
+#include "tool_common.hpp"
 
 #ifdef PATCHSPIN_HAS_BULLET
 #include <patchspin/bullet/simulate.hpp>
 #endif
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 namespace patchspin::tool {
 namespace {
 
 struct SimulateArgs {
-  std::string engine = "reference", model = "exact", shape, force = "0,0", v0 = "0,0", torque = "0,0,0";
+  std::string engine = "reference", model = "exact", shape, force = "0,0", v0 = "0,0",
+              torque = "0,0,0";
   std::string precision = "double";
-  double mass = 1.0, mu = 0.3, g = 9.81, omega0 = 0.0, dt = 1.0 / 240.0, tMax = 10.0, recordAt = 0.01;
+  double mass = 1.0, mu = 0.3, g = 9.81, omega0 = 0.0, dt = 1.0 / 240.0, tMax = 10.0,
+         recordAt = 0.01;
   bool json = false;
 };
 
@@ -51,7 +52,8 @@ SimulationSpec makeSpec(const SimulateArgs& a) {
     spec.LX = v[0];
     spec.LY = v[1];
     spec.LZ = v[2];
-    if (!(spec.LX > 0.0 && spec.LY > 0.0 && spec.LZ > 0.0)) throw UsageError("--shape box:LX,LY,LZ needs sizes > 0");
+    if (!(spec.LX > 0.0 && spec.LY > 0.0 && spec.LZ > 0.0))
+      throw UsageError("--shape box:LX,LY,LZ needs sizes > 0");
   } else {
     throw UsageError("--shape must be cylinder:R,H or box:LX,LY,LZ: got '" + a.shape + "'");
   }
@@ -76,12 +78,15 @@ SimulationSpec makeSpec(const SimulateArgs& a) {
   if (!(spec.g > 0.0) || !std::isfinite(spec.g)) throw UsageError("--g must be positive");
   if (!(spec.dt > 0.0) || !std::isfinite(spec.dt)) throw UsageError("--dt must be positive");
   if (!(spec.tMax > 0.0) || !std::isfinite(spec.tMax)) throw UsageError("--t-max must be positive");
-  if (!(spec.recordAt > 0.0 && spec.recordAt < 1.0)) throw UsageError("--record-at must lie in (0, 1)");
+  if (!(spec.recordAt > 0.0 && spec.recordAt < 1.0))
+    throw UsageError("--record-at must lie in (0, 1)");
   if (!std::isfinite(spec.omega0)) throw UsageError("--omega0 must be finite");
   return spec;
 }
 
-nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json finiteOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 void run(const SimulateArgs& a) {
   const SimulationSpec spec = makeSpec(a);
@@ -95,7 +100,8 @@ void run(const SimulateArgs& a) {
 #ifdef PATCHSPIN_HAS_BULLET
     result = bullet::simulate(spec);
 #else
-    throw UsageError("--engine bullet: this patchspin was built without Bullet (PATCHSPIN_BUILD_BULLET=OFF)");
+    throw UsageError(
+        "--engine bullet: this patchspin was built without Bullet (PATCHSPIN_BUILD_BULLET=OFF)");
 #endif
   }
   const bool recorded = result.wStop.norm() > 0.0;
@@ -112,35 +118,41 @@ void run(const SimulateArgs& a) {
     return;
   }
   std::printf("engine    %s, model %s\n", spec.engine.c_str(), spec.model.c_str());
-  std::printf("stopped   %s at t = %.9g s\n", result.stopped ? "yes" : "no (time limit)", result.tStop);
+  std::printf("stopped   %s at t = %.9g s\n", result.stopped ? "yes" : "no (time limit)",
+              result.tStop);
   if (recorded) {
     std::printf("w_stop    (%+.6f, %+.6f, %+.6f)   at r = %g r0; x along the force (or v0), z up\n",
                 result.wStop.x(), result.wStop.y(), result.wStop.z(), spec.recordAt);
   }
   if (result.epsStop) std::printf("eps_stop  |v|/(R|w|) = %.6g\n", *result.epsStop);
-  std::printf("moved     (%.6g, %.6g) m, turned %.6g rad\n", result.displacement.x(), result.displacement.y(),
-              result.rotation);
+  std::printf("moved     (%.6g, %.6g) m, turned %.6g rad\n", result.displacement.x(),
+              result.displacement.y(), result.rotation);
 }
 
 const RegisterCommand registration([](CLI::App& app) {
   auto a = std::make_shared<SimulateArgs>();
-  CLI::App* cmd = app.add_subcommand("simulate", "Slide and spin one body on a plane until it sticks");
+  CLI::App* cmd =
+      app.add_subcommand("simulate", "Slide and spin one body on a plane until it sticks");
   cmd->add_option("--engine", a->engine, "reference (Eq. (93), adaptive) | bullet");
   cmd->add_option("--model", a->model, "ellipsoidal | exact | stock (bullet only)");
-  cmd->add_option("--shape", a->shape, "cylinder:R,H | box:LX,LY,LZ [m], standing on its flat face")->required();
+  cmd->add_option("--shape", a->shape, "cylinder:R,H | box:LX,LY,LZ [m], standing on its flat face")
+      ->required();
   cmd->add_option("--mass", a->mass, "mass [kg] (default 1)");
   cmd->add_option("--mu", a->mu, "friction coefficient (default 0.3)");
   cmd->add_option("--g", a->g, "gravity [m/s^2] (default 9.81)");
-  cmd->add_option("--force", a->force, "FX,FY: horizontal force at the centre of mass, ground frame [N]");
+  cmd->add_option("--force", a->force,
+                  "FX,FY: horizontal force at the centre of mass, ground frame [N]");
   cmd->add_option("--v0", a->v0, "VX,VY: initial velocity [m/s]");
   cmd->add_option("--omega0", a->omega0, "WZ: initial spin [rad/s]");
   cmd->add_option("--torque", a->torque, "TX,TY,TZ: constant couple, ground frame [N m]");
   cmd->add_option("--dt", a->dt, "time step [s] (bullet; reference: trajectory sampling)");
   cmd->add_option("--t-max", a->tMax, "time limit [s] (default 10)");
-  cmd->add_option("--record-at", a->recordAt, "record w when r first falls below FRAC r0 (default 0.01)");
+  cmd->add_option("--record-at", a->recordAt,
+                  "record w when r first falls below FRAC r0 (default 0.01)");
   cmd->add_option("--precision", a->precision, "float | double (bullet only)");
-  cmd->add_flag("--json", a->json,
-                "print {stopped, t_stop, w_stop, eps_stop, displacement, rotation} as one JSON object");
+  cmd->add_flag(
+      "--json", a->json,
+      "print {stopped, t_stop, w_stop, eps_stop, displacement, rotation} as one JSON object");
   cmd->callback([a] { run(*a); });
 });
 

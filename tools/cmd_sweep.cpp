@@ -1,10 +1,6 @@
 // patchspin sweep: number and types of the limit directions over a range of
 // the force F (along x) or over the (F, T) plane (T: couple about x, parallel
 // to F) -- the data behind the paper's Fig. 11 and Fig. 13. CSV output.
-#include "tool_common.hpp"
-
-#include <patchspin/analysis.hpp>
-
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -13,8 +9,11 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <patchspin/analysis.hpp>
 #include <sstream>
 #include <thread>
+
+#include "tool_common.hpp"
 
 namespace patchspin::tool {
 
@@ -40,11 +39,13 @@ Range parseRange(const std::string& text, const char* what) {
     r.lo = r.hi = parseNumbers(parts[0], what, 1)[0];
     return r;
   }
-  if (parts.size() != 3) throw UsageError(std::string(what) + " must be A:B:N or A: got '" + text + "'");
+  if (parts.size() != 3)
+    throw UsageError(std::string(what) + " must be A:B:N or A: got '" + text + "'");
   r.lo = parseNumbers(parts[0], what, 1)[0];
   r.hi = parseNumbers(parts[1], what, 1)[0];
   const double n = parseNumbers(parts[2], what, 1)[0];
-  if (!(n >= 1.0 && n <= 1e6) || n != std::floor(n)) throw UsageError(std::string(what) + ": N must be 1..1e6");
+  if (!(n >= 1.0 && n <= 1e6) || n != std::floor(n))
+    throw UsageError(std::string(what) + ": N must be 1..1e6");
   r.n = static_cast<int>(n);
   return r;
 }
@@ -56,7 +57,8 @@ struct SweepArgs {
 };
 
 std::string csvRow(double F, double T, const LimitAnalysis& a) {
-  int attracting = 0, dominant = 0, isolated = 0, saddle = 0, nonhyperbolic = 0, attractingDominant = 0;
+  int attracting = 0, dominant = 0, isolated = 0, saddle = 0, nonhyperbolic = 0,
+      attractingDominant = 0;
   std::ostringstream dirs;
   dirs.precision(9);
   for (const LimitDirection& d : a.directions) {
@@ -72,9 +74,10 @@ std::string csvRow(double F, double T, const LimitAnalysis& a) {
   }
   std::ostringstream row;
   row.precision(12);
-  row << F << ',' << T << ',' << a.directions.size() << ',' << attracting << ',' << attractingDominant << ','
-      << dominant << ',' << isolated << ',' << saddle << ',' << nonhyperbolic << ',' << a.continua.size() << ','
-      << (a.tipping ? 1 : 0) << ',' << (a.indexConsistent ? 1 : 0) << ",\"" << dirs.str() << "\"\n";
+  row << F << ',' << T << ',' << a.directions.size() << ',' << attracting << ','
+      << attractingDominant << ',' << dominant << ',' << isolated << ',' << saddle << ','
+      << nonhyperbolic << ',' << a.continua.size() << ',' << (a.tipping ? 1 : 0) << ','
+      << (a.indexConsistent ? 1 : 0) << ",\"" << dirs.str() << "\"\n";
   return row.str();
 }
 
@@ -98,7 +101,8 @@ void run(const SweepArgs& a, const FlatBody& base) {
       try {
         LimitOptions options;
         options.seeds = a.seeds;
-        rows[static_cast<std::size_t>(k)] = csvRow(F.at(i), T.at(j), findLimitDirections(FlatBodyModel(body, law), options));
+        rows[static_cast<std::size_t>(k)] =
+            csvRow(F.at(i), T.at(j), findLimitDirections(FlatBodyModel(body, law), options));
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(errorMutex);
         if (firstError.empty()) firstError = e.what();
@@ -112,7 +116,8 @@ void run(const SweepArgs& a, const FlatBody& base) {
   for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
   // progress on stderr while the workers run
   while (!a.quiet && done.load() < total) {
-    std::fprintf(stderr, "\rsweep: %d/%d points (%d%%)", done.load(), total, 100 * done.load() / total);
+    std::fprintf(stderr, "\rsweep: %d/%d points (%d%%)", done.load(), total,
+                 100 * done.load() / total);
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   for (std::thread& t : pool) t.join();
@@ -125,7 +130,8 @@ void run(const SweepArgs& a, const FlatBody& base) {
     if (!file) throw UsageError("--out: cannot write '" + a.out + "'");
   }
   std::ostream& out = a.out.empty() ? std::cout : file;
-  out << "F,T,n_directions,n_attracting,n_attracting_dominant,n_dominant,n_isolated,n_saddle,n_nonhyperbolic,"
+  out << "F,T,n_directions,n_attracting,n_attracting_dominant,n_dominant,n_isolated,n_saddle,n_"
+         "nonhyperbolic,"
          "n_continua,tipping,index_consistent,directions\n";
   for (const std::string& row : rows) out << row;
 }
@@ -133,12 +139,14 @@ void run(const SweepArgs& a, const FlatBody& base) {
 const RegisterCommand registration([](CLI::App& app) {
   auto a = std::make_shared<SweepArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "sweep", "Number and types of limit directions over F (along x) or the (F, T) plane (T about x); CSV");
+      "sweep",
+      "Number and types of limit directions over F (along x) or the (F, T) plane (T about x); CSV");
   auto body = addBodyOptions(cmd, false);
   cmd->add_option("--model", a->model, "ellipsoidal | exact");
   cmd->add_option("--F", a->F, "A:B:N  force along x [N] (or [mu m g] with --scaled)")->required();
   cmd->add_option("--T", a->T, "A:B:N  couple about x [N m] (or [m g L] with --scaled); default 0");
-  cmd->add_flag("--scaled", a->scaled, "F in units of mu m g, T in units of m g L (L: farthest patch point from O)");
+  cmd->add_flag("--scaled", a->scaled,
+                "F in units of mu m g, T in units of m g L (L: farthest patch point from O)");
   cmd->add_option("--threads", a->threads, "worker threads (default: all cores)");
   cmd->add_option("--seeds", a->seeds, "seed points of the sphere solver for Pi(w) (default 300)");
   cmd->add_option("--out", a->out, "CSV file (default: standard output)");

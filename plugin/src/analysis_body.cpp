@@ -1,12 +1,10 @@
 // Flat body on a plane, Sect. 5: mass and gyroscopic matrices (91)-(92),
 // external wrench (79), (89) and the pressure coupling (94)-(97), Sect. 5.6.
-#include <patchspin/analysis.hpp>
-
 #include <Eigen/LU>
+#include <cmath>
+#include <patchspin/analysis.hpp>
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/pressure.hpp>
-
-#include <cmath>
 
 namespace patchspin {
 
@@ -14,7 +12,8 @@ namespace {
 
 void requireNonNegative(double value, const char* what) {
   internal::requireFinite(value, what);
-  if (value < 0.0) throw Error(std::string(what) + " must be >= 0: got " + internal::formatDouble(value));
+  if (value < 0.0)
+    throw Error(std::string(what) + " must be >= 0: got " + internal::formatDouble(value));
 }
 
 }  // namespace

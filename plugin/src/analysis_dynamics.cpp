@@ -1,11 +1,9 @@
 // Reference slip dynamics of a flat body, Eq. (93), with an adaptive
 // Dormand-Prince 5(4) step; `patchspin simulate --engine reference`.
-#include <patchspin/analysis.hpp>
-
 #include <Eigen/LU>
-
 #include <cmath>
 #include <limits>
+#include <patchspin/analysis.hpp>
 
 namespace patchspin {
 
@@ -84,8 +82,8 @@ constexpr double kA[7][6] = {
     {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729, 0, 0},
     {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656, 0},
     {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}};
-constexpr double kB4[7] = {5179.0 / 57600, 0, 7571.0 / 16695, 393.0 / 640,
-                           -92097.0 / 339200, 187.0 / 2100, 1.0 / 40};
+constexpr double kB4[7] = {5179.0 / 57600, 0,       7571.0 / 16695, 393.0 / 640, -92097.0 / 339200,
+                           187.0 / 2100,   1.0 / 40};
 
 // One step; returns the 5th-order state and the error estimate.
 State dpStep(const SlipOde& f, const State& y, const State& k1, double h, State& err, State& k7) {
@@ -163,7 +161,8 @@ ReferenceRun integrateReference(const FlatBodyModel& model, const BodyState& ini
     const double r = y.tail<3>().norm();
     const double rScale = std::max(std::min(r, yNew.tail<3>().norm()), 1e-300);
     double e = 0.0;
-    for (int i = 0; i < 2; ++i) e = std::max(e, std::abs(err[i]) / (options.relTol * (length + std::abs(y[i]))));
+    for (int i = 0; i < 2; ++i)
+      e = std::max(e, std::abs(err[i]) / (options.relTol * (length + std::abs(y[i]))));
     e = std::max(e, std::abs(err[2]) / (options.relTol * (1.0 + std::abs(y[2]))));
     for (int i = 3; i < 6; ++i) e = std::max(e, std::abs(err[i]) / (options.relTol * rScale));
     if (!(e <= 1.0)) {
@@ -258,7 +257,8 @@ FlatBody flatBodyFromSpec(const SimulationSpec& spec) {
 
 SimulationResult simulateReference(const SimulationSpec& spec) {
   if (spec.model == "stock") {
-    throw Error("model 'stock' is Bullet's own friction: use it with --engine bullet, not reference");
+    throw Error(
+        "model 'stock' is Bullet's own friction: use it with --engine bullet, not reference");
   }
   const Model law = modelFromString(spec.model);
   internal::requireFinite(spec.v0, "initial velocity v0");

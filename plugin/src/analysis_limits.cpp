@@ -1,27 +1,24 @@
 // Limit directions of a flat body, Sect. 3.3 and 5.5-5.6: fixed points of
 // the fast dynamics w' = V*(w) on the unit sphere, their rate R* and type.
-#include <patchspin/analysis.hpp>
-
-#include <Eigen/LU>
-
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <Eigen/SVD>
-
 #include <algorithm>
 #include <cmath>
+#include <patchspin/analysis.hpp>
 
 namespace patchspin {
 
 namespace {
 
 // Relative tolerances (scale: the size of the limit field, ~ mu g).
-constexpr double kRealTol = 1e-5;     // |Im| of a (111) eigenvalue still tried as real: split
-                                      // double roots have |Im| ~ sqrt(eps); false hits are
-                                      // discarded by the Newton polish below
-constexpr double kSingularTol = 1e-7;  // singular value of (rdot I - B) taken as zero
-constexpr double kResidualTol = 1e-11; // accepted |(rdot I - B) w - c| (issue: 1e-10)
-constexpr double kSameTol = 1e-7;      // two unit directions closer than this are one
-constexpr double kHyperTol = 1e-8;     // |Re lambda| or |R*| below this: nonhyperbolic
+constexpr double kRealTol = 1e-5;       // |Im| of a (111) eigenvalue still tried as real: split
+                                        // double roots have |Im| ~ sqrt(eps); false hits are
+                                        // discarded by the Newton polish below
+constexpr double kSingularTol = 1e-7;   // singular value of (rdot I - B) taken as zero
+constexpr double kResidualTol = 1e-11;  // accepted |(rdot I - B) w - c| (issue: 1e-10)
+constexpr double kSameTol = 1e-7;       // two unit directions closer than this are one
+constexpr double kHyperTol = 1e-8;      // |Re lambda| or |R*| below this: nonhyperbolic
 
 // Orthonormal basis (columns) of the tangent plane of the sphere at w.
 Eigen::Matrix<double, 3, 2> tangentBasis(const Vec3& w) {
@@ -41,8 +38,8 @@ double fieldScale(const FlatBodyModel& model) {
   const Mat3& M = model.massMatrix();
   const Mat3 Minv = M.inverse();
   const double Pz = -loads.force.z();
-  return model.body().mu * std::abs(Pz) * Minv.norm() + (Minv * model.externalWrench(loads)).norm() +
-         1e-300;
+  return model.body().mu * std::abs(Pz) * Minv.norm() +
+         (Minv * model.externalWrench(loads)).norm() + 1e-300;
 }
 
 LimitType typeOf(double rdot, const Eigen::Vector2cd& lambda, double scale) {
@@ -159,7 +156,8 @@ void solveLinear(const FlatBodyModel& model, LimitAnalysis& out) {
     for (int i = 0; i < 6; ++i) {
       if (std::abs(es.eigenvalues()[i].imag()) > kRealTol * scale) continue;
       const double rdot0 = es.eigenvalues()[i].real();
-      Eigen::JacobiSVD<Mat3> svd(rdot0 * Mat3::Identity() - B, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Eigen::JacobiSVD<Mat3> svd(rdot0 * Mat3::Identity() - B,
+                                 Eigen::ComputeFullU | Eigen::ComputeFullV);
       const Vec3 sv = svd.singularValues();
       // minimum-norm solution over the nonsingular part, null space apart
       Vec3 wp = Vec3::Zero();
@@ -251,7 +249,8 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
       for (double radius : {1e-3, 1e-2, 5e-2}) {
         for (int k = 0; k < 8; ++k) {
           const double a = 2.0 * M_PI * k / 8.0;
-          seeds.push_back((d.w + radius * (std::cos(a) * E.col(0) + std::sin(a) * E.col(1))).normalized());
+          seeds.push_back(
+              (d.w + radius * (std::cos(a) * E.col(0) + std::sin(a) * E.col(1))).normalized());
         }
       }
     }
@@ -345,10 +344,14 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
 
 const char* toString(LimitType type) {
   switch (type) {
-    case LimitType::Dominant: return "dominant";
-    case LimitType::Isolated: return "isolated";
-    case LimitType::Saddle: return "saddle";
-    case LimitType::Nonhyperbolic: return "nonhyperbolic";
+    case LimitType::Dominant:
+      return "dominant";
+    case LimitType::Isolated:
+      return "isolated";
+    case LimitType::Saddle:
+      return "saddle";
+    case LimitType::Nonhyperbolic:
+      return "nonhyperbolic";
   }
   return "nonhyperbolic";
 }
@@ -385,11 +388,12 @@ LimitAnalysis findLimitDirections(const FlatBodyModel& model, const LimitOptions
   } else {
     solveNonlinear(model, options, out);
   }
-  std::sort(out.directions.begin(), out.directions.end(), [](const LimitDirection& a, const LimitDirection& b) {
-    if (a.w.x() != b.w.x()) return a.w.x() > b.w.x();
-    if (a.w.z() != b.w.z()) return a.w.z() > b.w.z();
-    return a.w.y() > b.w.y();
-  });
+  std::sort(out.directions.begin(), out.directions.end(),
+            [](const LimitDirection& a, const LimitDirection& b) {
+              if (a.w.x() != b.w.x()) return a.w.x() > b.w.x();
+              if (a.w.z() != b.w.z()) return a.w.z() > b.w.z();
+              return a.w.y() > b.w.y();
+            });
   // tipping: negative pressure somewhere on the patch in a reported direction
   const BodyLoads loads = model.bodyLoads();
   const double meanPressure = -loads.force.z() / model.body().shape.area();

@@ -1,13 +1,11 @@
 // The flat-body model of Sect. 5 checked against independent computations:
 // the 3-D Newton-Euler equations with brute-force pressure integrals, the
 // brute-force friction integral (16), finite differences of the Jacobian.
-#include <patchspin/analysis.hpp>
-
-#include <oracle.hpp>
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <oracle.hpp>
+#include <patchspin/analysis.hpp>
 #include <random>
 
 namespace patchspin {
@@ -19,7 +17,8 @@ constexpr double kQuadTol = 1e-9;
 
 FlatBody skewBody() {
   FlatBody body;
-  body.shape = PatchShape::polygon({Vec2(-0.06, -0.04), Vec2(0.07, -0.05), Vec2(0.08, 0.03), Vec2(-0.02, 0.06)});
+  body.shape = PatchShape::polygon(
+      {Vec2(-0.06, -0.04), Vec2(0.07, -0.05), Vec2(0.08, 0.03), Vec2(-0.02, 0.06)});
   body.mass = 1.7;
   body.Jz = 0.006;
   body.Jxz = -0.0007;
@@ -51,8 +50,10 @@ TEST(FlatBodyModel, PressureSatisfiesNewtonEuler) {
     p.cy = c.pressure[2];
     const auto field = testing::linearField(p);
     const double Pz = testing::bruteForceIntegral(body.shape, field, 1e-12);
-    const double Sx = testing::bruteForceIntegral(body.shape, [&](const Vec2& q) { return q.x() * field(q); }, 1e-12);
-    const double Sy = testing::bruteForceIntegral(body.shape, [&](const Vec2& q) { return q.y() * field(q); }, 1e-12);
+    const double Sx = testing::bruteForceIntegral(
+        body.shape, [&](const Vec2& q) { return q.x() * field(q); }, 1e-12);
+    const double Sy = testing::bruteForceIntegral(
+        body.shape, [&](const Vec2& q) { return q.y() * field(q); }, 1e-12);
     const double scale = body.mass * body.g;
     EXPECT_NEAR(Pz, -loads.force.z(), kQuadTol * scale);
     // friction force at O and torque about O
@@ -87,7 +88,9 @@ TEST(FlatBodyModel, JacobianMatchesFiniteDifferences) {
     const Vec3 t1 = w.cross(Vec3::UnitZ()).normalized(), t2 = w.cross(t1);
     for (const Vec3& t : {t1, t2}) {
       const double h = 1e-6;
-      const Vec3 fd = (model.limitField((w + h * t).normalized()) - model.limitField((w - h * t).normalized())) / (2 * h);
+      const Vec3 fd = (model.limitField((w + h * t).normalized()) -
+                       model.limitField((w - h * t).normalized())) /
+                      (2 * h);
       EXPECT_LT((fd - D * t).norm(), 1e-7 * D.norm()) << toString(law);
     }
   }
@@ -123,8 +126,10 @@ TEST(FlatBodyModel, RandomNonlinearBodies) {
         p.p0 = c.pressure[0];
         p.cx = c.pressure[1];
         p.cy = c.pressure[2];
-        const Vec3 Q = testing::bruteForceQ(body.shape, testing::linearField(p), body.mu, model.rho(), d.w, 1e-11);
-        const Vec3 Fo = model.massMatrix().inverse() * (Q + model.externalWrench(model.bodyLoads()));
+        const Vec3 Q = testing::bruteForceQ(body.shape, testing::linearField(p), body.mu,
+                                            model.rho(), d.w, 1e-11);
+        const Vec3 Fo =
+            model.massMatrix().inverse() * (Q + model.externalWrench(model.bodyLoads()));
         EXPECT_LT((Fo - Fo.dot(d.w) * d.w).norm(), kQuadTol * scale) << trial;
       }
     }

@@ -1,12 +1,10 @@
 // Reference slip dynamics (93) against closed forms and the limit-direction
 // analysis (which it does not use): invariant rays, approach rates, stopping.
-#include <patchspin/analysis.hpp>
-
-#include <closed_forms.hpp>
-
 #include <gtest/gtest.h>
 
+#include <closed_forms.hpp>
 #include <cmath>
+#include <patchspin/analysis.hpp>
 
 namespace patchspin {
 namespace {
@@ -143,17 +141,20 @@ TEST(ReferenceDynamics, ExactFreeDiskFarkasRatio) {
   // the limit circle's transverse eigenvalue
   const FlatBodyModel model(disk(0.0), Model::Exact);
   const LimitDirection d = classifyDirection(model, b.wStop);
-  const double lambda = std::abs(d.eigenvalues[0]) > std::abs(d.eigenvalues[1]) ? d.eigenvalues[0].real()
-                                                                                : d.eigenvalues[1].real();
+  const double lambda = std::abs(d.eigenvalues[0]) > std::abs(d.eigenvalues[1])
+                            ? d.eigenvalues[0].real()
+                            : d.eigenvalues[1].real();
   const double k = lambda / d.rdot;
   EXPECT_LT(d.residual, 1e-3 * kMu * kG);  // recorded w is nearly a limit direction
-  const double q = std::pow(1e-2, k);     // deviation ratio between the two records
+  const double q = std::pow(1e-2, k);      // deviation ratio between the two records
   EXPECT_NEAR((*a.epsStop - 0.6530) / (*b.epsStop - 0.6530), 1.0 / q, 0.05 / q);
   const double epsLimit = (*b.epsStop - q * *a.epsStop) / (1.0 - q);
   double lo = 0.3, hi = 1.0;
   for (int it = 0; it < 100; ++it) {
     const double mid = 0.5 * (lo + hi);
-    const auto f = [](double e) { return testing::uniformDiskForce(e) - 4.0 / 3.0 * e * testing::uniformDiskTorque(e); };
+    const auto f = [](double e) {
+      return testing::uniformDiskForce(e) - 4.0 / 3.0 * e * testing::uniformDiskTorque(e);
+    };
     (f(mid) > 0) == (f(lo) > 0) ? lo = mid : hi = mid;
   }
   EXPECT_NEAR(epsLimit, 0.5 * (lo + hi), 2e-6);
@@ -187,7 +188,8 @@ TEST(ReferenceDynamics, SimulationEndsOnPredictedLimitDirection) {
   const LimitDirection* d = dominantWithPositiveSpin(a);
   ASSERT_NE(d, nullptr);
   EXPECT_GT(std::abs(d->w.y()), 1e-3);  // thick: the direction leaves w2 = 0
-  const double k = std::min(std::abs(d->eigenvalues[0].real()), std::abs(d->eigenvalues[1].real())) / -d->rdot;
+  const double k =
+      std::min(std::abs(d->eigenvalues[0].real()), std::abs(d->eigenvalues[1].real())) / -d->rdot;
   EXPECT_LT((run.wStop - d->w).norm(), 3.0 * std::pow(1e-7, k));
 }
 

@@ -6,16 +6,14 @@
 // the body. With physical moments the paper's Sect. 6.3 results hold with
 // T -> -T (w3 -> -w3 of every direction), and Sect. 6.2's (122), (125) hold
 // with w2 -> -w2. Derivations of the expected values are next to each test.
-#include <patchspin/analysis.hpp>
-#include <patchspin/pressure.hpp>
-
-#include <closed_forms.hpp>
-#include <oracle.hpp>
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <closed_forms.hpp>
 #include <cmath>
+#include <oracle.hpp>
+#include <patchspin/analysis.hpp>
+#include <patchspin/pressure.hpp>
 #include <random>
 
 namespace patchspin {
@@ -50,9 +48,9 @@ const LimitDirection* findNear(const LimitAnalysis& a, const Vec3& w, double tol
 }
 
 int countType(const LimitAnalysis& a, bool attracting, LimitType type) {
-  return static_cast<int>(std::count_if(a.directions.begin(), a.directions.end(), [&](const LimitDirection& d) {
-    return d.attracting == attracting && d.type == type;
-  }));
+  return static_cast<int>(std::count_if(
+      a.directions.begin(), a.directions.end(),
+      [&](const LimitDirection& d) { return d.attracting == attracting && d.type == type; }));
 }
 
 std::vector<double> sortedRe(const LimitDirection& d) {
@@ -177,11 +175,17 @@ TEST(ThinDisk, Case3SaddleIsolatedAndTwoDominant) {
 // repelling at |F| = mu m g (R* = 0 at w1).
 TEST(ThinDisk, BifurcationPoints) {
   const double Fc = kFric / 9.0;
-  EXPECT_EQ(findLimitDirections(FlatBodyModel(thinDisk(Fc * (1 - 1e-6)), Model::Ellipsoidal)).directions.size(), 4u);
-  EXPECT_EQ(findLimitDirections(FlatBodyModel(thinDisk(Fc * (1 + 1e-6)), Model::Ellipsoidal)).directions.size(), 2u);
-  const LimitAnalysis atPitchfork = findLimitDirections(FlatBodyModel(thinDisk(Fc), Model::Ellipsoidal));
+  EXPECT_EQ(findLimitDirections(FlatBodyModel(thinDisk(Fc * (1 - 1e-6)), Model::Ellipsoidal))
+                .directions.size(),
+            4u);
+  EXPECT_EQ(findLimitDirections(FlatBodyModel(thinDisk(Fc * (1 + 1e-6)), Model::Ellipsoidal))
+                .directions.size(),
+            2u);
+  const LimitAnalysis atPitchfork =
+      findLimitDirections(FlatBodyModel(thinDisk(Fc), Model::Ellipsoidal));
   EXPECT_EQ(findNear(atPitchfork, Vec3(1, 0, 0))->type, LimitType::Nonhyperbolic);
-  const LimitAnalysis atTurn = findLimitDirections(FlatBodyModel(thinDisk(kFric), Model::Ellipsoidal));
+  const LimitAnalysis atTurn =
+      findLimitDirections(FlatBodyModel(thinDisk(kFric), Model::Ellipsoidal));
   EXPECT_NEAR(findNear(atTurn, Vec3(1, 0, 0))->rdot, 0.0, kTol * kMu * kG);
   EXPECT_EQ(findNear(atTurn, Vec3(1, 0, 0))->type, LimitType::Nonhyperbolic);
 }
@@ -447,8 +451,10 @@ TEST(ThickDisk, PressureLeansForward) {
   const Vec3 w = Vec3(0.3, -0.5, 0.7).normalized();
   const ContactState cw = model.contact(w, 0.0, model.bodyLoads());
   const double D = 9 + 16 * eta * eta * w.z() * w.z();
-  EXPECT_NEAR(cw.pressure[1] * kRadius / cw.pressure[0], 12 * eta * (3 * w.x() - 4 * eta * w.y() * w.z()) / D, 1e-12);
-  EXPECT_NEAR(cw.pressure[2] * kRadius / cw.pressure[0], 12 * eta * (3 * w.y() + 4 * eta * w.x() * w.z()) / D, 1e-12);
+  EXPECT_NEAR(cw.pressure[1] * kRadius / cw.pressure[0],
+              12 * eta * (3 * w.x() - 4 * eta * w.y() * w.z()) / D, 1e-12);
+  EXPECT_NEAR(cw.pressure[2] * kRadius / cw.pressure[0],
+              12 * eta * (3 * w.y() + 4 * eta * w.x() * w.z()) / D, 1e-12);
 }
 
 TEST(ThickDisk, NontrivialDirectionsMatchDerivation) {
@@ -466,7 +472,8 @@ TEST(ThickDisk, NontrivialDirectionsMatchDerivation) {
     ++nontrivial;
     const double D = 9 + 16 * eta * eta * w3 * w3;
     const double K = 9 + 144 * eta * eta - 272 * eta * eta * w3 * w3;
-    EXPECT_NEAR(d.rdot, -8.0 / 9.0 * kMu * kG + kMu * kG * 16 * eta * eta * (1 - w3 * w3) / D, 1e-9);
+    EXPECT_NEAR(d.rdot, -8.0 / 9.0 * kMu * kG + kMu * kG * 16 * eta * eta * (1 - w3 * w3) / D,
+                1e-9);
     EXPECT_NEAR(d.w.x(), (1 - w3 * w3) * K / (9 * D * xi), 1e-9);
     EXPECT_NEAR(d.w.y(), -12 * eta * w3 * (1 - w3 * w3) / (D * xi), 1e-9);
     EXPECT_TRUE(d.attracting);
@@ -478,12 +485,15 @@ TEST(ThickDisk, NontrivialDirectionsMatchDerivation) {
 TEST(ThickDisk, CriticalForceEq127) {
   for (double eta : {0.1, 0.2}) {
     const double Fc = kFric * (1 + 16 * eta * eta) / 9.0;
-    const LimitAnalysis below = findLimitDirections(FlatBodyModel(thickDisk(0.97 * Fc, eta), Model::Ellipsoidal));
-    const LimitAnalysis above = findLimitDirections(FlatBodyModel(thickDisk(1.03 * Fc, eta), Model::Ellipsoidal));
+    const LimitAnalysis below =
+        findLimitDirections(FlatBodyModel(thickDisk(0.97 * Fc, eta), Model::Ellipsoidal));
+    const LimitAnalysis above =
+        findLimitDirections(FlatBodyModel(thickDisk(1.03 * Fc, eta), Model::Ellipsoidal));
     EXPECT_EQ(below.directions.size(), 4u) << eta;
     EXPECT_EQ(above.directions.size(), 2u) << eta;
     // at Fc the pitchfork: w = (1, 0, 0) is nonhyperbolic (an eigenvalue crosses 0)
-    const LimitDirection at = classifyDirection(FlatBodyModel(thickDisk(Fc, eta), Model::Ellipsoidal), Vec3::UnitX());
+    const LimitDirection at =
+        classifyDirection(FlatBodyModel(thickDisk(Fc, eta), Model::Ellipsoidal), Vec3::UnitX());
     EXPECT_NEAR(std::min(std::abs(at.eigenvalues[0]), std::abs(at.eigenvalues[1])), 0.0, 1e-9);
   }
 }
@@ -491,8 +501,10 @@ TEST(ThickDisk, CriticalForceEq127) {
 // End of Sect. 6.2: p >= 0 in every direction iff 160 eta^2 w3^2 - 144 eta^2 + 9 >= 0;
 // at w = (1, 0, 0) (a limit direction) this needs eta <= 1/4.
 TEST(ThickDisk, TippingBeyondQuarter) {
-  EXPECT_FALSE(findLimitDirections(FlatBodyModel(thickDisk(0.5 * kFric, 0.24), Model::Ellipsoidal)).tipping);
-  EXPECT_TRUE(findLimitDirections(FlatBodyModel(thickDisk(0.5 * kFric, 0.26), Model::Ellipsoidal)).tipping);
+  EXPECT_FALSE(
+      findLimitDirections(FlatBodyModel(thickDisk(0.5 * kFric, 0.24), Model::Ellipsoidal)).tipping);
+  EXPECT_TRUE(
+      findLimitDirections(FlatBodyModel(thickDisk(0.5 * kFric, 0.26), Model::Ellipsoidal)).tipping);
 }
 
 // ---------------------------------------------------------------- properties
@@ -529,7 +541,8 @@ TEST(Properties, RandomLinearBodies) {
     const Mat3 B = model.linearB();
     const Vec3 c = model.linearC();
     for (const LimitDirection& d : a.directions) {
-      EXPECT_LT(((d.rdot * Mat3::Identity() - B) * d.w - c).norm(), kResidualTol * body.mu * body.g);
+      EXPECT_LT(((d.rdot * Mat3::Identity() - B) * d.w - c).norm(),
+                kResidualTol * body.mu * body.g);
       EXPECT_NEAR(d.w.norm(), 1.0, 1e-14);
     }
     LimitOptions sphere;
@@ -537,7 +550,8 @@ TEST(Properties, RandomLinearBodies) {
     sphere.seeds = 300;
     const LimitAnalysis b = findLimitDirections(model, sphere);
     EXPECT_EQ(b.directions.size(), n) << trial;
-    for (const LimitDirection& d : b.directions) EXPECT_NE(findNear(a, d.w, 1e-7), nullptr) << trial;
+    for (const LimitDirection& d : b.directions)
+      EXPECT_NE(findNear(a, d.w, 1e-7), nullptr) << trial;
     ++checked;
   }
   EXPECT_EQ(checked, 40);
@@ -554,7 +568,8 @@ TEST(Properties, RandomLinearBodies) {
 TEST(ExactThinDisk, CriticalForceIsHalfMuMg) {
   const double F1 = 0.3 * kFric, F2 = 0.7 * kFric;
   auto lambdaW3 = [](double F) {
-    const LimitDirection d = classifyDirection(FlatBodyModel(thinDisk(F), Model::Exact), Vec3::UnitX());
+    const LimitDirection d =
+        classifyDirection(FlatBodyModel(thinDisk(F), Model::Exact), Vec3::UnitX());
     return d.eigenvalues[1].real();  // the larger one: mu g/2 - F/m
   };
   const double l1 = lambdaW3(F1), l2 = lambdaW3(F2);
@@ -569,7 +584,8 @@ TEST(ExactThinDisk, CriticalForceIsHalfMuMg) {
   LimitOptions opt;
   opt.seeds = 200;
   auto spin = [&](double xi) {
-    const LimitAnalysis a = findLimitDirections(FlatBodyModel(thinDisk(xi * kFric), Model::Exact), opt);
+    const LimitAnalysis a =
+        findLimitDirections(FlatBodyModel(thinDisk(xi * kFric), Model::Exact), opt);
     EXPECT_TRUE(a.indexConsistent) << xi;
     double w3 = 0.0;
     for (const LimitDirection& d : a.directions) w3 = std::max(w3, d.w.z());
@@ -590,8 +606,10 @@ TEST(ExactThinDisk, ForceFreeContinuaGiveFarkasRatio) {
   double lo = 0.3, hi = 1.0;
   for (int it = 0; it < 100; ++it) {
     const double mid = 0.5 * (lo + hi);
-    const double f = testing::uniformDiskForce(mid) - 4.0 / 3.0 * mid * testing::uniformDiskTorque(mid);
-    const double flo = testing::uniformDiskForce(lo) - 4.0 / 3.0 * lo * testing::uniformDiskTorque(lo);
+    const double f =
+        testing::uniformDiskForce(mid) - 4.0 / 3.0 * mid * testing::uniformDiskTorque(mid);
+    const double flo =
+        testing::uniformDiskForce(lo) - 4.0 / 3.0 * lo * testing::uniformDiskTorque(lo);
     ((f > 0) == (flo > 0) ? lo : hi) = mid;
   }
   const double epsClosed = 0.5 * (lo + hi);

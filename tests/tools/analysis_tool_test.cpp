@@ -1,17 +1,16 @@
 // `patchspin limits`, `simulate --engine reference` and `sweep`: JSON/CSV
 // output against the library and against the closed forms of Sect. 6.1, and
 // one-line errors for bad arguments.
-#include "run_tool.hpp"
-
-#include <patchspin/analysis.hpp>
-
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <patchspin/analysis.hpp>
 #include <sstream>
+
+#include "run_tool.hpp"
 
 namespace patchspin {
 namespace {
@@ -23,8 +22,9 @@ constexpr double kPrintTol = 1e-12;
 
 // Thin uniform disk R = 0.1, m = 2, Jz = m R^2/2 = 0.01, mu = 0.3, g = 9.81,
 // F = 0.05 mu m g = 0.2943 N: Sect. 6.1 Case 3 (F < mu m g / 9).
-const char* kCase3 = "limits --patch disk:0.1 --mass 2 --inertia 0.01 --mu 0.3 --g 9.81 --force 0.2943,0 "
-                     "--model ellipsoidal --json";
+const char* kCase3 =
+    "limits --patch disk:0.1 --mass 2 --inertia 0.01 --mu 0.3 --g 9.81 --force 0.2943,0 "
+    "--model ellipsoidal --json";
 
 TEST(LimitsToolTest, Case3JsonMatchesClosedForms) {
   const auto run = runTool(PATCHSPIN_TOOL, kCase3);
@@ -51,9 +51,10 @@ TEST(LimitsToolTest, Case3JsonMatchesClosedForms) {
 }
 
 TEST(LimitsToolTest, AgreesWithLibraryForThickBodyExact) {
-  const auto run = runTool(PATCHSPIN_TOOL,
-                           "limits --patch rect:0.1,0.06 --mass 1.5 --inertia 0.002 --com 0.005,0,0.02 --mu 0.4 "
-                           "--force 0.5,0.2 --torque 0,0,0.01 --model exact --json");
+  const auto run =
+      runTool(PATCHSPIN_TOOL,
+              "limits --patch rect:0.1,0.06 --mass 1.5 --inertia 0.002 --com 0.005,0,0.02 --mu 0.4 "
+              "--force 0.5,0.2 --torque 0,0,0.01 --model exact --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
   FlatBody body;
@@ -68,15 +69,16 @@ TEST(LimitsToolTest, AgreesWithLibraryForThickBodyExact) {
   ASSERT_EQ(j["limit_directions"].size(), a.directions.size());
   for (std::size_t i = 0; i < a.directions.size(); ++i) {
     const auto& d = j["limit_directions"][i];
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(d["w"][k].get<double>(), a.directions[i].w[k], kPrintTol);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(d["w"][k].get<double>(), a.directions[i].w[k], kPrintTol);
     EXPECT_NEAR(d["rdot"].get<double>(), a.directions[i].rdot, kPrintTol);
     EXPECT_EQ(d["type"].get<std::string>(), toString(a.directions[i].type));
   }
 }
 
 TEST(LimitsToolTest, ForceFreeDiskReportsContinuum) {
-  const auto run = runTool(PATCHSPIN_TOOL,
-                           "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model ellipsoidal --json");
+  const auto run = runTool(
+      PATCHSPIN_TOOL, "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model ellipsoidal --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
   ASSERT_FALSE(j["continuum"].is_null());
@@ -87,7 +89,8 @@ TEST(LimitsToolTest, ForceFreeDiskReportsContinuum) {
 }
 
 TEST(LimitsToolTest, TableIsReadable) {
-  const auto run = runTool(PATCHSPIN_TOOL, "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 0.2943,0");
+  const auto run =
+      runTool(PATCHSPIN_TOOL, "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 0.2943,0");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_NE(run.out.find("dominant"), std::string::npos);
   EXPECT_NE(run.out.find("saddle"), std::string::npos);
@@ -97,9 +100,10 @@ TEST(LimitsToolTest, TableIsReadable) {
 // Free thin disk, exact law: stops with eps -> 0.6530 (Farkas et al. 2003);
 // at r = 1e-5 r0 the approach (exponent ~0.6 per decade) leaves < 1e-3.
 TEST(SimulateToolTest, ReferenceFreeDiskJson) {
-  const auto run = runTool(PATCHSPIN_TOOL,
-                           "simulate --engine reference --model exact --shape cylinder:0.05,0.0001 --mass 1 "
-                           "--mu 0.3 --v0 0.5,0 --omega0 20 --record-at 0.00001 --json");
+  const auto run =
+      runTool(PATCHSPIN_TOOL,
+              "simulate --engine reference --model exact --shape cylinder:0.05,0.0001 --mass 1 "
+              "--mu 0.3 --v0 0.5,0 --omega0 20 --record-at 0.00001 --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
   EXPECT_TRUE(j["stopped"].get<bool>());
@@ -122,18 +126,20 @@ TEST(SimulateToolTest, ReferenceFreeDiskJson) {
 // A box pushed along y by less than mu m g stays put; w_stop is expressed in
 // the force frame (x along the force).
 TEST(SimulateToolTest, ReferenceBoxFrames) {
-  const auto rest = runTool(PATCHSPIN_TOOL,
-                            "simulate --engine reference --model ellipsoidal --shape box:0.1,0.08,0.04 --mass 1 "
-                            "--mu 0.5 --force 0,2 --json");
+  const auto rest =
+      runTool(PATCHSPIN_TOOL,
+              "simulate --engine reference --model ellipsoidal --shape box:0.1,0.08,0.04 --mass 1 "
+              "--mu 0.5 --force 0,2 --json");
   ASSERT_EQ(rest.exitCode, 0) << rest.err;
   const auto jr = nlohmann::json::parse(rest.out);
   EXPECT_TRUE(jr["stopped"].get<bool>());
   EXPECT_EQ(jr["displacement"][0].get<double>(), 0.0);
   EXPECT_TRUE(jr["eps_stop"].is_null());
   // sliding along the force (pure translation): w_stop = (1, 0, 0)
-  const auto slide = runTool(PATCHSPIN_TOOL,
-                             "simulate --engine reference --model exact --shape box:0.1,0.08,0.04 --mass 1 "
-                             "--mu 0.5 --force 0,2 --v0 0,1 --json");
+  const auto slide =
+      runTool(PATCHSPIN_TOOL,
+              "simulate --engine reference --model exact --shape box:0.1,0.08,0.04 --mass 1 "
+              "--mu 0.5 --force 0,2 --v0 0,1 --json");
   ASSERT_EQ(slide.exitCode, 0) << slide.err;
   const auto js = nlohmann::json::parse(slide.out);
   EXPECT_NEAR(js["w_stop"][0].get<double>(), 1.0, 1e-9);
@@ -143,8 +149,11 @@ TEST(SimulateToolTest, ReferenceBoxFrames) {
 
 TEST(SweepToolTest, ThinDiskCasesOverF) {
   const std::string out = std::string(::testing::TempDir()) + "/sweep_test.csv";
-  const auto run = runTool(PATCHSPIN_TOOL, "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --mu 0.3 --F 0.05:1.25:5 "
-                                           "--scaled --threads 2 --out " + out);
+  const auto run =
+      runTool(PATCHSPIN_TOOL,
+              "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --mu 0.3 --F 0.05:1.25:5 "
+              "--scaled --threads 2 --out " +
+                  out);
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_NE(run.err.find("100%"), std::string::npos);  // progress indicator
   std::ifstream file(out);
@@ -171,14 +180,14 @@ TEST(SweepToolTest, ThinDiskCasesOverF) {
 
 TEST(AnalysisToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
   const char* bad[] = {
-      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 1",              // wrong count
-      "limits --patch disk:0.1 --mass -2 --inertia 0.01",                       // negative mass
-      "limits --patch disk:0.1 --mass 2 --inertia 0,1,2",                       // Jz = 0
-      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model stock",          // not an analysis law
-      "simulate --engine reference --model stock --shape cylinder:0.05,0.01",   // stock needs Bullet
-      "simulate --shape sphere:1",                                              // unknown shape
-      "simulate --shape cylinder:0.05,0.01 --record-at 2",                      // bad fraction
-      "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --F 0:1",                 // bad range
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 1",      // wrong count
+      "limits --patch disk:0.1 --mass -2 --inertia 0.01",               // negative mass
+      "limits --patch disk:0.1 --mass 2 --inertia 0,1,2",               // Jz = 0
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model stock",  // not an analysis law
+      "simulate --engine reference --model stock --shape cylinder:0.05,0.01",  // stock needs Bullet
+      "simulate --shape sphere:1",                                             // unknown shape
+      "simulate --shape cylinder:0.05,0.01 --record-at 2",                     // bad fraction
+      "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --F 0:1",                // bad range
   };
   for (const char* args : bad) {
     const auto run = runTool(PATCHSPIN_TOOL, args);

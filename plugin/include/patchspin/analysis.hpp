@@ -13,15 +13,13 @@
 // T -> -T (6.3); see tests/core/analysis_limits_test.cpp.
 #pragma once
 
+#include <Eigen/Dense>
+#include <array>
+#include <optional>
 #include <patchspin/geometry.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/simulation.hpp>
 #include <patchspin/types.hpp>
-
-#include <Eigen/Dense>
-
-#include <array>
-#include <optional>
 #include <vector>
 
 namespace patchspin {
@@ -115,13 +113,13 @@ enum class LimitType { Dominant, Isolated, Saddle, Nonhyperbolic };
 const char* toString(LimitType type);
 
 struct LimitDirection {
-  Vec3 w = Vec3::Zero();          // unit slip direction
-  double rdot = 0.0;              // R* = w . F_o(w), Eq. (103) [m/s^2]
-  bool attracting = false;        // R* < 0 (Def. 1)
+  Vec3 w = Vec3::Zero();    // unit slip direction
+  double rdot = 0.0;        // R* = w . F_o(w), Eq. (103) [m/s^2]
+  bool attracting = false;  // R* < 0 (Def. 1)
   LimitType type = LimitType::Nonhyperbolic;
-  Eigen::Vector2cd eigenvalues;   // nontrivial eigenvalues of the projected Jacobian (31) [1/s]
-  double residual = 0.0;          // |(rdot I - B) w - c| or |V*(w)| [m/s^2]
-  double minPressure = 0.0;       // smallest pressure on the patch in this direction [Pa]
+  Eigen::Vector2cd eigenvalues;  // nontrivial eigenvalues of the projected Jacobian (31) [1/s]
+  double residual = 0.0;         // |(rdot I - B) w - c| or |V*(w)| [m/s^2]
+  double minPressure = 0.0;      // smallest pressure on the patch in this direction [Pa]
 };
 
 // A continuum of limit directions (Prop. 1, 3): a circle {n.w = offset} on
@@ -139,8 +137,8 @@ struct LimitContinuum {
 struct LimitAnalysis {
   std::vector<LimitDirection> directions;  // isolated limit directions
   std::vector<LimitContinuum> continua;    // continua (at most one in the linear case)
-  bool tipping = false;     // the pressure turns negative in some reported direction
-  bool linear = true;       // solved by the eigenproblem (111), else the sphere solver
+  bool tipping = false;                    // the pressure turns negative in some reported direction
+  bool linear = true;  // solved by the eigenproblem (111), else the sphere solver
   // Poincare-Hopf on the sphere: (#non-saddles - #saddles) must be 2 when all
   // points are hyperbolic and no continuum exists; false flags a miss.
   bool indexConsistent = true;
