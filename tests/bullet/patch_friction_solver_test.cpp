@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace patchspin::bullet {
 namespace {
@@ -277,6 +278,99 @@ TEST(PatchFrictionSolver, MixedSceneStaysSane) {
               double((top - topStart).length()), scene.solver().patchReports().size());
   EXPECT_LT(double((top - topStart).length()), 1e-3);
   for (btRigidBody* b : stack) EXPECT_LT(double(b->getLinearVelocity().length()), 1e-3);
+}
+
+// ---- other shapes: convex hull faces, cylinders with another up axis ---------------
+// A hexagonal prism built as a btConvexHullShape (circumradius a = 5 cm,
+// 2 cm high) stands on its hexagon: the patch is the hexagon, area
+// (3 sqrt(3) / 2) a^2, from Bullet's polyhedral features. Spun in place it
+// stops at t = omega0 J_z / (mu m g mean|r|) (same derivation as the box in
+// simulate_test.cpp), mean|r| over the hexagon by a brute-force grid
+// (2000^2 cells: boundary cells err by ~1/2000, hence kHullStopTol = 1 %).
+constexpr double kHullStopTol = 0.01;
+
+TEST(PatchFrictionSolver, ConvexHullPrismGivesAHexagonPatchAndSpinsDownOnTime) {
+  const double a = 0.05, h = 0.02, m = 1.0, omega0 = 20.0;
+  btConvexHullShape hull;
+  for (int k = 0; k < 6; ++k)
+    for (double z : {-h / 2, h / 2})
+      hull.addPoint(btVector3(btScalar(a * std::cos(k * M_PI / 3)), btScalar(a * std::sin(k * M_PI / 3)), btScalar(z)),
+                    false);
+  hull.recalcLocalAabb();
+  hull.setMargin(btScalar(1e-3));
+  // hexagon: J_z = (5/12) m a^2 (solid regular hexagonal prism)
+  const double jz = 5.0 / 12.0 * m * a * a, jx = 0.5 * jz + m * h * h / 12;
+  Scene scene(kG);
+  scene.addGroundPlane(1.0);
+  btRigidBody::btRigidBodyConstructionInfo info(btScalar(m), nullptr, &hull,
+                                                btVector3(btScalar(jx), btScalar(jx), btScalar(jz)));
+  info.m_startWorldTransform.setOrigin(btVector3(0, 0, btScalar(h / 2)));
+  info.m_friction = btScalar(kMu);
+  btRigidBody body(info);
+  body.setActivationState(DISABLE_DEACTIVATION);
+  scene.world().addRigidBody(&body);
+  scene.solver().enablePatchFriction(&body, {Model::Exact});
+  scene.step(kDt);
+  const PatchReport* rep = scene.solver().findPatchReport(&body);
+  ASSERT_NE(rep, nullptr);
+  ASSERT_FALSE(rep->shape.isDisk());
+  EXPECT_EQ(rep->shape.vertices().size(), 6u);
+  EXPECT_NEAR(rep->shape.area(), 1.5 * std::sqrt(3.0) * a * a, 1e-5 * a * a);
+
+  // spin-down
+  constexpr int kN = 2000;
+  double sum = 0;
+  long inside = 0;
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) {
+      const double x = a * (2.0 * (i + 0.5) / kN - 1), y = a * (2.0 * (j + 0.5) / kN - 1);
+      bool in = true;
+      for (int k = 0; k < 6 && in; ++k) {
+        const double t = (k + 0.5) * M_PI / 3;  // edge normals of the hexagon
+        in = x * std::cos(t) + y * std::sin(t) <= a * std::cos(M_PI / 6);
+      }
+      if (in) {
+        sum += std::hypot(x, y);
+        ++inside;
+      }
+    }
+  const double meanR = sum / double(inside);
+  const double tPredicted = omega0 * jz / (kMu * m * kG * meanR);
+  body.setAngularVelocity(btVector3(0, 0, btScalar(omega0)));
+  double t = 0, worstTilt = 0;
+  while (t < 2 * tPredicted && std::abs(double(body.getAngularVelocity().z())) > 0) {
+    scene.step(kDt);
+    t += kDt;
+    worstTilt = std::max(worstTilt, std::hypot(double(body.getAngularVelocity().x()), double(body.getAngularVelocity().y())));
+  }
+  std::printf("[hull] hexagon patch area %.6e, spin stopped after %.4f s (predicted %.4f s, step %.4f s)\n",
+              rep->shape.area(), t, tPredicted, kDt);
+  EXPECT_NEAR(t, tPredicted, kHullStopTol * tPredicted + kDt);
+  EXPECT_LT(worstTilt, kTiltBound);
+  scene.world().removeRigidBody(&body);
+}
+
+// btCylinderShape (y up) turned so that its y axis is vertical: the patch is
+// its cap, an exact disk of its radius.
+TEST(PatchFrictionSolver, CylinderWithYUpAxisRestsOnItsCap) {
+  Scene scene(kG);
+  scene.addGroundPlane(1.0);
+  btCylinderShape shape(btVector3(btScalar(kR), btScalar(kH / 2), btScalar(kR)));
+  shape.setMargin(btScalar(1e-3));
+  btRigidBody::btRigidBodyConstructionInfo info(btScalar(kMass), nullptr, &shape, btVector3(1e-3f, 1e-3f, 1e-3f));
+  info.m_startWorldTransform.setRotation(btQuaternion(btVector3(1, 0, 0), btScalar(M_PI / 2)));
+  info.m_startWorldTransform.setOrigin(btVector3(0, 0, btScalar(kH / 2)));
+  btRigidBody body(info);
+  body.setActivationState(DISABLE_DEACTIVATION);
+  scene.world().addRigidBody(&body);
+  scene.solver().enablePatchFriction(&body, {Model::Ellipsoidal});
+  for (int k = 0; k < 10; ++k) scene.step(kDt);
+  const PatchReport* rep = scene.solver().findPatchReport(&body);
+  ASSERT_NE(rep, nullptr);
+  ASSERT_TRUE(rep->shape.isDisk());
+  EXPECT_NEAR(rep->shape.radius(), kR, 1e-6);
+  EXPECT_NEAR(rep->loads.Pz, kMass * kG, 1e-3 * kMass * kG);
+  scene.world().removeRigidBody(&body);
 }
 
 }  // namespace
