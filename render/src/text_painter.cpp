@@ -126,13 +126,13 @@ void drawChart(Painter& pt, const OverlayChart& chart, int w, int h, double font
   cairo_stroke(cr);
   char buf[32];
   pt.font(pt.mono, 0.75);
-  std::snprintf(buf, sizeof buf, "%g", chart.yMax);
+  std::snprintf(buf, sizeof buf, "%.3g", chart.yMax);
   pt.text(px0 - pt.width(buf) - 0.25 * fontPx, py0 + 0.3 * fontPx, buf, grey);
-  std::snprintf(buf, sizeof buf, "%g", chart.yMin);
+  std::snprintf(buf, sizeof buf, "%.3g", chart.yMin);
   pt.text(px0 - pt.width(buf) - 0.25 * fontPx, py1, buf, grey);
-  std::snprintf(buf, sizeof buf, "%g s", chart.tMin);
+  std::snprintf(buf, sizeof buf, "%.3g s", chart.tMin);
   pt.text(px0, py1 + 1.0 * fontPx, buf, grey);
-  std::snprintf(buf, sizeof buf, "%g s", chart.tMax);
+  std::snprintf(buf, sizeof buf, "%.3g s", chart.tMax);
   pt.text(px1 - pt.width(buf), py1 + 1.0 * fontPx, buf, grey);
   pt.font(pt.sans, 0.85);
   pt.text(px0, by + 1.2 * fontPx, chart.title, dark);

@@ -52,8 +52,8 @@ struct SpherePlot {
   std::vector<SpherePath> paths;
   std::vector<LimitDirection> limits;
   // orthographic view from the direction (cos e cos a, cos e sin a, sin e)
-  double azimuthDeg = -55.0;
-  double elevationDeg = 25.0;
+  double azimuthDeg = 30.0;
+  double elevationDeg = 20.0;
   std::string axisNames[3] = {"w_1", "w_2", "w_3"};  // gnuplot enhanced text
 };
 
