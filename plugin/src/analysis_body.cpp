@@ -202,15 +202,48 @@ bool FlatBodyModel::canStick(const BodyLoads& loads) const {
     return (PzPi.fullPivLu().solve(Qs)).norm() <= body_.mu * (1.0 + kStickTol);
   }
   // exact law: maximum dissipation makes its friction set
-  //   {Q : Q.w >= -D(w) for all unit w},  D(w) = -Q(w).w = mu ∫ p |v(w)| dA,
-  // checked on a fine deterministic grid of the sphere
-  for (const Vec3& w : internal::fibonacciSphere(2000)) {
+  //   {Q : g(w) = (Q - Q(w)).w >= 0 for all unit w},  -Q(w).w = D(w) = mu ∫ p |v(w)| dA.
+  // g is minimised from the best point of a coarse grid by Newton on the
+  // sphere: grad D = -Q(w) (D is homogeneous of degree 1), so the tangent
+  // gradient is P (Qs - Q(w)) and the Hessian -E^T dQ/dw E - (w.(Qs - Q)) I.
+  const double tol = -kStickTol * std::max(scale, 1e-300);
+  auto g = [&](const Vec3& w, Vec3* Qw, Mat3* dQ) {
     Mat3 F;
-    frictionBasis(Model::Exact, w, F, nullptr);
-    const Vec3 Qw = -body_.mu * F * rest.pressure;
-    if (Qs.dot(w) - Qw.dot(w) < -kStickTol * std::max(scale, 1e-300)) return false;
+    std::array<Mat3, 3> dF;
+    frictionBasis(Model::Exact, w, F, dQ ? &dF : nullptr);
+    *Qw = -body_.mu * F * rest.pressure;
+    if (dQ) {
+      dQ->setZero();
+      for (int k = 0; k < 3; ++k)
+        *dQ -= body_.mu * rest.pressure[k] * dF[static_cast<std::size_t>(k)];
+    }
+    return (Qs - *Qw).dot(w);
+  };
+  Vec3 best = Vec3::UnitX(), Qw;
+  double lowest = 1e300;
+  for (const Vec3& w : internal::fibonacciSphere(400)) {
+    const double v = g(w, &Qw, nullptr);
+    if (v < lowest) lowest = v, best = w;
   }
-  return true;
+  Vec3 w = best;
+  for (int it = 0; it < 30 && lowest >= tol; ++it) {
+    Mat3 dQ;
+    const double v = g(w, &Qw, &dQ);
+    lowest = std::min(lowest, v);
+    Vec3 a = std::abs(w.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
+    Eigen::Matrix<double, 3, 2> E;
+    E.col(0) = (a - a.dot(w) * w).normalized();
+    E.col(1) = w.cross(E.col(0));
+    const Eigen::Vector2d grad = E.transpose() * (Qs - Qw);
+    const Mat2 H = -E.transpose() * dQ * E - v * Mat2::Identity();
+    Eigen::Vector2d step = -grad / std::max(H.norm(), 1e-300);  // gradient step
+    if (H.determinant() > 0.0 && H.trace() > 0.0) step = H.fullPivLu().solve(-grad);
+    if (step.norm() > 0.2) step *= 0.2 / step.norm();
+    if (step.norm() < 1e-14) break;
+    w = (w + E * step).normalized();
+  }
+  lowest = std::min(lowest, g(w, &Qw, nullptr));
+  return lowest >= tol;
 }
 
 Vec3 FlatBodyModel::limitField(const Vec3& w, Mat3* jac) const {

@@ -136,6 +136,34 @@ TEST(FlatBodyModel, RandomNonlinearBodies) {
   }
 }
 
+// Sticking test at the edge of the friction set. The exact law's set is the
+// convex hull of its limit surface {Q(w)}: an external wrench -Q(w0) s can
+// be held iff s <= 1 (checked at s = 1 -+ 1e-6, i.e. far below the grid's
+// resolution, so the Newton refinement is what decides). Ellipsoidal: the
+// image of the unit ball, same test with its Q(w0) = -mu Pz Pi w0.
+TEST(FlatBodyModel, CanStickIsSharpAtTheFrictionLimit) {
+  for (Model law : {Model::Exact, Model::Ellipsoidal}) {
+    FlatBody body = skewBody();
+    body.com.z() = 0.0;  // thin: the pressure does not depend on the friction
+    body.Jxz = body.Jyz = 0.0;
+    body.torque = Vec3(0.03, -0.02, 0.0);
+    body.force = Vec2::Zero();
+    const FlatBodyModel probe(body, law);
+    for (const Vec3& w0 : {Vec3(1, 0, 0), Vec3(0.3, -0.5, 0.8).normalized(), Vec3(0, 0, -1)}) {
+      const Vec3 Q0 = probe.contact(w0, 0.0, probe.bodyLoads()).Q;
+      for (double s : {1.0 - 1e-6, 1.0 + 1e-6}) {
+        // Q_e = (Fx, Fy, T_ez / rho), T_ez = couple_z + x_c Fy - y_c Fx (79)
+        FlatBody b = body;
+        b.force = -s * Q0.head<2>();
+        b.torque.z() =
+            -s * Q0.z() * probe.rho() - (body.com.x() * b.force.y() - body.com.y() * b.force.x());
+        EXPECT_EQ(FlatBodyModel(b, law).canStick(FlatBodyModel(b, law).bodyLoads()), s < 1.0)
+            << toString(law) << " w0 = " << w0.transpose() << " s = " << s;
+      }
+    }
+  }
+}
+
 // Bad input: a clear Error, never NaN.
 TEST(FlatBodyModel, RejectsBadInput) {
   FlatBody body = skewBody();
