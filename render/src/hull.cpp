@@ -50,7 +50,8 @@ std::vector<HullFace> convexHullFaces(const std::vector<Vec3>& points) {
         for (const Vec3& p : points) {
           if (std::abs(normal.dot(p) - offset) <= tol) onPlane.push_back(p);
         }
-        const Vec3 ex = (onPlane[1] - onPlane[0]).normalized();
+        // in-plane axis from two distinct points (the triple i, j, k has them)
+        const Vec3 ex = (points[j] - points[i]).normalized();
         const Vec3 ey = normal.cross(ex);
         auto less = [&](const Vec3& a, const Vec3& b) {
           const double ax = a.dot(ex), bx = b.dot(ex);

@@ -255,7 +255,25 @@ void drawBoxMarker(const SceneBody& body) {
   glPolygonOffset(1.0f, 1.0f);
 }
 
-void drawBody(const SceneBody& body, Pass pass) {
+// Hull faces of recently drawn point sets: a hull is built once, not in
+// every pass of every frame.
+class HullCache {
+ public:
+  const std::vector<internal::HullFace>& faces(const std::vector<Vec3>& points) {
+    for (const auto& [key, value] : entries_) {
+      if (key == points) return value;
+    }
+    constexpr std::size_t kMaxEntries = 64;
+    if (entries_.size() >= kMaxEntries) entries_.clear();
+    entries_.emplace_back(points, internal::convexHullFaces(points));
+    return entries_.back().second;
+  }
+
+ private:
+  std::vector<std::pair<std::vector<Vec3>, std::vector<internal::HullFace>>> entries_;
+};
+
+void drawBody(const SceneBody& body, Pass pass, HullCache& hulls) {
   glPushMatrix();
   glMultMatrixd(body.pose.matrix().data());
   switch (body.kind) {
@@ -267,7 +285,7 @@ void drawBody(const SceneBody& body, Pass pass) {
       if (pass == Pass::Shaded && body.spinMarker) drawBoxMarker(body);
       break;
     case SceneBody::ConvexHull:
-      drawPolygonFaces(internal::convexHullFaces(body.hullPoints), body, pass);
+      drawPolygonFaces(hulls.faces(body.hullPoints), body, pass);
       break;
   }
   glPopMatrix();
@@ -396,6 +414,7 @@ struct Renderer::Impl {
   RenderOptions options;
   internal::OsmesaContext context;
   internal::TextPainter text;
+  HullCache hulls;
 
   explicit Impl(const RenderOptions& o)
       : options(o),
@@ -598,7 +617,7 @@ Image Renderer::render(const Scene& scene) {
     const Mat4 S = shadowMatrix(light, h);
     glMultMatrixd(S.data());
     glColor4d(0.05, 0.05, 0.1, 0.45);
-    for (const SceneBody& body : scene.bodies) drawBody(body, Pass::Silhouette);
+    for (const SceneBody& body : scene.bodies) drawBody(body, Pass::Silhouette, impl_->hulls);
     glPopMatrix();
     glDisable(GL_STENCIL_TEST);
   }
@@ -626,7 +645,7 @@ Image Renderer::render(const Scene& scene) {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 1.0f);  // outlines and decals win against the faces
   glLineWidth(static_cast<GLfloat>(1.2 * ss));
-  for (const SceneBody& body : scene.bodies) drawBody(body, Pass::Shaded);
+  for (const SceneBody& body : scene.bodies) drawBody(body, Pass::Shaded, impl_->hulls);
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   // arrows: always on top of the bodies

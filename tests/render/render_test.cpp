@@ -226,8 +226,9 @@ TEST(Renderer, ConvexHullOfBoxCornersDrawsLikeTheBox) {
     hull.hullPoints.push_back(
         0.5 * Vec3((i & 1 ? 1 : -1) * 0.08, (i & 2 ? 1 : -1) * 0.05, (i & 4 ? 1 : -1) * 0.04));
   }
-  hull.hullPoints.push_back(Vec3(0.01, -0.005, 0.003));  // interior
-  hull.hullPoints.push_back(Vec3(0.04, 0.0, 0.0));       // on a face
+  hull.hullPoints.push_back(Vec3(0.01, -0.005, 0.003));                 // interior
+  hull.hullPoints.push_back(Vec3(0.04, 0.0, 0.0));                      // on a face
+  hull.hullPoints.insert(hull.hullPoints.begin(), hull.hullPoints[0]);  // a duplicate first
   Scene empty = boxScene;
   empty.bodies.clear();
   const Image a = renderer.render(boxScene), b = renderer.render(hullScene),
