@@ -190,7 +190,7 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
   const std::size_t N = vertices.size();
   if (N < 3) fail("need at least 3 vertices, got " + std::to_string(N));
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
-  if (!w.allFinite() || w.squaredNorm() == 0.0) fail("w must be finite and nonzero");
+  if (!w.allFinite() || w.cwiseAbs().maxCoeff() == 0.0) fail("w must be finite and nonzero");
   if (!(tolerance >= 0.0)) fail("tolerance must be >= 0");
 
   // centre frame: P' = P - g, w' = S w (Eq. (1) about g)
@@ -221,7 +221,10 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
   Mat3 S = Mat3::Identity();
   S(0, 2) = -g.y() / rho;
   S(1, 2) = g.x() / rho;
-  const Vec3 wl = S * w;
+  // F is homogeneous of degree 0 in w: scale w to max |w_i| = 1 first (keeps
+  // the squares below finite for any finite w); dF scales by 1 / wScale
+  const double wScale = w.cwiseAbs().maxCoeff();
+  const Vec3 wl = S * (w / wScale);
   const double planarSq = rho * rho * (wl.x() * wl.x() + wl.y() * wl.y());
   // kappa^2 = |c'|^2 / Rpoly^2, written without dividing by w3
   const double w3Sq = wl.z() * wl.z();
@@ -271,7 +274,7 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
 
   // back to O: phi = (1, gx + x', gy + y'), torque about O = T k', T = S^T
   //   F.col(0) = T F'.col(0),  F.col(1) = T (gx F'.col(0) + F'.col(1)), ...
-  //   dF[k] = T dF'[k] S   (chain rule through w' = S w)
+  //   dF[k] = T dF'[k] S / wScale   (chain rule through w' = S w / wScale)
   const Mat3 T = S.transpose();
   Mat3 Fm = acc.F;
   Fm.col(1) += g.x() * acc.F.col(0);
@@ -281,9 +284,10 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
     const Mat3 d0 = acc.dF[0];
     const Mat3 d1 = acc.dF[1] + g.x() * d0;
     const Mat3 d2 = acc.dF[2] + g.y() * d0;
-    out.dF[0].noalias() = T * d0 * S;
-    out.dF[1].noalias() = T * d1 * S;
-    out.dF[2].noalias() = T * d2 * S;
+    const Mat3 Sw = S / wScale;
+    out.dF[0].noalias() = T * d0 * Sw;
+    out.dF[1].noalias() = T * d1 * Sw;
+    out.dF[2].noalias() = T * d2 * Sw;
   } else {
     for (Mat3& m : out.dF) m.setZero();
   }

@@ -721,6 +721,30 @@ TEST(ExactPolygonBasis, ToleranceKnobIsHonoured) {
   }
 }
 
+// Degree-0 homogeneity: F(s w) = F(w) and dF(s w) = dF(w) / s for any s > 0,
+// including magnitudes whose squares overflow or underflow. kHomogeneityTol:
+// the scaled input differs from w by one rounding per component.
+TEST(ExactPolygonBasis, HomogeneousOfDegreeZero) {
+  constexpr double kHomogeneityTol = 1e-13;
+  for (const NamedPolygon& np : testPolygons()) {
+    const Vec3 scale = columnScales(np.poly, np.rho);
+    for (const Vec3& w : {Vec3(0.3, -0.5, 0.8), Vec3(0.6, 0.8, 1e-3), Vec3(-0.6, 0.8, 0.0)}) {
+      ExactBasis ref;
+      exactPolygonBasis(np.poly, np.rho, w, true, ref);
+      for (double s : {1e-300, 1e-160, 1e-5, 7.0, 1e160, 1e300}) {
+        ExactBasis out;
+        exactPolygonBasis(np.poly, np.rho, s * w, true, out);
+        EXPECT_LE(relativeError(out.F, ref.F, scale), kHomogeneityTol) << np.name << " s " << s;
+        for (int k = 0; k < 3; ++k) {
+          const double size = std::max(ref.dF[k].cwiseAbs().maxCoeff(), scale[k]);
+          EXPECT_LE((s * out.dF[k] - ref.dF[k]).cwiseAbs().maxCoeff() / size, kHomogeneityTol)
+              << np.name << " s " << s;
+        }
+      }
+    }
+  }
+}
+
 TEST(ExactPolygonBasis, RejectsInvalidInput) {
   ExactBasis out;
   const Polygon sq = unitSquare();
