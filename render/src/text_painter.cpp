@@ -140,21 +140,6 @@ void drawChart(Painter& pt, const OverlayChart& chart, int w, int h, double font
   cairo_save(cr);
   cairo_rectangle(cr, px0, py0, px1 - px0, py1 - py0);
   cairo_clip(cr);
-  if (chart.reference) {
-    const double yr = Y(*chart.reference);
-    const double dashes[] = {0.4 * fontPx, 0.3 * fontPx};
-    cairo_set_dash(cr, dashes, 2, 0.0);
-    cairo_set_source_rgba(cr, 0, 0, 0, 0.7);
-    cairo_move_to(cr, px0, yr);
-    cairo_line_to(cr, px1, yr);
-    cairo_stroke(cr);
-    cairo_set_dash(cr, nullptr, 0, 0.0);
-    if (!chart.referenceLabel.empty()) {
-      pt.font(pt.mono, 0.75);
-      pt.text(px1 - pt.width(chart.referenceLabel) - 0.2 * fontPx, yr - 0.25 * fontPx,
-              chart.referenceLabel, dark);
-    }
-  }
   cairo_set_line_width(cr, std::max(1.5, 0.18 * fontPx));
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (const ChartSeries& s : chart.series) {
@@ -175,6 +160,26 @@ void drawChart(Painter& pt, const OverlayChart& chart, int w, int h, double font
     }
     cairo_set_source_rgb(cr, s.colour.r, s.colour.g, s.colour.b);
     cairo_stroke(cr);
+  }
+  if (chart.reference) {
+    const double yr = Y(*chart.reference);
+    const double dashes[] = {0.4 * fontPx, 0.3 * fontPx};
+    cairo_set_dash(cr, dashes, 2, 0.0);
+    cairo_set_source_rgba(cr, 0, 0, 0, 0.7);
+    cairo_move_to(cr, px0, yr);
+    cairo_line_to(cr, px1, yr);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0.0);
+    if (!chart.referenceLabel.empty()) {
+      // on a light patch so crossing series do not hide it
+      pt.font(pt.mono, 0.75);
+      const double lw = pt.width(chart.referenceLabel);
+      const double lx = px1 - lw - 0.3 * fontPx, ly = yr - 0.3 * fontPx;
+      cairo_rectangle(cr, lx - 0.15 * fontPx, ly - 0.7 * fontPx, lw + 0.3 * fontPx, 0.85 * fontPx);
+      cairo_set_source_rgba(cr, 1.0, 1.0, 1.0, 0.85);
+      cairo_fill(cr);
+      pt.text(lx, ly, chart.referenceLabel, dark);
+    }
   }
   cairo_restore(cr);
 }
