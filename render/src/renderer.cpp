@@ -662,8 +662,11 @@ Image Renderer::render(const Scene& scene) {
     glPushMatrix();
     glMultMatrixd(m.data());
     colour(arrow.colour);
+    // head length grows with the arrow but stays within 30 % of it; head and
+    // shaft widths are fixed fractions of the head length
     const double head = std::min(0.3 * len, 0.12 * radius + 0.15 * len);
-    drawArrowGeometry(len, 0.35 * head * 0.35, head, 0.35 * head);
+    const double headRadius = 0.35 * head, shaftRadius = 0.35 * headRadius;
+    drawArrowGeometry(len, shaftRadius, head, headRadius);
     glPopMatrix();
   }
   glDisable(GL_LIGHTING);
