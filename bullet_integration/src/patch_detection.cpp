@@ -220,38 +220,69 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     return counterClockwise(std::move(pts));
   };
 
-  std::optional<PatchShape> shape;
-  try {
-    const Vec2 ca = toPlane(a.centre, base, ex, ey);
-    if (b.kind == Face::Kind::Plane) {
-      // an infinite plane: the patch is a's whole face
-      shape = a.kind == Face::Kind::Disk ? PatchShape::disk(a.radius, ca)
-                                          : PatchShape::polygon(polygonOf(a));
-    } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Polygon &&
-               diskInsidePolygon(ca, a.radius, polygonOf(b))) {
-      shape = PatchShape::disk(a.radius, ca);
-    } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Disk &&
-               (ca - toPlane(b.centre, base, ex, ey)).norm() + a.radius <= b.radius) {
-      shape = PatchShape::disk(a.radius, ca);
-    } else if (b.kind == Face::Kind::Disk && a.kind == Face::Kind::Disk &&
-               (ca - toPlane(b.centre, base, ex, ey)).norm() + b.radius <= a.radius) {
-      shape = PatchShape::disk(b.radius, toPlane(b.centre, base, ex, ey));
-    } else if (a.kind == Face::Kind::Polygon && b.kind == Face::Kind::Disk &&
-               diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonOf(a))) {
-      shape = PatchShape::disk(b.radius, toPlane(b.centre, base, ex, ey));
+  // the overlap, as a disk (centre, radius) or a counter-clockwise polygon
+  bool disk = false;
+  double radius = 0.0;
+  Vec2 centre = Vec2::Zero();
+  std::vector<Vec2> poly;
+  const Vec2 ca = toPlane(a.centre, base, ex, ey);
+  if (b.kind == Face::Kind::Plane) {
+    // an infinite plane: the patch is a's whole face
+    if (a.kind == Face::Kind::Disk) {
+      disk = true, radius = a.radius, centre = ca;
     } else {
-      std::vector<Vec2> overlap = counterClockwise(clipConvex(polygonOf(a), polygonOf(b)));
-      if (overlap.size() < 3) return std::nullopt;
-      shape = PatchShape::polygon(std::move(overlap));
+      poly = polygonOf(a);
     }
-  } catch (const Error&) {
-    return std::nullopt;  // degenerate overlap: leave the contact to Bullet
+  } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Polygon &&
+             diskInsidePolygon(ca, a.radius, polygonOf(b))) {
+    disk = true, radius = a.radius, centre = ca;
+  } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Disk &&
+             (ca - toPlane(b.centre, base, ex, ey)).norm() + a.radius <= b.radius) {
+    disk = true, radius = a.radius, centre = ca;
+  } else if (b.kind == Face::Kind::Disk && a.kind == Face::Kind::Disk &&
+             (ca - toPlane(b.centre, base, ex, ey)).norm() + b.radius <= a.radius) {
+    disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
+  } else if (a.kind == Face::Kind::Polygon && b.kind == Face::Kind::Disk &&
+             diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonOf(a))) {
+    disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
+  } else {
+    poly = counterClockwise(clipConvex(polygonOf(a), polygonOf(b)));
+  }
+  if (!disk) {
+    // area centroid of the polygon (shoelace)
+    if (poly.size() < 3) return std::nullopt;
+    double area2 = 0.0;
+    Vec2 c = Vec2::Zero();
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const Vec2& p = poly[i];
+      const Vec2& q = poly[(i + 1) % poly.size()];
+      const double cr = cross2(p, q);
+      area2 += cr;
+      c += cr * (p + q);
+    }
+    if (!(area2 > 0.0)) return std::nullopt;
+    centre = c / (3.0 * area2);
+    for (Vec2& p : poly) p -= centre;
   }
   // O at the centroid of the overlap
-  const Vec2 c = shape->centroid();
-  patch.shape = shape->inFrame(c, 0.0);
-  patch.origin = base + ex * btScalar(c.x()) + ey * btScalar(c.y());
+  patch.outline.disk = disk;
+  patch.outline.radius = radius;
+  patch.outline.vertices = std::move(poly);
+  patch.origin = base + ex * btScalar(centre.x()) + ey * btScalar(centre.y());
   return patch;
+}
+
+bool PatchOutline::matches(const PatchOutline& other, double tol) const {
+  if (disk != other.disk) return false;
+  if (disk) return std::abs(radius - other.radius) <= tol;
+  if (vertices.size() != other.vertices.size()) return false;
+  for (size_t i = 0; i < vertices.size(); ++i)
+    if ((vertices[i] - other.vertices[i]).cwiseAbs().maxCoeff() > tol) return false;
+  return true;
+}
+
+PatchShape PatchOutline::toShape() const {
+  return disk ? PatchShape::disk(radius) : PatchShape::polygon(vertices);
 }
 
 }  // namespace patchspin::bullet::internal

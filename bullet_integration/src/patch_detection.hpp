@@ -31,12 +31,24 @@ struct Face {
 std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
                                   double* cosine);
 
+// Outline of a patch in its frame (about O), cheap to build and compare;
+// the PatchShape (moment tables) is built from it only when it changes.
+struct PatchOutline {
+  bool disk = true;
+  double radius = 0.0;           // disk, centred at O [m]
+  std::vector<Vec2> vertices;    // polygon, counter-clockwise, centroid at O [m]
+  // Same outline up to `tol` [m] in every coordinate.
+  bool matches(const PatchOutline& other, double tol) const;
+  // Throws Error for a degenerate polygon.
+  PatchShape toShape() const;
+};
+
 // A flat patch between face `a` of the moving body and face `b` it stands on.
 struct DetectedPatch {
   btVector3 origin;                   // O (on b's plane), world
   btVector3 normal;                   // z: b's outward normal (into a's body)
   btVector3 xAxis, yAxis;             // in-plane axes
-  PatchShape shape = PatchShape::disk(1.0);  // overlap, patch frame about O
+  PatchOutline outline;               // overlap, patch frame about O
   double gap = 0.0;                   // signed distance of a's face centre above b's plane [m]
   btVector3 tilt{0, 0, 0};            // small rotation of a that makes it flat on b [rad]
 };

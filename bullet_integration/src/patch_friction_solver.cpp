@@ -41,6 +41,15 @@ constexpr double kTipRelTol = 1e-3;
 constexpr long kTipCooldownSteps = 10;
 // Pseudo-velocity iterations of the patch position correction per step.
 constexpr int kPushIterations = 4;
+// A patch outline that moved by less than this fraction of its size since the
+// last step keeps its PatchShape and FrictionPatch (moment tables are the
+// expensive part): far below any physical effect, above float round-off
+// of the transforms (~1e-7).
+constexpr double kOutlineRelTol = 1e-6;
+// Within a step, a slipping friction block whose input (b, L, loads) changed
+// by less than this, relative, since its last solve keeps that solution: the
+// solve would return it up to round-off (float: velocities carry ~6e-8).
+constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-6;
 
 Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
 btVector3 toBt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); }
@@ -76,7 +85,13 @@ struct PatchConstraint {
   bool interior = true;  // centre of pressure on the patch: normal block bilateral
   bool tipping = false;
   bool sticking = false;
-  std::optional<FrictionPatch> friction;
+  FrictionPatch* friction = nullptr;  // owned by the manifold's PatchState
+  const PatchShape* shape = nullptr;  // friction->shape()
+  // last friction solve of this step, reused while its input stays put
+  bool haveLast = false;
+  Vec3 lastB = Vec3::Zero(), lastLoads = Vec3::Zero();
+  double lastL = 0.0;
+  FrictionBlockResult last;
 };
 
 // Per-manifold memory across steps: warm start and hysteresis.
@@ -85,6 +100,8 @@ struct PatchState {
   const btCollisionObject* other = nullptr;
   Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), slip = Vec3::Zero();
   bool flat = false;
+  std::optional<internal::PatchOutline> outline;  // shape of `friction`
+  std::optional<FrictionPatch> friction;
   long lastSeen = std::numeric_limits<long>::min() / 2;
   long tipStep = std::numeric_limits<long>::min() / 2;
 };
@@ -276,7 +293,11 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
                                   : -m->getContactPoint(0).m_normalWorldOnB;
     PatchState& st = im.states[m];
-    if (st.body != A || st.other != B) st = PatchState{A, B};
+    if (st.body != A || st.other != B) {
+      st = PatchState();
+      st.body = A;
+      st.other = B;
+    }
     const bool wasFlat = st.flat && st.lastSeen >= im.step - 1;
     st.lastSeen = im.step;
 
@@ -291,7 +312,9 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const double angle = std::acos(c);
       const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
       flat = angle < tol && im.step - st.tipStep > kTipCooldownSteps;
-      if (flat) geo = internal::buildPatch(*faceA, *faceB, B->getWorldTransform().getBasis().getColumn(0));
+      // x axis fixed in the moving body: a box spinning on a plane keeps
+      // the same outline, and its cached shape, in this frame
+      if (flat) geo = internal::buildPatch(*faceA, *faceB, A->getWorldTransform().getBasis().getColumn(0));
     }
     st.flat = flat && geo.has_value();
     if (!st.flat) {
@@ -315,7 +338,28 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     pc.model = opt.model;
     pc.dt = dt;
     pc.mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
-    pc.rho = opt.rho ? *opt.rho : pc.geometry.shape.defaultRho();
+    // shape and friction law: rebuilt only when the outline changes
+    const internal::PatchOutline& outline = pc.geometry.outline;
+    const double size = outline.disk ? outline.radius
+                                     : (outline.vertices.empty() ? 0.0 : outline.vertices[0].norm());
+    if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
+        (opt.rho && st.friction->rho() != *opt.rho)) {
+      try {
+        const PatchShape shape = outline.toShape();
+        st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), pc.mu, opt.rho ? *opt.rho : 0.0);
+        st.outline = outline;
+      } catch (const Error&) {
+        st.flat = false;  // degenerate overlap: leave it to Bullet
+        st.friction.reset();
+        st.outline.reset();
+        convertContact(m, info);
+        continue;
+      }
+    }
+    if (st.friction->mu() != pc.mu) st.friction->setMu(pc.mu);
+    pc.friction = &*st.friction;
+    pc.shape = &st.friction->shape();
+    pc.rho = st.friction->rho();
     const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
     const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
     const Vec3 O = toEigen(pc.geometry.origin);
@@ -362,7 +406,6 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     }
     if (gap > 0.0 && info.m_splitImpulse) pc.targetPush = tiltRate * double(info.m_erp) / dt;
 
-    pc.friction.emplace(pc.geometry.shape, LinearPressure::uniform(pc.geometry.shape, 1.0), pc.mu, pc.rho);
     // warm start from the previous step
     if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
       const double f = double(info.m_warmstartingFactor);
@@ -386,7 +429,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
   if (iteration >= info.m_numIterations) return residual;
   double worst = 0.0;
   for (PatchConstraint& pc : impl_->patches) {
-    const PatchShape& shape = pc.geometry.shape;
+    const PatchShape& shape = *pc.shape;
     // normal block: y = lamN - W^-1 (c_n - target), held exactly while its
     // centre of pressure lies on the patch (a rigid contact can carry any
     // p >= 0, not only a linear one); otherwise the centre of pressure is
@@ -429,8 +472,20 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // the kern), the nearest admissible linear one (DESIGN item 2)
       PatchLoads loads = toLoads(pc.lamN);
       if (!isAdmissible(shape, loads)) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
-      pc.friction->setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
-      const FrictionBlockResult res = solveFrictionBlock(*pc.friction, pc.model, in);
+      const Vec3 lv = loads.asVector();
+      const bool reuse = pc.haveLast && !pc.last.sticking &&
+                         (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
+                         std::abs(L - pc.lastL) <= kReuseRelTol * L &&
+                         (lv - pc.lastLoads).norm() <= kReuseRelTol * lv.norm();
+      if (!reuse) {
+        pc.friction->setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
+        pc.last = solveFrictionBlock(*pc.friction, pc.model, in);
+        pc.haveLast = true;
+        pc.lastB = in.b;
+        pc.lastL = L;
+        pc.lastLoads = lv;
+      }
+      const FrictionBlockResult& res = pc.last;
       lamF = res.impulse;
       pc.sticking = res.sticking;
       pc.warmSlip = res.slip;
@@ -501,13 +556,13 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     r.normal = pc.geometry.normal;
     r.xAxis = pc.geometry.xAxis;
     r.yAxis = pc.geometry.yAxis;
-    r.shape = pc.geometry.shape;
+    r.shape = *pc.shape;
     r.model = pc.model;
     r.mu = pc.mu;
     r.rho = pc.rho;
     const PatchLoads l = toLoads(pc.lamN);
     r.loads = PatchLoads{l.Pz / pc.dt, l.Tx / pc.dt, l.Ty / pc.dt};
-    if (r.loads.Pz > 0.0) r.pressure = LinearPressure::fromLoads(r.shape, r.loads);
+    if (r.loads.Pz > 0.0) r.pressure = LinearPressure::fromLoads(*pc.shape, r.loads);
     r.Q = pc.lamF / pc.dt;
     r.slip = c.tail<3>();
     r.r = r.slip.norm();

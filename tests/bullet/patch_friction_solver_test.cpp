@@ -151,13 +151,13 @@ TEST(PatchFrictionSolver, CoinOnTableIsADiskAndOverTheEdgeACutDisk) {
     const PatchReport* rep = scene.solver().findPatchReport(coin);
     ASSERT_NE(rep, nullptr) << "d = " << d;
     if (d >= 1.0) {
-      ASSERT_TRUE(rep->shape.isDisk());
-      EXPECT_NEAR(rep->shape.radius(), kR, 1e-6);
+      ASSERT_TRUE(rep->shape->isDisk());
+      EXPECT_NEAR(rep->shape->radius(), kR, 1e-6);
     } else {
-      ASSERT_FALSE(rep->shape.isDisk());
+      ASSERT_FALSE(rep->shape->isDisk());
       const double dd = d * kR;
       const double expected = M_PI * kR * kR - (kR * kR * std::acos(dd / kR) - dd * std::sqrt(kR * kR - dd * dd));
-      EXPECT_NEAR(rep->shape.area(), expected, kCutDiskAreaTol * expected);
+      EXPECT_NEAR(rep->shape->area(), expected, kCutDiskAreaTol * expected);
     }
     EXPECT_NEAR(rep->loads.Pz, kMass * kG, 1e-3 * kMass * kG) << "d = " << d;
   }
@@ -181,9 +181,9 @@ TEST(PatchFrictionSolver, BoxOnOffsetBoxPatchIsTheFaceOverlap) {
   for (const PatchReport& r : scene.solver().patchReports())
     if ((r.body == upper && r.other == lower) || (r.body == lower && r.other == upper)) top = &r;
   for (const PatchReport& r : scene.solver().patchReports())
-    std::printf("[box on box] patch area %.5f Pz %.4f\n", r.shape.area(), r.loads.Pz);
+    std::printf("[box on box] patch area %.5f Pz %.4f\n", r.shape->area(), r.loads.Pz);
   ASSERT_NE(top, nullptr);
-  EXPECT_NEAR(top->shape.area(), 0.15 * 0.17, 1e-6);
+  EXPECT_NEAR(top->shape->area(), 0.15 * 0.17, 1e-6);
   EXPECT_NEAR(top->loads.Pz, 1.0 * kG, 1e-3 * kG);
   EXPECT_NEAR(std::hypot(top->loads.Tx, top->loads.Ty), kG * std::hypot(0.025, 0.015), 1e-3 * kG * 0.03);
 }
@@ -313,9 +313,9 @@ TEST(PatchFrictionSolver, ConvexHullPrismGivesAHexagonPatchAndSpinsDownOnTime) {
   scene.step(kDt);
   const PatchReport* rep = scene.solver().findPatchReport(&body);
   ASSERT_NE(rep, nullptr);
-  ASSERT_FALSE(rep->shape.isDisk());
-  EXPECT_EQ(rep->shape.vertices().size(), 6u);
-  EXPECT_NEAR(rep->shape.area(), 1.5 * std::sqrt(3.0) * a * a, 1e-5 * a * a);
+  ASSERT_FALSE(rep->shape->isDisk());
+  EXPECT_EQ(rep->shape->vertices().size(), 6u);
+  EXPECT_NEAR(rep->shape->area(), 1.5 * std::sqrt(3.0) * a * a, 1e-5 * a * a);
 
   // spin-down
   constexpr int kN = 2000;
@@ -344,7 +344,7 @@ TEST(PatchFrictionSolver, ConvexHullPrismGivesAHexagonPatchAndSpinsDownOnTime) {
     worstTilt = std::max(worstTilt, std::hypot(double(body.getAngularVelocity().x()), double(body.getAngularVelocity().y())));
   }
   std::printf("[hull] hexagon patch area %.6e, spin stopped after %.4f s (predicted %.4f s, step %.4f s)\n",
-              rep->shape.area(), t, tPredicted, kDt);
+              rep->shape->area(), t, tPredicted, kDt);
   EXPECT_NEAR(t, tPredicted, kHullStopTol * tPredicted + kDt);
   EXPECT_LT(worstTilt, kTiltBound);
   scene.world().removeRigidBody(&body);
@@ -367,8 +367,8 @@ TEST(PatchFrictionSolver, CylinderWithYUpAxisRestsOnItsCap) {
   for (int k = 0; k < 10; ++k) scene.step(kDt);
   const PatchReport* rep = scene.solver().findPatchReport(&body);
   ASSERT_NE(rep, nullptr);
-  ASSERT_TRUE(rep->shape.isDisk());
-  EXPECT_NEAR(rep->shape.radius(), kR, 1e-6);
+  ASSERT_TRUE(rep->shape->isDisk());
+  EXPECT_NEAR(rep->shape->radius(), kR, 1e-6);
   EXPECT_NEAR(rep->loads.Pz, kMass * kG, 1e-3 * kMass * kG);
   scene.world().removeRigidBody(&body);
 }

@@ -71,7 +71,8 @@ struct PatchReport {
   btVector3 normal{0, 0, 1};                 // z axis, world
   btVector3 xAxis{1, 0, 0};                  // x axis, world
   btVector3 yAxis{0, 1, 0};                  // y axis, world
-  PatchShape shape = PatchShape::disk(1.0);  // overlap of the two faces, patch frame [m]
+  std::optional<PatchShape> shape;           // overlap of the two faces, patch frame [m]
+                                             // (always set in a report)
   Model model = Model::Ellipsoidal;
   double mu = 0.0;                           // [-]
   double rho = 0.0;                          // [m]
