@@ -177,12 +177,34 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
       face.normal = tr.getBasis() * btVector3(f.m_plane[0], f.m_plane[1], f.m_plane[2]);
       btVector3 sum(0, 0, 0);
       for (int k = 0; k < f.m_indices.size(); ++k) {
-        const btVector3 p = tr * poly->m_vertices[f.m_indices[k]];
+        // Bullet's hull computer works on a quantized grid (vertices off by
+        // ~1e-5 of the extent in the double build): snap each face vertex to
+        // the nearest of the user's hull points, the real geometry
+        btVector3 local = poly->m_vertices[f.m_indices[k]];
+        btScalar nearest = SIMD_INFINITY;
+        btVector3 snapped = local;
+        for (int i = 0; i < hull->getNumPoints(); ++i) {
+          const btVector3 q = hull->getScaledPoint(i);
+          const btScalar d2 = (q - local).length2();
+          if (d2 < nearest) {
+            nearest = d2;
+            snapped = q;
+          }
+        }
+        const btVector3 p = tr * snapped;
         face.vertices.push_back(p);
         sum += p;
       }
       if (face.vertices.size() < 3) return std::nullopt;
       face.centre = sum / btScalar(face.vertices.size());
+      // normal of the snapped face (Newell), with the orientation of Bullet's plane
+      btVector3 newell(0, 0, 0);
+      for (size_t i = 0; i < face.vertices.size(); ++i)
+        newell += face.vertices[i].cross(face.vertices[(i + 1) % face.vertices.size()]);
+      if (newell.length2() > 0) {
+        newell.normalize();
+        face.normal = newell.dot(face.normal) < 0 ? -newell : newell;
+      }
       if (cosine) *cosine = bestCos;
       return face;
     }
