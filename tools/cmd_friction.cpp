@@ -103,7 +103,7 @@ const RegisterCommand registration([](CLI::App& app) {
   cmd->add_option("--rho", args->rho, "length scale rho [m] (default Eq. (11) about O)");
   cmd->add_option("--w", args->w, "w1,w2,w3: slip direction (normalised by the tool)")->required();
   cmd->add_flag("--json", args->json, "print one JSON object {Q, Pi, rho, Pz}");
-  cmd->footnote("Without --loads/--pressure/--hertz the pressure is uniform with Pz = 1 N.");
+  cmd->footer("Without --loads/--pressure/--hertz the pressure is uniform with Pz = 1 N.");
   cmd->callback([args, cmd] { run(*args, *cmd); });
 });
 

@@ -18,11 +18,17 @@ void requireMu(double mu) {
   if (mu < 0.0) throw Error("friction coefficient mu must be >= 0: got " + internal::formatDouble(mu));
 }
 
+// |w| without overflow or underflow (w may be scaled by 1e+-200).
+double safeNorm(const Vec3& w) {
+  const double m = w.cwiseAbs().maxCoeff();
+  return m > 0.0 ? m * (w / m).norm() : 0.0;
+}
+
 Vec3 unitDirection(const Vec3& w) {
   internal::requireFinite(w, "slip direction w");
-  const double n = w.norm();
-  if (!(n > 0.0)) throw Error("slip direction w must be nonzero (w = 0 is sticking)");
-  return w / n;
+  const double m = w.cwiseAbs().maxCoeff();
+  if (!(m > 0.0)) throw Error("slip direction w must be nonzero (w = 0 is sticking)");
+  return (w / m).normalized();
 }
 
 }  // namespace
@@ -76,7 +82,7 @@ Vec3 FrictionPatch::unitQ(Model model, const Vec3& w, Mat3* jacobian) const {
 Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
                                 double tolerance) const {
   const Vec3 u = unitDirection(w);
-  const double invNorm = 1.0 / w.norm();
+  const double invNorm = 1.0 / safeNorm(w);
   if (hertz_) {
     // ∫ p k dA = Pz ∫ p1 k dA, p1 the unit-load Hertz pressure (57)
     const Vec3 q =
@@ -104,8 +110,7 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
 std::optional<Vec3> FrictionPatch::QofSlip(Model model, const Vec3& x_o) const {
   internal::requireFinite(x_o, "slip state x_o");
   if (x_o.squaredNorm() == 0.0) return std::nullopt;  // sticking: set-valued
-  const double scale = x_o.cwiseAbs().maxCoeff();     // avoid underflow of |x_o|^2
-  return Q(model, x_o / scale);
+  return Q(model, x_o);  // Q normalises without under/overflow
 }
 
 }  // namespace patchspin

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace patchspin {
 
@@ -117,39 +118,100 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     return out;
   }
 
-  // slip: damped Newton on D from the ellipsoidal solution (or the warm start)
-  Vec3 s = in.warmSlip;
-  if (!(s.norm() > 0.0)) s = solveEllipsoidal(patch.Pi(), in).slip;
-  if (!(s.norm() > 0.0)) s = in.b;
-  const double scale = in.b.norm() + in.L * in.K.norm();
-  auto potential = [&](const Vec3& x, Vec3* qOut, Mat3* jOut) {
-    const Vec3 qx = patch.unitQ(Model::Exact, x, jOut);
-    if (qOut) *qOut = qx;
+  // slip. Along the ray s = r u, D is a quadratic in r, minimal at
+  //   r*(u) = -h(u) / (u^T K^-1 u),   h(u) = lambda0.u - L q(u).u
+  // (h is the support gap of lambda0 against L E), and D(r* u) = D(0) -
+  // h(u)^2 / (2 u^T K^-1 u). So the slip lies in the cone h < 0, where D
+  // restricted to radially optimal points is smooth. Start from the best of a
+  // few candidate directions (warm start, ellipsoidal solution, b, the gauge
+  // direction, and a coarse sphere if none has h < 0), then damped Newton on
+  // D with every trial moved to r* on its ray; trials outside the cone are
+  // rejected, which keeps the iterates off the kink of D at s = 0.
+  const Vec3 Kinvb = Kinv * in.b;
+  auto gap = [&](const Vec3& u, Vec3& qu, Mat3* ju) {
+    qu = patch.unitQ(Model::Exact, u, ju);
+    return -u.dot(Kinvb) - in.L * qu.dot(u);
+  };
+  std::vector<Vec3> candidates;
+  if (in.warmSlip.norm() > 0.0) candidates.push_back(in.warmSlip.normalized());
+  const Vec3 ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
+  if (ellipsoidalSlip.norm() > 0.0) candidates.push_back(ellipsoidalSlip.normalized());
+  candidates.push_back(in.b.normalized());
+  candidates.push_back(w);
+  Vec3 bestU = in.b.normalized();
+  double bestScore = 0.0;  // most negative h / |u|_{K^-1}
+  auto scoreCandidates = [&](const std::vector<Vec3>& dirs) {
+    for (const Vec3& u : dirs) {
+      Vec3 qu;
+      const double score = gap(u, qu, nullptr) / std::sqrt(u.dot(Kinv * u));
+      if (score < bestScore) bestScore = score, bestU = u;
+    }
+  };
+  scoreCandidates(candidates);
+  if (!(bestScore < 0.0)) {
+    // golden-angle (Fibonacci) sphere, deterministic
+    std::vector<Vec3> sphere;
+    constexpr int kSphereSamples = 128;
+    for (int i = 0; i < kSphereSamples; ++i) {
+      const double z = 1.0 - (2.0 * i + 1.0) / kSphereSamples;
+      const double rxy = std::sqrt(std::max(0.0, 1.0 - z * z));
+      const double phi = 2.39996322972865332 * i;
+      sphere.emplace_back(rxy * std::cos(phi), rxy * std::sin(phi), z);
+    }
+    scoreCandidates(sphere);
+  }
+  if (!(bestScore < 0.0)) {
+    // no direction with a support gap: lambda0 is inside L E after all
+    out.sticking = true;
+    out.impulse = lambda0;
+    out.slip.setZero();
+    return out;
+  }
+  auto radialOptimum = [&](const Vec3& x, Vec3& qx, Mat3& jx, bool& inCone) {
+    const Vec3 u = x.normalized();
+    const double h = gap(u, qx, &jx);
+    inCone = h < 0.0;
+    return Vec3((-h / u.dot(Kinv * u)) * u);
+  };
+  auto potential = [&](const Vec3& x, const Vec3& qx) {
     const Vec3 d = x - in.b;
     return 0.5 * d.dot(Kinv * d) - in.L * qx.dot(x);
   };
-  double D = potential(s, &q, &J);
+  bool inCone = true;
+  Vec3 s = radialOptimum(bestU, q, J, inCone);
+  double D = potential(s, q);
+  Vec3 grad = Kinv * (s - in.b) - in.L * q;
+  const double scale = in.b.norm() + in.L * in.K.norm();
+  // D is O(|b|^2 / |K|); its decrease is invisible below this round-off level,
+  // where the Newton steps are judged by the gradient instead
+  const double roundOffD = 1e-13 * (std::abs(D) + in.b.dot(Kinvb));
   for (int it = 0; it < kMaxIterations; ++it) {
     ++out.iterations;
-    const Vec3 grad = Kinv * (s - in.b) - in.L * q;
-    if (grad.norm() * in.K.norm() <= kRelativeTolerance * scale) break;
-    Mat3 H = Kinv - (in.L / s.norm()) * 0.5 * (J + J.transpose());
+    // converged: the slip b + K L q(s^) equals s to ~1e-14 of the slip scale
+    if ((in.K * grad).norm() <= kRelativeTolerance * scale) break;
+    const Mat3 H = Kinv - (in.L / s.norm()) * 0.5 * (J + J.transpose());
     Vec3 dir = -H.ldlt().solve(grad);
     if (!dir.allFinite() || dir.dot(grad) >= 0.0) dir = -in.K * grad;  // fall back to descent
-    // Armijo backtracking on D
+    // backtracking: sufficient decrease of D, or (at round-off level of D) of |grad D|
     double t = 1.0;
-    Vec3 qNew = q;
-    Mat3 jNew = J;
-    Vec3 sNew = s;
-    double DNew = D;
-    for (int k = 0; k < 60; ++k, t *= 0.5) {
-      sNew = s + t * dir;
+    bool accepted = false;
+    for (int k = 0; k < 60 && !accepted; ++k, t *= 0.5) {
+      Vec3 sNew = s + t * dir;
       if (!(sNew.norm() > 0.0)) continue;
-      DNew = potential(sNew, &qNew, &jNew);
-      if (DNew <= D + 1e-4 * t * grad.dot(dir)) break;
+      Vec3 qNew;
+      Mat3 jNew;
+      sNew = radialOptimum(sNew, qNew, jNew, inCone);
+      if (!inCone) continue;
+      const double DNew = potential(sNew, qNew);
+      const Vec3 gradNew = Kinv * (sNew - in.b) - in.L * qNew;
+      const bool decrease = DNew <= D + 1e-4 * t * grad.dot(dir);
+      const bool flatButBetter = DNew <= D + roundOffD && gradNew.norm() < grad.norm();
+      if (decrease || flatButBetter) {
+        s = sNew, q = qNew, J = jNew, D = DNew, grad = gradNew;
+        accepted = true;
+      }
     }
-    if (!(DNew < D) && t < 1e-15) break;  // no further decrease possible
-    s = sNew, q = qNew, J = jNew, D = DNew;
+    if (!accepted) break;  // no further progress possible in double precision
   }
   out.impulse = in.L * q;
   out.slip = in.b + in.K * out.impulse;

@@ -4,6 +4,7 @@
 // maximum-dissipation law, and the energy balance.
 #include <patchspin/step.hpp>
 
+#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include <cmath>
