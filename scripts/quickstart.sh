@@ -87,9 +87,11 @@ cat <<'TXT'
 
 How to read this: Q = (Px, Py, Tz/rho) is the friction force and torque about
 the patch centre O. Both laws oppose the slip (Px < 0 for u_x > 0, Tz < 0 for
-w_z > 0); they agree exactly for pure sliding and pure spinning (the three
-fitting motions, Eq. (37)-(39)) and differ for combined slip and spin, where the
-exact law gives less force and torque than the ellipsoid (here by a few per cent).
+w_z > 0). They agree exactly for pure sliding and pure spinning (the three
+fitting motions, Eq. (37)-(39)) and differ for combined slip and spin: here the
+exact law's force is about a fifth smaller than the ellipsoid's (spinning lowers
+the resistance to sliding), while the torques are within a few per cent.
 A tipping torque makes the pressure linear, Eq. (94), and couples sliding with
-spinning: Px and Tz both change, and Pi gains off-diagonal terms, Eq. (73).
+spinning: Px changes although the slip is the same, and Pi gains the
+off-diagonal terms of Eq. (73).
 TXT

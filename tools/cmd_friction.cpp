@@ -62,7 +62,7 @@ void run(const FrictionArgs& a, const CLI::App& cmd) {
     pressureText = buf;
   }
   const Vec3 wn = wv.normalized();
-  const Vec3 Q = patch->Q(model, wn);
+  const Vec3 Q = patch->Q(model, wn) + Vec3::Zero();  // + 0: no "-0" in the table
   const Mat3& Pi = patch->Pi();
 
   if (a.json) {
