@@ -11,6 +11,13 @@
 // default 10 iterations, no sleeping (the run itself detects the stop),
 // collision margin 1 mm (below Bullet's 4 cm default, which is larger than a
 // coin: the patch uses the real face geometry either way).
+//
+// Stopping: a run started with slip r0 > 0 has stopped once r < 1e-5 r0; the
+// instant is extrapolated within that step from the previous decrement, and
+// the run ends there. A run started at rest runs to tMax; it reports
+// stopped = (r <= 1e-6 m/s at the end) and tStop = the last time r exceeded
+// 1e-6 m/s (0 if never). w_stop, eps_stop as in simulation.hpp; the tilt of
+// each trajectory sample is |(omega_x, omega_y)| of the body.
 #pragma once
 
 #include <patchspin/simulation.hpp>
