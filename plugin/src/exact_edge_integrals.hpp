@@ -108,12 +108,12 @@ struct EdgeSums {
 // delta = 0 (c on the edge's line) the terms delta J0, delta^2 J0 are 0 with
 // zero derivative; the rest of the bracket stays and gives the derivative of
 // the sliver triangle's contribution.
+// L = |b - a| > 0 and deltaZero are given by the caller.
 template <class T>
-void addSignedTriangle(double ax, double ay, double bx, double by, const T& cx, const T& cy,
-                       const T& Ra, const T& Rb, double deltaZero, EdgeSums<T>& sums) {
+void addSignedTriangle(double ax, double ay, double bx, double by, double L, const T& cx,
+                       const T& cy, const T& Ra, const T& Rb, double deltaZero,
+                       EdgeSums<T>& sums) {
   const double Lx = bx - ax, Ly = by - ay;
-  const double L = std::sqrt(Lx * Lx + Ly * Ly);
-  if (!(L > 0.0)) return;  // repeated vertex: no triangle
   const double invL = 1.0 / L;
   const double ex = Lx * invL, ey = Ly * invL;
   const double nx = -ey, ny = ex;

@@ -178,7 +178,9 @@ void nearBranch(const Vec2* v, std::size_t N, const T& cx, const T& cy, double d
     const Vec2& b = v[i + 1 == N ? 0 : i + 1];
     const T Rb = i + 1 == N ? R0 : dist(b);
     const double L = (b - a).norm();
-    addSignedTriangle(a.x(), a.y(), b.x(), b.y(), cx, cy, Ra, Rb, deltaZeroRel * L, sums);
+    if (L > 0.0) {  // a repeated vertex adds no triangle
+      addSignedTriangle(a.x(), a.y(), b.x(), b.y(), L, cx, cy, Ra, Rb, deltaZeroRel * L, sums);
+    }
     Ra = Rb;
   }
 }
