@@ -376,5 +376,47 @@ TEST(PatchFrictionSolver, CylinderWithYUpAxisRestsOnItsCap) {
   scene.world().removeRigidBody(&body);
 }
 
+// ---- joints ------------------------------------------------------------------------
+// A coin held at its centre by a btGeneric6DofConstraint that locks only the
+// horizontal translation (vertical and all rotations free: the ground alone
+// carries the weight), pushed sideways by 2 mu m g: the joint carries the
+// push, the patch sees pure spin. Uniform pressure on a centred disk: spin torque mu m g 2R/3, so
+// with J_z = m R^2 / 2 it stops at t = 3 R omega0 / (4 mu g). The joint
+// error stays below kPinDriftTol (Bullet's joint ERP keeps it at a fraction
+// of the step's motion, ~|F| dt^2 / m = 1e-3 m per step without it).
+constexpr double kPinDriftTol = 1e-4;
+
+TEST(PatchFrictionSolver, PinnedSpinningCoinStopsOnTimeWithJointHoldingThePush) {
+  Scene scene(kG);
+  scene.addGroundPlane(1.0);
+  btRigidBody* coin = scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2)), kMu);
+  scene.solver().enablePatchFriction(coin, {Model::Exact});
+  btTransform frame;
+  frame.setIdentity();
+  btGeneric6DofConstraint pin(*coin, frame, true);
+  pin.setLinearLowerLimit(btVector3(0, 0, 1));  // lower > upper: free (z only)
+  pin.setLinearUpperLimit(btVector3(0, 0, 0));
+  pin.setAngularLowerLimit(btVector3(1, 1, 1));
+  pin.setAngularUpperLimit(btVector3(0, 0, 0));
+  scene.world().addConstraint(&pin);
+  const double omega0 = 30.0;
+  coin->setAngularVelocity(btVector3(0, 0, btScalar(omega0)));
+  const double tPredicted = 3.0 * kR * omega0 / (4.0 * kMu * kG);
+  double t = 0, drift = 0;
+  for (bool stuck = false; t < 2 * tPredicted && !stuck;) {
+    coin->applyCentralForce(btVector3(btScalar(2 * kMu * kMass * kG), 0, 0));
+    scene.step(kDt);
+    t += kDt;
+    const PatchReport* rep = scene.solver().findPatchReport(coin);
+    stuck = rep && rep->sticking;
+    const btVector3 p = coin->getWorldTransform().getOrigin();
+    drift = std::max(drift, std::hypot(double(p.x()), double(p.y())));
+  }
+  std::printf("[joint] pinned coin stopped after %.4f s (predicted %.4f s), pivot drift %.2e m\n", t, tPredicted, drift);
+  EXPECT_NEAR(t, tPredicted, 0.01 * tPredicted + kDt);
+  EXPECT_LT(drift, kPinDriftTol);
+  scene.world().removeConstraint(&pin);
+}
+
 }  // namespace
 }  // namespace patchspin::bullet
