@@ -109,7 +109,7 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
 
 std::optional<Vec3> FrictionPatch::QofSlip(Model model, const Vec3& x_o) const {
   internal::requireFinite(x_o, "slip state x_o");
-  if (x_o.squaredNorm() == 0.0) return std::nullopt;  // sticking: set-valued
+  if (x_o.cwiseAbs().maxCoeff() == 0.0) return std::nullopt;  // sticking: set-valued
   return Q(model, x_o);  // Q normalises without under/overflow
 }
 

@@ -71,6 +71,7 @@ bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTo
 PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loads, double rho) {
   requireFiniteLoads(loads);
   internal::requirePositive(rho, "length scale rho");
+  if (!(loads.Pz > 0.0)) return PatchLoads{};  // documented: no normal force, no load
   if (isAdmissible(shape, loads, 0.0)) return loads;
   // M maps pressure coefficients to scaled loads
   const Mat3 G = shape.areaMoments().loadMatrix();

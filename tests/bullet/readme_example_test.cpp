@@ -30,6 +30,9 @@ TEST(ReadmeExample, ReadmeShowsExactlyThisProgram) {
   ASSERT_FALSE(readme.empty());
   EXPECT_NE(readme.find("```cpp\n" + program + "```"), std::string::npos)
       << "README.md must quote examples/readme_example.cpp verbatim";
+  const std::string topReadme = readFile(kDir + "/../../README.md");
+  EXPECT_NE(topReadme.find("```cpp\n" + program + "```"), std::string::npos)
+      << "the top-level README.md must quote examples/readme_example.cpp verbatim";
 }
 
 }  // namespace
