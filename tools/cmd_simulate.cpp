@@ -20,7 +20,7 @@ namespace {
 struct SimulateArgs {
   std::string engine = "reference", model = "exact", shape, force = "0,0", v0 = "0,0",
               torque = "0,0,0";
-  std::string precision = "double";
+  std::string precision;  // empty: the precision of the Bullet build
   double mass = 1.0, mu = 0.3, g = 9.81, omega0 = 0.0, dt = 1.0 / 240.0, tMax = 10.0,
          recordAt = 0.01;
   bool json = false;
@@ -34,7 +34,7 @@ SimulationSpec makeSpec(const SimulateArgs& a) {
   if (a.model != "ellipsoidal" && a.model != "exact" && a.model != "stock") {
     throw UsageError("--model must be ellipsoidal, exact or stock: got '" + a.model + "'");
   }
-  if (a.precision != "float" && a.precision != "double") {
+  if (!a.precision.empty() && a.precision != "float" && a.precision != "double") {
     throw UsageError("--precision must be float or double: got '" + a.precision + "'");
   }
   const auto colon = a.shape.find(':');
@@ -60,6 +60,11 @@ SimulationSpec makeSpec(const SimulateArgs& a) {
   spec.engine = a.engine;
   spec.model = a.model;
   spec.precision = a.precision;
+#ifdef PATCHSPIN_HAS_BULLET
+  if (spec.precision.empty()) spec.precision = bullet::buildPrecision();
+#else
+  if (spec.precision.empty()) spec.precision = "double";
+#endif
   spec.mass = a.mass;
   spec.mu = a.mu;
   spec.g = a.g;
@@ -149,7 +154,7 @@ const RegisterCommand registration([](CLI::App& app) {
   cmd->add_option("--t-max", a->tMax, "time limit [s] (default 10)");
   cmd->add_option("--record-at", a->recordAt,
                   "record w when r first falls below FRAC r0 (default 0.01)");
-  cmd->add_option("--precision", a->precision, "float | double (bullet only)");
+  cmd->add_option("--precision", a->precision, "float | double (bullet only; default: the precision patchspin::bullet was built with)");
   cmd->add_flag(
       "--json", a->json,
       "print {stopped, t_stop, w_stop, eps_stop, displacement, rotation} as one JSON object");

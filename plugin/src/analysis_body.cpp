@@ -60,11 +60,14 @@ FlatBodyModel::FlatBodyModel(const FlatBody& body, Model model) : body_(body), m
 }
 
 Mat3 FlatBodyModel::gyroscopicMatrix(double omega) const {
-  // Eq. (92)
+  // Eq. (92) = W^T G_C W. The paper's G_C of (89) and hence (92) drop the
+  // mass: (82)-(83) read m (v_cx' - w_z v_cy) = ..., so G_C = m w_z [[0,-1,0],
+  // [1,0,0],[0,0,0]] and G = m w_z [[0,-1,-xc],[1,0,-yc],[xc,yc,0]] (xc, yc
+  // over rho). Without m the ground-frame velocity turns at the wrong rate.
   const double xc = body_.com.x() / rho_, yc = body_.com.y() / rho_;
   Mat3 G;
   G << 0.0, -1.0, -xc, 1.0, 0.0, -yc, xc, yc, 0.0;
-  return omega * G;
+  return (body_.mass * omega) * G;
 }
 
 BodyLoads FlatBodyModel::bodyLoads() const {
