@@ -364,5 +364,27 @@ TEST(Simulate, AgreesWithReferenceOnDiskWithInPlaneTorque) {
   checkLimitCase({"in-plane torque", s});
 }
 
+// A light coin (20 g) sliding and spinning freely: Bullet and the reference
+// dynamics agree on the stop time, the travel and the recorded w. (A body of
+// mass != 1 kg exercises the mass factor of the gyroscopic matrix (92).)
+// Travel tolerance: one 240 Hz step at the initial speed, v0 dt.
+TEST(Simulate, LightCoinAgreesWithReferenceOnTravel) {
+  SimulationSpec s = thinDisk("exact", 0.5, 20.0);
+  s.mass = 0.02;
+  const SimulationResult bullet = simulate(s);
+  SimulationSpec ref = s;
+  ref.engine = "reference";
+  const SimulationResult reference = simulateReference(ref);
+  ASSERT_TRUE(bullet.stopped);
+  ASSERT_TRUE(reference.stopped);
+  const double kTravelTol = s.v0.norm() * s.dt;
+  std::printf("[light coin] t_stop bullet %.5f reference %.5f; travel bullet (%.5f %.5f) reference (%.5f %.5f)\n",
+              bullet.tStop, reference.tStop, bullet.displacement.x(), bullet.displacement.y(),
+              reference.displacement.x(), reference.displacement.y());
+  EXPECT_NEAR(bullet.tStop, reference.tStop, kAgreementStopTol * reference.tStop);
+  EXPECT_LT((bullet.displacement - reference.displacement).norm(), kTravelTol);
+  EXPECT_LT((bullet.wStop - reference.wStop).norm(), kLimitWTol);
+}
+
 }  // namespace
 }  // namespace patchspin::bullet
