@@ -1,0 +1,200 @@
+// demos/coin run headless with a few small frames: valid PNGs of the
+// requested size, not blank, changing from frame to frame, byte-identical on a
+// second run; summary.json finite and in agreement with `patchspin simulate
+// --engine bullet` for the same coin.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <patchspin/render/image.hpp>
+#include <sstream>
+#include <string>
+
+#include "run_tool.hpp"
+
+namespace patchspin::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+constexpr int kFrames = 3;
+// The coin's parameters, passed to the demo and to `patchspin simulate`.
+// --slowmo 1 at 30 fps: a frame every 8 steps of 1/240 s, so the coins move
+// about 1.6 cm and turn about 0.6 rad between frames.
+const char* kCoinFlags = "--radius 0.05 --height 0.005 --mass 0.03 --mu 0.3 --v0 0.5 --omega0 20";
+const char* kSimulateFlags =
+    "--shape cylinder:0.05,0.005 --mass 0.03 --mu 0.3 --v0 0.5,0 --omega0 20 --dt 0.004166666666666667";
+// Simulated time [s]: the patch coins stop after about 0.32 s, stock Bullet's
+// after about 0.52 s.
+constexpr double kTMax = 1.0;
+
+// A blank (uniform) frame has variance 0; sky, ground, coins and text give far
+// more than a standard deviation of 10 grey levels.
+constexpr double kMinVariance = 100.0;
+// Consecutive frames: the coins move about a third of their radius and the
+// overlay numbers change, which alters far more than 50 of 19200 pixels by
+// more than 8 levels (PNG round-off and anti-aliasing noise is 0 here: the
+// renderer is deterministic, so any change is real).
+constexpr int kMinChangedPixels = 50;
+constexpr int kChangeThreshold = 8;
+// The demo and `patchspin simulate --engine bullet` build the same Bullet
+// world (ground, coin, margin, friction, solver) and step it identically, so
+// they agree to the 17 significant digits of the JSON round trip; 1e-12
+// relative leaves room for the last printed digit only.
+constexpr double kAgreementTol = 1e-12;
+
+std::string tempDir(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("patchspin_coin_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// <build>/demos/coin next to <build>/tools/patchspin; empty without the tool.
+std::string demoPath() {
+#ifdef PATCHSPIN_TOOL
+  return (fs::path(PATCHSPIN_TOOL).parent_path().parent_path() / "demos" / "coin").string();
+#else
+  return "";
+#endif
+}
+
+std::string toolPath() {
+#ifdef PATCHSPIN_TOOL
+  return PATCHSPIN_TOOL;
+#else
+  return "";
+#endif
+}
+
+int countDifferentPixels(const Image& a, const Image& b, int threshold) {
+  int n = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
+      if (d > threshold) ++n;
+    }
+  }
+  return n;
+}
+
+class CoinDemo : public ::testing::Test {
+ protected:
+  // Runs the demo twice into two directories (once per test suite).
+  static void SetUpTestSuite() {
+    const std::string demo = demoPath();
+    if (demo.empty() || !fs::exists(demo)) return;
+    for (int run = 0; run < 2; ++run) {
+      dirs_[run] = tempDir("run" + std::to_string(run));
+      std::ostringstream args;
+      args << "--out " << dirs_[run] << " --frames " << kFrames << " --size " << kWidth << "x" << kHeight
+           << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << kCoinFlags;
+      runs_[run] = testing::runTool(demo, args.str());
+    }
+  }
+  void SetUp() override {
+    if (demoPath().empty() || !fs::exists(demoPath()))
+      GTEST_SKIP() << "demos/coin not built (needs PATCHSPIN_BUILD_BULLET and the renderer): " << demoPath();
+    ASSERT_EQ(runs_[0].exitCode, 0) << runs_[0].err;
+    ASSERT_EQ(runs_[1].exitCode, 0) << runs_[1].err;
+  }
+  static nlohmann::json summary(int run) {
+    return nlohmann::json::parse(fileBytes((fs::path(dirs_[run]) / "summary.json").string()));
+  }
+
+  static inline std::string dirs_[2];
+  static inline testing::ToolRun runs_[2];
+};
+
+TEST_F(CoinDemo, FramesAreValidPngsOfTheRequestedSizeNotBlankAndChanging) {
+  Image previous;
+  for (int i = 0; i < kFrames; ++i) {
+    const std::string path = (fs::path(dirs_[0]) / ("frame_0000" + std::to_string(i) + ".png")).string();
+    ASSERT_TRUE(fs::exists(path)) << path;
+    const Image frame = readPng(path);  // throws on an invalid PNG
+    EXPECT_EQ(frame.width, kWidth);
+    EXPECT_EQ(frame.height, kHeight);
+    EXPECT_GT(pixelVariance(frame), kMinVariance) << path;
+    if (i > 0) {
+      EXPECT_GT(countDifferentPixels(previous, frame, kChangeThreshold), kMinChangedPixels) << path;
+    }
+    previous = frame;
+  }
+  EXPECT_FALSE(fs::exists(fs::path(dirs_[0]) / ("frame_0000" + std::to_string(kFrames) + ".png")));
+  // the progress bar goes to stderr and ends complete
+  EXPECT_NE(runs_[0].err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
+            std::string::npos)
+      << runs_[0].err;
+}
+
+TEST_F(CoinDemo, TwoRunsGiveIdenticalBytes) {
+  for (int i = 0; i < kFrames; ++i) {
+    const std::string name = "frame_0000" + std::to_string(i) + ".png";
+    const std::string a = fileBytes((fs::path(dirs_[0]) / name).string());
+    ASSERT_FALSE(a.empty()) << name;
+    EXPECT_TRUE(a == fileBytes((fs::path(dirs_[1]) / name).string())) << name;
+  }
+  EXPECT_EQ(fileBytes((fs::path(dirs_[0]) / "summary.json").string()),
+            fileBytes((fs::path(dirs_[1]) / "summary.json").string()));
+}
+
+TEST_F(CoinDemo, SummaryIsFiniteForEveryModel) {
+  const nlohmann::json s = summary(0);
+  for (const char* model : {"exact", "ellipsoidal", "stock"}) {
+    SCOPED_TRACE(model);
+    ASSERT_TRUE(s["models"].contains(model));
+    const nlohmann::json& m = s["models"][model];
+    // every coin comes to rest well within kTMax (see above)
+    EXPECT_TRUE(m["stopped"].get<bool>());
+    const double tStop = m["t_stop"].get<double>();
+    EXPECT_TRUE(std::isfinite(tStop) && tStop > 0.0 && tStop < kTMax) << tStop;
+    const double eps = m["eps_stop"].get<double>();
+    EXPECT_TRUE(std::isfinite(eps) && eps >= 0.0) << eps;
+    const double tilt = m["max_tilt_rate"].get<double>();
+    EXPECT_TRUE(std::isfinite(tilt) && tilt >= 0.0) << tilt;
+    for (const char* key : {"displacement", "final_displacement"}) {
+      ASSERT_EQ(m[key].size(), 2u);
+      for (const auto& v : m[key]) EXPECT_TRUE(std::isfinite(v.get<double>()));
+    }
+  }
+}
+
+// Same coin through `patchspin simulate --engine bullet --json`: same t_stop,
+// eps_stop, w_stop and displacement semantics (simulate.hpp).
+TEST_F(CoinDemo, SummaryAgreesWithPatchspinSimulate) {
+  const nlohmann::json s = summary(0);
+  const std::string precision = s["precision"].get<std::string>();
+  auto near = [](double a, double b) { return std::abs(a - b) <= kAgreementTol * std::max(1.0, std::abs(b)); };
+  for (const char* model : {"exact", "ellipsoidal", "stock"}) {
+    SCOPED_TRACE(model);
+    std::ostringstream args;
+    args << "simulate --engine bullet --model " << model << " " << kSimulateFlags << " --t-max " << kTMax
+         << " --precision " << precision << " --json";
+    const auto run = testing::runTool(toolPath(), args.str());
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const nlohmann::json ref = nlohmann::json::parse(run.out);
+    const nlohmann::json& m = s["models"][model];
+    EXPECT_EQ(m["stopped"].get<bool>(), ref["stopped"].get<bool>());
+    EXPECT_PRED2(near, m["t_stop"].get<double>(), ref["t_stop"].get<double>());
+    EXPECT_PRED2(near, m["eps_stop"].get<double>(), ref["eps_stop"].get<double>());
+    for (int i = 0; i < 3; ++i) EXPECT_PRED2(near, m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>());
+    for (int i = 0; i < 2; ++i)
+      EXPECT_PRED2(near, m["displacement"][i].get<double>(), ref["displacement"][i].get<double>());
+    EXPECT_PRED2(near, m["rotation"].get<double>(), ref["rotation"].get<double>());
+  }
+}
+
+}  // namespace
+}  // namespace patchspin::render
