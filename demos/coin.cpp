@@ -10,6 +10,12 @@
 // r = |(u_x, u_y, rho w_z)| of the patch centre, rho = 2R/3 (Eq. (11));
 // eps_stop = |v| / (R |omega|) when r first falls below 1% of r0; stopped
 // once r <= 1e-5 r0, the instant extrapolated within the step.
+//
+// summary.json, per model: stopped, t_stop [s], eps_stop, w_stop,
+// displacement [m] and rotation [rad] up to the stop (all as `patchspin
+// simulate --json`), max_tilt_rate |(omega_x, omega_y)| over the run [rad/s],
+// max_slip_after_stop [m/s] (stock Bullet creeps on), final_displacement [m]
+// at the end of the run.
 #include <patchspin/bullet/scene.hpp>
 #include <patchspin/bullet/simulate.hpp>
 #include <patchspin/geometry.hpp>
@@ -50,6 +56,8 @@ constexpr double kReferenceRatio = 0.653;
 // Upper end of the ratio axes: the coin starts at v0/(R omega0) = 0.5 and the
 // interesting values lie below 1; stock Bullet's wild values are clipped.
 constexpr double kRatioAxisMax = 2.0;
+// Lower end of the log r axis of coin_ratio.png, relative to r0.
+constexpr double kPlotFloor = 1e-7;
 // Lateral spacing of the coins in the frame, in radii.
 constexpr double kSpacingRadii = 3.0;
 
@@ -94,6 +102,7 @@ struct Coin {
   Vec2 displacement = Vec2::Zero();  // at the stop (or at the end if never)
   double rotation = 0.0;             // until the stop [rad]
   double maxTilt = 0.0;              // over the whole run [rad/s]
+  double maxCreep = 0.0;             // largest slip r after the stop [m/s]
 
   double r0() const { return samples.front().r; }
   // at rest: from the stopping instant on, or whenever r is at the stop threshold
@@ -161,6 +170,7 @@ void simulateCoin(Coin& coin, const Args& a, double dt, long steps) {
     const Sample s = observe(double(k) * dt);
     coin.samples.push_back(s);
     coin.maxTilt = std::max(coin.maxTilt, s.tilt);
+    if (coin.stopped) coin.maxCreep = std::max(coin.maxCreep, s.r);
     if (coin.stopped || r0 <= 0.0) continue;
     coin.rotation += s.omega * dt;  // Bullet integrates with the new velocity
     coin.displacement = (s.patchCentre - coin.samples.front().patchCentre).head<2>();
@@ -278,7 +288,7 @@ int run(const Args& a) {
     scene.overlay.time = coins.front().samples[now].t;
     scene.overlay.title = title;
     scene.overlay.model = a.model == "all" ? "exact | ellipsoidal | stock Bullet" : coins.front().label;
-    scene.overlay.caption = "exact stops at v/(R\xcf\x89) = 0.653; ellipsoidal ends in pure spin; "
+    scene.overlay.caption = "exact stops near v/(R\xcf\x89) = 0.653; ellipsoidal ends in pure spin; "
                             "stock Bullet rocks and drifts";
     render::OverlayChart chart;
     chart.title = "v/(R\xcf\x89)";
@@ -309,7 +319,8 @@ int run(const Args& a) {
         tracked.slipRatio = ratio;
         tracked.w = Vec3(s.x / s.r);
       } else if (c.atRest(s)) {
-        tracked.label += " (at rest)";
+        // stock Bullet keeps creeping after its first stop (r ~ 1e-4 m/s)
+        tracked.label += s.r <= kStopFraction * c.r0() ? " (at rest)" : " (stopped, creeping)";
       } else if (c.spinless(s, a.radius)) {
         tracked.label += " (sliding, no spin)";
         tracked.w = Vec3(s.x / s.r);
@@ -345,6 +356,7 @@ int run(const Args& a) {
     m["eps_stop"] = c.epsStop ? finiteOrNull(*c.epsStop) : nlohmann::json(nullptr);
     m["w_stop"] = c.recorded ? nlohmann::json{c.wStop.x(), c.wStop.y(), c.wStop.z()} : nlohmann::json(nullptr);
     m["max_tilt_rate"] = c.maxTilt;
+    m["max_slip_after_stop"] = c.maxCreep;
     m["displacement"] = {c.displacement.x(), c.displacement.y()};
     m["rotation"] = c.rotation;
     const Vec3 end = c.samples.back().patchCentre - c.samples.front().patchCentre;
@@ -359,7 +371,11 @@ int run(const Args& a) {
     if (!file) throw render::RenderError("cannot write " + (out / "summary.json").string());
   }
 
-  // v/(R omega) and r against time: CSV and plot, up to the end of the run
+  // v/(R omega) and r against time: the whole run in the CSV; the plot up to
+  // the last frame or half as long again as the last stop, whichever is later
+  double tPlot = tEnd;
+  for (const Coin& c : coins)
+    if (c.stopped) tPlot = std::max(tPlot, 1.5 * c.tStop);
   render::TimeSeriesPlot plot;
   plot.ratioMax = kRatioAxisMax;
   plot.logR = true;
@@ -369,11 +385,15 @@ int run(const Args& a) {
     render::TimeSeries series;
     series.label = c.label;
     for (const Sample& s : c.samples) {
-      series.t.push_back(s.t);
-      series.slipRatio.push_back(c.slipRatio(s, a.radius));
-      series.r.push_back(s.r);
+      if (s.t <= tPlot) {
+        series.t.push_back(s.t);
+        series.slipRatio.push_back(c.slipRatio(s, a.radius));
+        // log axis: the sticking round-off (down to 1e-40 m/s) is dropped
+        // below kPlotFloor r0, which keeps stock Bullet's creep visible
+        series.r.push_back(s.r >= kPlotFloor * c.r0() ? s.r : 0.0);
+      }
       char line[160];
-      std::snprintf(line, sizeof line, "%s,%.9g,%.9g,%.9g\n", c.label.c_str(), s.t, series.slipRatio.back(), s.r);
+      std::snprintf(line, sizeof line, "%s,%.9g,%.9g,%.9g\n", c.label.c_str(), s.t, c.slipRatio(s, a.radius), s.r);
       csv << line;
     }
     plot.series.push_back(series);

@@ -29,15 +29,15 @@ echo "== coin demo: exact | ellipsoidal | stock Bullet (frames, plot and summary
 echo
 echo "frames   $out/frame_00000.png ... (PNG, $fps fps)"
 echo "plot     $out/coin_ratio.png   (v/(R omega) and slip r against time, 0.653 marked)"
-echo "summary  $out/summary.json     (per model: t_stop, eps_stop, max tilt rate, displacement)"
+echo "summary  $out/summary.json     (per model: t_stop, eps_stop, max tilt rate, creep, displacement)"
 if command -v python3 >/dev/null 2>&1; then
   python3 - "$out/summary.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))
 for name, m in s["models"].items():
     f = lambda v: "-" if v is None else "%.4g" % v
-    print("  %-12s t_stop %8s s   eps_stop %8s   max tilt rate %8s rad/s   moved (%.4g, %.4g) m"
-          % (name, f(m["t_stop"]), f(m["eps_stop"]), f(m["max_tilt_rate"]), *m["final_displacement"]))
+    print("  %-12s t_stop %7s s  eps_stop %7s  max tilt rate %8s rad/s  creep after stop %8s m/s"
+          % (name, f(m["t_stop"]), f(m["eps_stop"]), f(m["max_tilt_rate"]), f(m["max_slip_after_stop"])))
 PY
 fi
 if command -v ffmpeg >/dev/null 2>&1; then
@@ -52,7 +52,7 @@ fi
 cat <<'TXT'
 
 What to look for:
-  exact (orange): slip and spin stop together, with v/(R omega) -> 0.653 at the stop (dashed line).
-  ellipsoidal (blue): v/(R omega) -> 0, the coin ends in pure spin (sliding stops first).
-  stock Bullet (grey): point contacts; the coin rocks (tilt rate in summary.json) and drifts sideways.
+  exact (orange): slip and spin die out together; v/(R omega) climbs to the 0.653 line as it stops (eps_stop above).
+  ellipsoidal (blue): v/(R omega) falls to 0: the sliding stops first and the coin ends in pure spin.
+  stock Bullet (grey): point contacts; the coin rocks (max tilt rate), veers sideways and keeps creeping after it stops.
 TXT

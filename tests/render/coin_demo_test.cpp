@@ -162,8 +162,10 @@ TEST_F(CoinDemo, SummaryIsFiniteForEveryModel) {
     EXPECT_TRUE(std::isfinite(tStop) && tStop > 0.0 && tStop < kTMax) << tStop;
     const double eps = m["eps_stop"].get<double>();
     EXPECT_TRUE(std::isfinite(eps) && eps >= 0.0) << eps;
-    const double tilt = m["max_tilt_rate"].get<double>();
-    EXPECT_TRUE(std::isfinite(tilt) && tilt >= 0.0) << tilt;
+    for (const char* key : {"max_tilt_rate", "max_slip_after_stop"}) {
+      const double v = m[key].get<double>();
+      EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << key << " = " << v;
+    }
     for (const char* key : {"displacement", "final_displacement"}) {
       ASSERT_EQ(m[key].size(), 2u);
       for (const auto& v : m[key]) EXPECT_TRUE(std::isfinite(v.get<double>()));
