@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# Regenerates the README gallery's plots (issue 5) into docs/img/:
+#   bifurcation_force.png  limit directions against F, thin disk, T = 0 (Fig. 11 analogue)
+#   bifurcation_plane.png  number and types of limit directions over (F, T) (Fig. 13 analogue)
+#   pareto_exact.png       time against error of the exact law's accuracy knob
+# from `patchspin sweep` and the benchmark JSON in BUILD_DIR/bench-results.
+# Runs in a few seconds on 2 cores. The gnuplot scripts (.gp, data inline) that
+# the plot functions write next to each PNG are removed unless KEEP_GP=1.
+#
+# usage: scripts/make_gallery.sh BUILD_DIR
+#   BUILD_DIR/tools/patchspin     the tool (sweep)
+#   BUILD_DIR/demos/plots         the plot driver (demos/plots.cpp); override with PLOTS=path
+#   BUILD_DIR/bench-results/bench_exact_{disk,polygon}.json   Google Benchmark JSON output
+# Needs gnuplot (gnuplot-nox) and python3.
+set -euo pipefail
+
+if [[ $# -ne 1 ]]; then
+  echo "usage: $0 BUILD_DIR" >&2
+  exit 2
+fi
+build=$(cd "$1" && pwd)
+root=$(cd "$(dirname "$0")/.." && pwd)
+tool="$build/tools/patchspin"
+plots="${PLOTS:-$build/demos/plots}"
+bench="$build/bench-results"
+img="$root/docs/img"
+for f in "$tool" "$plots"; do
+  [[ -x "$f" ]] || { echo "$0: missing executable $f (build it first)" >&2; exit 1; }
+done
+mkdir -p "$img"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# thin disk of Sect. 6.1/6.3: R = 0.05 m, m = 1 kg, Jz = m R^2 / 2, centre of
+# mass in the patch plane, uniform pressure. --scaled: F in mu m g, T in m g R.
+disk=(--patch disk:0.05 --mass 1 --inertia 0.00125 --com 0,0,0 --mu 0.3 --scaled --quiet)
+
+# (1) Fig. 11: F from 0 to 1.5 mu m g at T = 0 (bifurcations at F = 1/9 and 1
+# in the paper's ellipsoidal analysis, Sect. 6.1)
+for model in ellipsoidal exact; do
+  "$tool" sweep "${disk[@]}" --model "$model" --F 0:1.5:151 --out "$work/force_$model.csv"
+done
+"$plots" force --out "$img/bifurcation_force.png" --size 900x600 \
+  --title "thin disk, T = 0: limit directions against F" \
+  --force-label "F / ({/Symbol m} m g)" \
+  --panel "ellipsoidal=$work/force_ellipsoidal.csv" --panel "exact=$work/force_exact.csv"
+
+# (2) Fig. 13: the (F, T) plane; T up to 0.3 m g R, beyond the no-tipping
+# bound |T| <= m g R / 4 of Sect. 6.3 (tipping points are marked)
+for model in ellipsoidal exact; do
+  "$tool" sweep "${disk[@]}" --model "$model" --F 0:1.2:41 --T 0:0.3:31 --out "$work/plane_$model.csv"
+done
+"$plots" plane --out "$img/bifurcation_plane.png" --size 900x600 \
+  --title "thin disk with torque: limit directions over (F, T)" \
+  --force-label "F / ({/Symbol m} m g)" --torque-label "T / (m g R)" \
+  --panel "ellipsoidal=$work/plane_ellipsoidal.csv" --panel "exact=$work/plane_exact.csv"
+
+# (3) Pareto: the benchmarks that report max_rel_err (the accuracy knob of the
+# exact law) -> model,time,error,label with time per evaluation in seconds
+python3 - "$bench" "$work/pareto.csv" <<'EOF'
+import json, re, sys
+bench, out = sys.argv[1], sys.argv[2]
+scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+rows = []
+for name in ("bench_exact_disk", "bench_exact_polygon"):
+    with open(f"{bench}/{name}.json") as f:
+        data = json.load(f)
+    for b in data["benchmarks"]:
+        if b.get("run_type") != "iteration" or "max_rel_err" not in b:
+            continue
+        t = b["real_time"] * scale[b["time_unit"]]
+        if name == "bench_exact_disk":
+            # BM_ExactDiskBasisTol/<-log10 tol>
+            model, tol = "exact disk", int(b["name"].rsplit("/", 1)[1])
+        else:
+            # BM_ExactPolygonBasisFarBranch/octagon:k/jacobian:j/tol_exp:n
+            args = dict(kv.split(":") for kv in b["name"].split("/")[1:])
+            if args["jacobian"] != "0":
+                continue
+            model = "exact octagon" if args["octagon"] == "1" else "exact rectangle"
+            model += " (far branch)"
+            tol = int(args["tol_exp"])
+        rows.append((model, tol, t, b["max_rel_err"]))
+if not rows:
+    sys.exit("make_gallery: no benchmark with max_rel_err in " + bench)
+with open(out, "w") as f:
+    f.write("model,time,error,label\n")
+    # per model from loose to tight tolerance, so each line runs along its knob
+    for model, tol, t, err in sorted(rows, key=lambda r: (r[0], r[1])):
+        f.write(f'"{model}",{t:.6g},{err:.6g},tol 1e-{tol}\n')
+EOF
+"$plots" pareto --csv "$work/pareto.csv" --out "$img/pareto_exact.png" --size 900x600 \
+  --title "exact law: time against error over the tolerance knob" \
+  --time-label "time per evaluation (value only) [s]" --error-label "max relative error"
+
+if [[ "${KEEP_GP:-0}" != 1 ]]; then
+  rm -f "$img"/{bifurcation_force,bifurcation_plane,pareto_exact}.gp
+fi
+echo "make_gallery: wrote $img/{bifurcation_force,bifurcation_plane,pareto_exact}.png"
