@@ -1,0 +1,287 @@
+// Shared machinery of the scene demos (see demo_common.hpp).
+#include "demo_common.hpp"
+
+#include <patchspin/analysis.hpp>
+#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/geometry.hpp>
+#include <patchspin/render/plot.hpp>
+#include <patchspin/render/renderer.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+namespace patchspin::demos {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Lateral spacing of the bodies in the frame, in radii.
+constexpr double kSpacingRadii = 3.0;
+// Automatic force arrow: the largest force is drawn this many radii long.
+constexpr double kArrowRadii = 2.0;
+
+void parseSize(const std::string& size, int& width, int& height) {
+  const auto x = size.find('x');
+  try {
+    if (x == std::string::npos) throw std::invalid_argument(size);
+    std::size_t used = 0;
+    width = std::stoi(size.substr(0, x), &used);
+    if (used != x) throw std::invalid_argument(size);
+    height = std::stoi(size.substr(x + 1), &used);
+    if (used != size.size() - x - 1) throw std::invalid_argument(size);
+  } catch (const std::exception&) {
+    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
+  }
+  if (width < 16 || height < 16 || width > 8192 || height > 8192)
+    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
+}
+
+// Progress bar on stderr: redrawn in place on a terminal, else a line per 10%.
+void printProgress(const std::string& name, int done, int total) {
+  constexpr int kBar = 40;
+  static const bool kTerminal = ::isatty(STDERR_FILENO) != 0;
+  if (!kTerminal && done != total && (done * 10 / total == (done - 1) * 10 / total || done == 0)) return;
+  const int filled = total > 0 ? done * kBar / total : kBar;
+  std::fprintf(stderr, "%s%s: [%s%s] %d/%d frames%s", kTerminal ? "\r" : "", name.c_str(),
+               std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(kBar - filled), ' ').c_str(),
+               done, total, kTerminal && done != total ? "" : "\n");
+  std::fflush(stderr);
+}
+
+nlohmann::json jsonOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// The body's sample at step index i (held at the last one after the stop).
+const SimulationSample& sampleAt(const SimulationResult& r, std::size_t i) {
+  return r.trajectory[std::min(i, r.trajectory.size() - 1)];
+}
+
+render::SceneBody drawBody(const DemoBody& b, const SimulationSample& s, const Vec3& offset) {
+  render::SceneBody d;
+  d.kind = render::SceneBody::Cylinder;
+  d.dimensions = Vec3(b.spec.R, b.spec.R, b.spec.H);
+  d.pose = Eigen::Translation3d(offset + Vec3(s.position.x(), s.position.y(), 0.5 * b.spec.H)) *
+           Eigen::AngleAxisd(s.psi, Vec3::UnitZ());
+  d.colour = b.colour;
+  return d;
+}
+
+// The flat body of the analysis for a cylinder standing on its face: the
+// patch a disk, C at height H/2 above its centre, Jz = m R^2 / 2.
+FlatBody flatBodyOf(const SimulationSpec& s) {
+  FlatBody fb;
+  fb.shape = PatchShape::disk(s.R);
+  fb.mass = s.mass;
+  fb.Jz = 0.5 * s.mass * s.R * s.R;
+  fb.com = Vec3(0, 0, 0.5 * s.H);
+  fb.mu = s.mu;
+  fb.g = s.g;
+  fb.force = s.force;
+  fb.torque = s.torque;
+  return fb;
+}
+
+render::LimitKind kindOf(LimitType t) {
+  switch (t) {
+    case LimitType::Dominant: return render::LimitKind::Dominant;
+    case LimitType::Isolated: return render::LimitKind::Isolated;
+    case LimitType::Saddle: return render::LimitKind::Saddle;
+    default: return render::LimitKind::Nonhyperbolic;
+  }
+}
+
+}  // namespace
+
+void addCommonOptions(CLI::App& app, CommonArgs& a, bool* noPlot, bool* quiet) {
+  app.add_option("--out", a.out, "output directory (frames, summary.json, sphere_*.png)");
+  app.add_option("--frames", a.frames, "number of frames");
+  app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
+  app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
+  app.add_option("--model", a.model, "friction model: exact | ellipsoidal | stock (| all where side by side)");
+  app.add_option("--rate", a.rate, "simulation steps per second (default 240)");
+  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 2)");
+  app.add_option("--t-max", a.tMax, "simulated time limit [s] (default 3)");
+  app.add_flag("--no-plot", *noPlot, "skip the slip-sphere plots (need gnuplot)");
+  app.add_flag("--quiet", *quiet, "no progress bar");
+}
+
+void validateCommonArgs(const CommonArgs& a) {
+  int w = 0, h = 0;
+  parseSize(a.size, w, h);
+  if (!(a.fps > 0 && a.rate > 0 && a.slowmo > 0 && a.tMax > 0))
+    throw CLI::ValidationError("parameters", "need fps, rate, slowmo, t-max > 0");
+  if (a.frames < 1) throw CLI::ValidationError("--frames", "must be >= 1");
+  if (a.model != "exact" && a.model != "ellipsoidal" && a.model != "stock" && a.model != "all")
+    throw CLI::ValidationError("--model", "must be exact, ellipsoidal, stock or all");
+}
+
+int runDemo(const DemoConfig& config, const CommonArgs& a) {
+  int width = 0, height = 0;
+  parseSize(a.size, width, height);
+  const double dt = 1.0 / a.rate;
+  const int k = std::max(1, int(std::lround(a.rate / (a.fps * a.slowmo))));
+  const long frameSteps = long(a.frames - 1) * k;
+  const double tMax = std::max(a.tMax, double(frameSteps) * dt);
+
+  // every body through patchspin::bullet::simulate (same world, same summary)
+  const std::size_t n = config.bodies.size();
+  std::vector<SimulationResult> results(n);
+  std::vector<Vec3> offsets(n);
+  double maxForce = 0.0, maxR = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    SimulationSpec spec = config.bodies[i].spec;
+    spec.dt = dt;
+    spec.tMax = tMax;
+    spec.keepTrajectory = true;
+    spec.precision = patchspin::bullet::buildPrecision();
+    results[i] = patchspin::bullet::simulate(spec);
+    maxForce = std::max(maxForce, spec.force.norm());
+    maxR = std::max(maxR, spec.R);
+  }
+  const double spacing = kSpacingRadii * maxR;
+  for (std::size_t i = 0; i < n; ++i) offsets[i] = Vec3(0, spacing * (0.5 * double(n - 1) - double(i)), 0);
+  const double arrowScale =
+      config.forceArrowScale > 0 ? config.forceArrowScale : (maxForce > 0 ? kArrowRadii * maxR / maxForce : 0.0);
+
+  // camera: fits every body at every rendered instant
+  std::vector<render::SceneBody> extent;
+  for (std::size_t i = 0; i < n; ++i)
+    for (long s = 0; s <= frameSteps; s += k)
+      extent.push_back(drawBody(config.bodies[i], sampleAt(results[i], std::size_t(s)), offsets[i]));
+  const render::Camera camera = render::fitCamera(extent, -90.0, 42.0, double(width) / height, 1.25);
+
+  render::RenderOptions options;
+  options.width = width;
+  options.height = height;
+  render::Renderer renderer(options);
+  render::FrameWriter writer(a.out, a.fps);
+  if (a.progress) printProgress(config.name, 0, a.frames);
+  for (int f = 0; f < a.frames; ++f) {
+    const std::size_t now = std::size_t(f) * std::size_t(k);
+    render::Scene scene;
+    scene.camera = camera;
+    scene.overlay.time = double(now) * dt;
+    scene.overlay.title = config.title;
+    scene.overlay.model = a.model;
+    scene.overlay.caption = config.caption;
+    for (std::size_t i = 0; i < n; ++i) {
+      const DemoBody& b = config.bodies[i];
+      const SimulationResult& r = results[i];
+      const SimulationSample& s = sampleAt(r, now);
+      scene.bodies.push_back(drawBody(b, s, offsets[i]));
+      // trail of the patch centre, at most ~200 points
+      render::Trail trail;
+      trail.colour = b.colour;
+      const std::size_t last = std::min(now, r.trajectory.size() - 1);
+      const std::size_t stride = std::max<std::size_t>(1, last / 200);
+      for (std::size_t j = last % stride; j <= last; j += stride)
+        trail.points.push_back(offsets[i] + Vec3(r.trajectory[j].position.x(), r.trajectory[j].position.y(),
+                                                 options.groundHeight));
+      scene.trails.push_back(trail);
+      if (b.spec.force.norm() > 0) {
+        render::Arrow arrow;
+        arrow.origin = offsets[i] + Vec3(s.position.x(), s.position.y(), b.spec.H);
+        arrow.vector = arrowScale * Vec3(b.spec.force.x(), b.spec.force.y(), 0);
+        char text[64];
+        std::snprintf(text, sizeof text, "F = %.3g N", b.spec.force.norm());
+        arrow.label = text;
+        scene.arrows.push_back(arrow);
+      }
+      render::TrackedBody tracked;
+      tracked.label = b.label;
+      tracked.colour = b.colour;
+      tracked.body = int(i);
+      const bool atRest = r.stopped && double(now) * dt >= r.tStop;
+      if (atRest) {
+        tracked.label += " (at rest)";
+      } else if (s.r > 0) {
+        tracked.w = s.w;
+        if (s.omega != 0.0) tracked.slipRatio = s.velocity.norm() / (b.spec.R * std::abs(s.omega));
+      }
+      scene.overlay.tracked.push_back(tracked);
+    }
+    writer.write(renderer.render(scene));
+    if (a.progress) printProgress(config.name, f + 1, a.frames);
+  }
+
+  // summary.json: per body as `patchspin simulate --engine bullet --json`
+  nlohmann::json summary;
+  summary["video"] = {{"frames", a.frames}, {"fps", a.fps},       {"steps_per_frame", k},
+                      {"width", width},     {"height", height},   {"t_last_frame", double(frameSteps) * dt}};
+  summary["precision"] = patchspin::bullet::buildPrecision();
+  summary["dt"] = dt;
+  summary["t_max"] = tMax;
+  nlohmann::json bodies = nlohmann::json::object();
+  for (std::size_t i = 0; i < n; ++i) {
+    const DemoBody& b = config.bodies[i];
+    const SimulationResult& r = results[i];
+    const SimulationSpec& s = b.spec;
+    nlohmann::json m;
+    m["label"] = b.label;
+    m["model"] = s.model;
+    m["parameters"] = {{"R", s.R},
+                       {"H", s.H},
+                       {"mass", s.mass},
+                       {"mu", s.mu},
+                       {"g", s.g},
+                       {"force", {s.force.x(), s.force.y()}},
+                       {"torque", {s.torque.x(), s.torque.y(), s.torque.z()}},
+                       {"v0", {s.v0.x(), s.v0.y()}},
+                       {"omega0", s.omega0}};
+    m["stopped"] = r.stopped;
+    m["t_stop"] = r.stopped ? nlohmann::json(r.tStop) : nlohmann::json(nullptr);
+    m["eps_stop"] = r.epsStop ? jsonOrNull(*r.epsStop) : nlohmann::json(nullptr);
+    m["w_stop"] = {r.wStop.x(), r.wStop.y(), r.wStop.z()};
+    m["displacement"] = {r.displacement.x(), r.displacement.y()};
+    m["rotation"] = r.rotation;
+    bodies[b.key] = m;
+  }
+  summary["bodies"] = bodies;
+  const fs::path out(a.out);
+  {
+    std::ofstream file(out / "summary.json");
+    file << summary.dump(2) << "\n";
+    if (!file) throw render::RenderError("cannot write " + (out / "summary.json").string());
+  }
+
+  // w(t) on the unit sphere with the limit directions of the body's own model
+  if (a.plot) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const DemoBody& b = config.bodies[i];
+      render::SpherePlot plot;
+      render::SpherePath path;
+      path.label = b.label;
+      for (const SimulationSample& s : results[i].trajectory)
+        if (s.r > 0) path.w.push_back(s.w);
+      plot.paths.push_back(path);
+      if (b.spec.model != "stock") {
+        const FlatBodyModel model(flatBodyOf(b.spec), modelFromString(b.spec.model));
+        for (const LimitDirection& d : findLimitDirections(model).directions) {
+          render::LimitDirection l;
+          l.w = d.w;
+          l.stability = d.attracting ? render::Stability::Attracting : render::Stability::Repelling;
+          l.kind = kindOf(d.type);
+          plot.limits.push_back(l);
+        }
+      }
+      render::PlotOptions po;
+      po.title = config.name + ": " + b.label + ", w(t) and limit directions";
+      const std::string file = (out / ("sphere_" + b.key + ".png")).string();
+      try {
+        render::plotSlipSphere(plot, file, po);
+      } catch (const render::RenderError& e) {
+        std::fprintf(stderr, "%s: warning: no plot: %s\n", config.name.c_str(), e.what());
+      }
+    }
+  }
+  std::printf("%s: %d frames, summary.json%s in %s\n", config.name.c_str(), writer.count(),
+              a.plot ? ", sphere_*.png" : "", a.out.c_str());
+  return 0;
+}
+
+}  // namespace patchspin::demos
