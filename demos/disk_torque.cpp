@@ -35,7 +35,7 @@ int run(const Args& a, demos::CommonArgs c) {
                 "(F_crit = %.3g mu m g)",
                 100 * a.radius, a.zeta, a.force, fCrit);
   config.title = title;
-  config.caption = "force and parallel in-plane torque: the disk stops in a combined slip and spin";
+  config.caption = "paper (Case 4): force and parallel in-plane torque; see sphere_*.png for the limit directions";
   const double angle = a.v0Angle * std::acos(-1.0) / 180.0;
   struct M {
     const char* model;

@@ -30,7 +30,7 @@ int run(const Args& a, const demos::CommonArgs& c) {
   std::snprintf(title, sizeof title, "pushed disk (Sect. 6.1) R = %g cm, H = %g mm, mu = %g, v0 = %g m/s at %g deg, "
                 "omega0 = %g rad/s", 100 * a.radius, 1000 * a.height, a.mu, a.v0, a.v0Angle, a.omega0);
   config.title = title;
-  config.caption = "Case 1 never sticks; Case 2 stops in pure sliding along F; Case 3 stops sliding and spinning";
+  config.caption = "paper: Case 1 never sticks; Case 2 stops sliding along F (w1); Case 3 stops in slip and spin (w3, w4)";
   const double pi = std::acos(-1.0);
   const double angle = a.v0Angle * pi / 180.0;
   const double factors[3] = {a.case1, a.case2, a.case3};

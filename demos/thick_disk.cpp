@@ -33,7 +33,7 @@ int run(const Args& a, demos::CommonArgs c) {
                 "thick disk (Sect. 6.2) R = %g cm, H = %.3g cm (mu h/R = %g), F = %g mu m g (F_crit = %.3g mu m g)",
                 100 * a.radius, 200 * h, a.muHOverR, a.force, fCrit);
   config.title = title;
-  config.caption = "below F_crit the thick disk stops sliding and spinning, its path turned away from F";
+  config.caption = "paper: below F_crit the thick disk stops in slip and spin, its path turned away from F";
   const double angle = a.v0Angle * std::acos(-1.0) / 180.0;
   struct M {
     const char* model;
