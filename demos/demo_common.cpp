@@ -259,9 +259,13 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
       for (const SimulationSample& s : results[i].trajectory)
         if (s.r > 0) path.w.push_back(s.w);
       plot.paths.push_back(path);
+      std::string incomplete;
       if (b.spec.model != "stock") {
         const FlatBodyModel model(flatBodyOf(b.spec), modelFromString(b.spec.model));
-        for (const LimitDirection& d : findLimitDirections(model).directions) {
+        const LimitAnalysis analysis = findLimitDirections(model);
+        // Poincare-Hopf: a missed direction is flagged in the title
+        if (!analysis.indexConsistent) incomplete = " (limit search incomplete: index sum != 2)";
+        for (const LimitDirection& d : analysis.directions) {
           render::LimitDirection l;
           l.w = d.w;
           l.stability = d.attracting ? render::Stability::Attracting : render::Stability::Repelling;
@@ -270,7 +274,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
         }
       }
       render::PlotOptions po;
-      po.title = config.name + ": " + b.label + ", w(t) and limit directions";
+      po.title = config.name + ": " + b.label + ", w(t) and limit directions" + incomplete;
       const std::string file = (out / ("sphere_" + b.key + ".png")).string();
       try {
         render::plotSlipSphere(plot, file, po);
