@@ -170,7 +170,9 @@ SimulationResult simulate(const SimulationSpec& spec) {
   double rPrev = r0, rPrev2 = r0;
   double lastMoving = 0.0;
   State s = s0;
+  State sPrev = s0;
   for (long k = 1; k <= steps; ++k) {
+    if (k > 1) sPrev = s;
     body.applyCentralForce(force);
     body.applyTorque(torque);
     world.stepSimulation(btScalar(spec.dt), 0);
@@ -182,8 +184,14 @@ SimulationResult simulate(const SimulationSpec& spec) {
     if (r0 > 0) {
       if (!recorded && r < spec.recordAt * r0) {
         recorded = true;
-        result.wStop = r > 0 ? Vec3(s.x / r) : Vec3::Zero();
-        if (cylinder && s.omega != 0.0) result.epsStop = s.velocity.norm() / (spec.R * std::abs(s.omega));
+        // w is undefined once the patch sticks (r ~ 0, or a creep set by the
+        // applied force). If this step is the one that sticks, the slip fell
+        // below the threshold within the step, where one step cannot resolve
+        // it: record the last slipping step's direction instead.
+        const State& at = (r <= kStopFraction * r0 && sPrev.x.norm() > 0) ? sPrev : s;
+        const double rAt = at.x.norm();
+        result.wStop = rAt > 0 ? Vec3(at.x / rAt) : Vec3::Zero();
+        if (cylinder && at.omega != 0.0) result.epsStop = at.velocity.norm() / (spec.R * std::abs(at.omega));
       }
       if (r <= kStopFraction * r0) {
         // stop part way through the step at the previous decrement rate

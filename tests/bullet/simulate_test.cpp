@@ -386,5 +386,31 @@ TEST(Simulate, LightCoinAgreesWithReferenceOnTravel) {
   EXPECT_LT((bullet.wStop - reference.wStop).norm(), kLimitWTol);
 }
 
+// When the step that crosses recordAt * r0 is the one that sticks (here
+// recordAt * r0 = 8.3 mm/s is below one step's resolution mu g dt = 12 mm/s),
+// the slip direction at the crossing is undefined; simulate() records the
+// last slipping step's w. It keeps the spin (w3 near the reference's, within
+// the 0.02) instead of reporting the force direction with w3 = 0.
+TEST(Simulate, StickStepRecordsLastSlippingDirection) {
+  SimulationSpec s = thinDisk("exact", 0.0, 20.0);
+  s.mass = 0.03;
+  s.H = 0.005;
+  s.v0 = Vec2(0.0, 0.5);
+  s.force = Vec2(0.05 * s.mu * s.mass * s.g, 0.0);  // Case 3 of Sect. 6.1
+  const SimulationResult bullet = simulate(s);
+  SimulationSpec ref = s;
+  ref.engine = "reference";
+  ref.keepTrajectory = false;
+  const SimulationResult reference = simulateReference(ref);
+  ASSERT_TRUE(bullet.stopped);
+  ASSERT_TRUE(bullet.epsStop.has_value());
+  const SimulationSample* last = nullptr;
+  for (const SimulationSample& q : bullet.trajectory)
+    if (q.r > 0.0 && q.r >= 1e-5 * bullet.trajectory.front().r) last = &q;
+  ASSERT_NE(last, nullptr);
+  EXPECT_EQ(bullet.wStop, last->w);
+  EXPECT_NEAR(bullet.wStop.z(), reference.wStop.z(), kLimitWTol);
+}
+
 }  // namespace
 }  // namespace patchspin::bullet
