@@ -16,6 +16,8 @@
 // simulate --json`), max_tilt_rate |(omega_x, omega_y)| over the run [rad/s],
 // max_slip_after_stop [m/s] (stock Bullet creeps on), final_displacement [m]
 // at the end of the run.
+#include "demo_common.hpp"
+
 #include <patchspin/bullet/scene.hpp>
 #include <patchspin/bullet/simulate.hpp>
 #include <patchspin/geometry.hpp>
@@ -34,7 +36,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
 
 namespace {
 
@@ -200,39 +201,14 @@ render::SceneBody coinBody(const Coin& coin, const Sample& s, const Args& a) {
   return b;
 }
 
-nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-void parseSize(const std::string& size, int& width, int& height) {
-  const auto x = size.find('x');
-  try {
-    if (x == std::string::npos) throw std::invalid_argument(size);
-    std::size_t used = 0;
-    width = std::stoi(size.substr(0, x), &used);
-    if (used != x) throw std::invalid_argument(size);
-    height = std::stoi(size.substr(x + 1), &used);
-    if (used != size.size() - x - 1) throw std::invalid_argument(size);
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
-  }
-  if (width < 16 || height < 16 || width > 8192 || height > 8192)
-    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
-}
 
-// Progress bar on stderr: redrawn in place on a terminal, else a line per 10%.
-void printProgress(int done, int total) {
-  constexpr int kBar = 40;
-  static const bool kTerminal = ::isatty(STDERR_FILENO) != 0;
-  if (!kTerminal && done != total && (done * 10 / total == (done - 1) * 10 / total || done == 0)) return;
-  const int filled = total > 0 ? done * kBar / total : kBar;
-  std::fprintf(stderr, "%scoin: [%s%s] %d/%d frames%s", kTerminal ? "\r" : "",
-               std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(kBar - filled), ' ').c_str(),
-               done, total, kTerminal && done != total ? "" : "\n");
-  std::fflush(stderr);
-}
+
+
 
 int run(const Args& a) {
   int width = 0, height = 0;
-  parseSize(a.size, width, height);
+  patchspin::demos::parseSize(a.size, width, height);
   if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu >= 0 && a.fps > 0 && a.rate > 0 &&
         a.slowmo > 0 && a.tMax > 0 && std::isfinite(a.v0) && std::isfinite(a.omega0)))
     throw CLI::ValidationError("parameters", "need radius, height, mass, g, fps, rate, slowmo, t-max > 0, mu >= 0");
@@ -280,7 +256,7 @@ int run(const Args& a) {
   char title[160];
   std::snprintf(title, sizeof title, "coin R = %g cm, H = %g mm, mu = %g, v0 = %g m/s, omega0 = %g rad/s",
                 100 * a.radius, 1000 * a.height, a.mu, a.v0, a.omega0);
-  if (a.progress) printProgress(0, a.frames);
+  if (a.progress) patchspin::demos::printProgress("coin", 0, a.frames);
   for (int f = 0; f < a.frames; ++f) {
     const std::size_t now = std::size_t(f) * std::size_t(k);
     render::Scene scene;
@@ -336,7 +312,7 @@ int run(const Args& a) {
     }
     scene.overlay.chart = chart;
     writer.write(renderer.render(scene));
-    if (a.progress) printProgress(f + 1, a.frames);
+    if (a.progress) patchspin::demos::printProgress("coin", f + 1, a.frames);
   }
 
   // summary.json
@@ -353,7 +329,7 @@ int run(const Args& a) {
     nlohmann::json m;
     m["stopped"] = c.stopped;
     m["t_stop"] = c.stopped ? nlohmann::json(c.tStop) : nlohmann::json(nullptr);
-    m["eps_stop"] = c.epsStop ? finiteOrNull(*c.epsStop) : nlohmann::json(nullptr);
+    m["eps_stop"] = c.epsStop ? patchspin::demos::jsonOrNull(*c.epsStop) : nlohmann::json(nullptr);
     m["w_stop"] = c.recorded ? nlohmann::json{c.wStop.x(), c.wStop.y(), c.wStop.z()} : nlohmann::json(nullptr);
     m["max_tilt_rate"] = c.maxTilt;
     m["max_slip_after_stop"] = c.maxCreep;
@@ -437,15 +413,9 @@ int main(int argc, char** argv) {
   bool noPlot = false, quiet = false;
   app.add_flag("--no-plot", noPlot, "skip coin_ratio.png (needs gnuplot)");
   app.add_flag("--quiet", quiet, "no progress bar");
-  CLI11_PARSE(app, argc, argv);
-  a.plot = !noPlot;
-  a.progress = !quiet;
-  try {
+  return patchspin::demos::runMain(app, argc, argv, "coin", [&] {
+    a.plot = !noPlot;
+    a.progress = !quiet;
     return run(a);
-  } catch (const CLI::Error& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "coin: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

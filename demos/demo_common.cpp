@@ -26,35 +26,10 @@ constexpr double kSpacingRadii = 3.0;
 // Automatic force arrow: the largest force is drawn this many radii long.
 constexpr double kArrowRadii = 2.0;
 
-void parseSize(const std::string& size, int& width, int& height) {
-  const auto x = size.find('x');
-  try {
-    if (x == std::string::npos) throw std::invalid_argument(size);
-    std::size_t used = 0;
-    width = std::stoi(size.substr(0, x), &used);
-    if (used != x) throw std::invalid_argument(size);
-    height = std::stoi(size.substr(x + 1), &used);
-    if (used != size.size() - x - 1) throw std::invalid_argument(size);
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
-  }
-  if (width < 16 || height < 16 || width > 8192 || height > 8192)
-    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
-}
 
-// Progress bar on stderr: redrawn in place on a terminal, else a line per 10%.
-void printProgress(const std::string& name, int done, int total) {
-  constexpr int kBar = 40;
-  static const bool kTerminal = ::isatty(STDERR_FILENO) != 0;
-  if (!kTerminal && done != total && (done * 10 / total == (done - 1) * 10 / total || done == 0)) return;
-  const int filled = total > 0 ? done * kBar / total : kBar;
-  std::fprintf(stderr, "%s%s: [%s%s] %d/%d frames%s", kTerminal ? "\r" : "", name.c_str(),
-               std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(kBar - filled), ' ').c_str(),
-               done, total, kTerminal && done != total ? "" : "\n");
-  std::fflush(stderr);
-}
 
-nlohmann::json jsonOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+
 
 // The body's sample at step index i (held at the last one after the stop).
 const SimulationSample& sampleAt(const SimulationResult& r, std::size_t i) {
@@ -286,6 +261,48 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
   std::printf("%s: %d frames, summary.json%s in %s\n", config.name.c_str(), writer.count(),
               a.plot ? ", sphere_*.png" : "", a.out.c_str());
   return 0;
+}
+
+
+void parseSize(const std::string& size, int& width, int& height) {
+  const auto x = size.find('x');
+  try {
+    if (x == std::string::npos) throw std::invalid_argument(size);
+    std::size_t used = 0;
+    width = std::stoi(size.substr(0, x), &used);
+    if (used != x) throw std::invalid_argument(size);
+    height = std::stoi(size.substr(x + 1), &used);
+    if (used != size.size() - x - 1) throw std::invalid_argument(size);
+  } catch (const std::exception&) {
+    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
+  }
+  if (width < 16 || height < 16 || width > 8192 || height > 8192)
+    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
+}
+
+void printProgress(const std::string& name, int done, int total) {
+  constexpr int kBar = 40;
+  static const bool kTerminal = ::isatty(STDERR_FILENO) != 0;
+  if (!kTerminal && done != total && (done * 10 / total == (done - 1) * 10 / total || done == 0)) return;
+  const int filled = total > 0 ? done * kBar / total : kBar;
+  std::fprintf(stderr, "%s%s: [%s%s] %d/%d frames%s", kTerminal ? "\r" : "", name.c_str(),
+               std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(kBar - filled), ' ').c_str(),
+               done, total, kTerminal && done != total ? "" : "\n");
+  std::fflush(stderr);
+}
+
+nlohmann::json jsonOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+int runMain(CLI::App& app, int argc, char** argv, const char* name, const std::function<int()>& run) {
+  try {
+    app.parse(argc, argv);
+    return run();
+  } catch (const CLI::Error& e) {  // parse errors and --size validation
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", name, e.what());
+    return 1;
+  }
 }
 
 }  // namespace patchspin::demos

@@ -10,6 +10,9 @@
 // patchspin::findLimitDirections (patch models only) marked by type.
 #pragma once
 
+#include <functional>
+#include <nlohmann/json.hpp>
+
 #include <patchspin/render/scene.hpp>
 #include <patchspin/simulation.hpp>
 
@@ -58,5 +61,19 @@ void validateCommonArgs(const CommonArgs& args);
 
 // Runs, renders and writes everything; returns the exit code.
 int runDemo(const DemoConfig& config, const CommonArgs& args);
+
+// "WxH" -> width, height in [16, 8192]; throws CLI::ValidationError.
+void parseSize(const std::string& size, int& width, int& height);
+
+// Progress bar "<name>: [###   ] done/total frames" on stderr: redrawn in
+// place on a terminal, else a line per 10 %.
+void printProgress(const std::string& name, int done, int total);
+
+// A finite number, or JSON null.
+nlohmann::json jsonOrNull(double value);
+
+// Parses the command line and calls `run`, turning errors into one line on
+// stderr ("<name>: error: ...") and an exit code, as every demo does.
+int runMain(CLI::App& app, int argc, char** argv, const char* name, const std::function<int()>& run);
 
 }  // namespace patchspin::demos

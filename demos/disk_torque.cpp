@@ -86,15 +86,9 @@ int main(int argc, char** argv) {
   app.add_option("--omega0", a.omega0, "initial spin [rad/s] (default 20)");
   app.add_option("--zeta", a.zeta, "torque T / (m g R), about +x (default 0.15)");
   app.add_option("--force", a.force, "force F / (mu m g) along +x (default 0.1)");
-  CLI11_PARSE(app, argc, argv);
-  c.plot = !noPlot;
-  c.progress = !quiet;
-  try {
+  return demos::runMain(app, argc, argv, "disk_torque", [&] {
+    c.plot = !noPlot;
+    c.progress = !quiet;
     return run(a, c);
-  } catch (const CLI::Error& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "disk_torque: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

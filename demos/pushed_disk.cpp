@@ -79,15 +79,9 @@ int main(int argc, char** argv) {
   app.add_option("--case1", a.case1, "Case 1 force F / (mu m g) (default 1.2)");
   app.add_option("--case2", a.case2, "Case 2 force F / (mu m g) (default 0.5)");
   app.add_option("--case3", a.case3, "Case 3 force F / (mu m g) (default 0.05)");
-  CLI11_PARSE(app, argc, argv);
-  c.plot = !noPlot;
-  c.progress = !quiet;
-  try {
+  return demos::runMain(app, argc, argv, "pushed_disk", [&] {
+    c.plot = !noPlot;
+    c.progress = !quiet;
     return run(a, c);
-  } catch (const CLI::Error& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "pushed_disk: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

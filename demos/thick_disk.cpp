@@ -82,15 +82,9 @@ int main(int argc, char** argv) {
   app.add_option("--v0-angle", a.v0Angle, "angle of v0 from the force [deg] (default 90)");
   app.add_option("--omega0", a.omega0, "initial spin [rad/s] (default 15)");
   app.add_option("--force", a.force, "force F / (mu m g) along +x (default 0.1)");
-  CLI11_PARSE(app, argc, argv);
-  c.plot = !noPlot;
-  c.progress = !quiet;
-  try {
+  return demos::runMain(app, argc, argv, "thick_disk", [&] {
+    c.plot = !noPlot;
+    c.progress = !quiet;
     return run(a, c);
-  } catch (const CLI::Error& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "thick_disk: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }
