@@ -61,7 +61,7 @@ if [[ $mode == test ]]; then
   if [[ -d "$root/tests/bullet" ]] && ls "$root"/tests/bullet/*_test.cpp >/dev/null 2>&1; then
     echo "== tests of the Bullet layer against double-precision Bullet (bullet-float64)"
     configure_and_build "$build-double" -DPATCHSPIN_BULLET_DOUBLE=ON -DPATCHSPIN_BUILD_RENDER=OFF
-    (cd "$build-double" && ctest --output-on-failure -j"$jobs" --timeout 900 -L bullet)
+    (cd "$build-double" && ctest --output-on-failure -j"$jobs" --timeout 900 -L "bullet|stress")
   fi
   exit 0
 fi
