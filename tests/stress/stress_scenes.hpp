@@ -1,0 +1,169 @@
+// Shared pieces of the stress tests (issue 6): the opt-in switch for the full
+// runs, friction-model selection including stock Bullet, geometry probes
+// (lowest point of a box or cylinder, for penetration), a body holder that
+// takes bodies out of a Scene's world before they die, and a plain-text
+// table that is printed and, if PATCHSPIN_STRESS_TABLE names a file,
+// appended to it (scripts/stress.sh collects the tables that way).
+#pragma once
+
+#include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/bullet/scene.hpp>
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace patchspin::bullet::stress {
+
+constexpr bool kDouble = sizeof(btScalar) == sizeof(double);
+inline const char* precisionName() { return kDouble ? "double" : "float"; }
+
+// PATCHSPIN_STRESS_FULL=1 (any value but "0" or empty) runs the full matrix
+// and the full-size scenes; otherwise the fast subset of the default suite.
+inline bool stressFull() {
+  const char* v = std::getenv("PATCHSPIN_STRESS_FULL");
+  return v && *v && std::string(v) != "0";
+}
+
+// Patch friction models and stock Bullet (the body not opted in).
+enum class Friction { Stock, Ellipsoidal, Exact };
+inline const char* toString(Friction f) {
+  return f == Friction::Stock ? "stock" : f == Friction::Ellipsoidal ? "ellipsoidal" : "exact";
+}
+inline void optIn(Scene& scene, btRigidBody* body, Friction f) {
+  if (f == Friction::Stock) return;
+  scene.solver().enablePatchFriction(body, {f == Friction::Exact ? Model::Exact : Model::Ellipsoidal});
+}
+
+inline btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
+
+inline bool isFinite(const btVector3& v) {
+  return std::isfinite(double(v.x())) && std::isfinite(double(v.y())) && std::isfinite(double(v.z()));
+}
+inline bool isFinite(const btRigidBody* b) {
+  const btTransform& t = b->getWorldTransform();
+  return isFinite(t.getOrigin()) && isFinite(t.getBasis().getColumn(0)) && isFinite(t.getBasis().getColumn(2)) &&
+         isFinite(b->getLinearVelocity()) && isFinite(b->getAngularVelocity());
+}
+
+// Lowest / highest z of the body's real outline (boxes: corners with margin;
+// Z cylinders: the lowest rim point of a cap), for penetration and stacks.
+inline double extremeZ(const btRigidBody* b, bool lowest) {
+  const btCollisionShape* s = b->getCollisionShape();
+  const btTransform& t = b->getWorldTransform();
+  const double sign = lowest ? 1.0 : -1.0;
+  if (s->getShapeType() == BOX_SHAPE_PROXYTYPE) {
+    const btVector3 h = static_cast<const btBoxShape*>(s)->getHalfExtentsWithMargin();
+    double best = sign * 1e300;
+    for (int i = 0; i < 8; ++i) {
+      const btVector3 c = t * btVector3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+      best = lowest ? std::min(best, double(c.z())) : std::max(best, double(c.z()));
+    }
+    return best;
+  }
+  if (s->getShapeType() == CYLINDER_SHAPE_PROXYTYPE) {
+    const auto* c = static_cast<const btCylinderShape*>(s);
+    const btVector3 h = c->getHalfExtentsWithMargin();
+    const int axis = c->getUpAxis();
+    const double R = double(c->getRadius()), H = double(h[axis]);
+    const double az = double(t.getBasis().getColumn(axis).z());
+    const double reach = std::abs(az) * H + R * std::sqrt(std::max(0.0, 1.0 - az * az));
+    return double(t.getOrigin().z()) - sign * reach;
+  }
+  btVector3 lo, hi;
+  s->getAabb(t, lo, hi);
+  return lowest ? double(lo.z()) : double(hi.z());
+}
+
+// Bodies created by a test and added to a Scene's world: removed from the
+// world before they are destroyed. Declare it after the Scene.
+class OwnedBodies {
+ public:
+  explicit OwnedBodies(btDiscreteDynamicsWorld& world) : world_(world) {}
+  ~OwnedBodies() {
+    for (auto& b : bodies_)
+      if (b->isInWorld()) world_.removeRigidBody(b.get());
+  }
+  OwnedBodies(const OwnedBodies&) = delete;
+  OwnedBodies& operator=(const OwnedBodies&) = delete;
+  // A body with the given shape, mass, inertia and start transform, added
+  // to the world (no sleeping, no restitution, no rolling friction).
+  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, double mass, const btVector3& inertia,
+                   const btTransform& start, double friction) {
+    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape.get(), inertia);
+    info.m_startWorldTransform = start;
+    info.m_friction = btScalar(friction);
+    auto body = std::make_unique<btRigidBody>(info);
+    body->setRestitution(0);
+    body->setRollingFriction(0);
+    body->setSpinningFriction(0);
+    body->setActivationState(DISABLE_DEACTIVATION);
+    world_.addRigidBody(body.get());
+    shapes_.push_back(std::move(shape));
+    bodies_.push_back(std::move(body));
+    return bodies_.back().get();
+  }
+
+ private:
+  btDiscreteDynamicsWorld& world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+};
+
+// Table printed to stdout and appended to $PATCHSPIN_STRESS_TABLE.
+class Table {
+ public:
+  Table(std::string title, std::vector<std::string> header) : title_(std::move(title)), header_(std::move(header)) {}
+  void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
+  std::string str() const {
+    std::vector<size_t> w(header_.size(), 0);
+    for (size_t i = 0; i < header_.size(); ++i) w[i] = header_[i].size();
+    for (const auto& r : rows_)
+      for (size_t i = 0; i < r.size() && i < w.size(); ++i) w[i] = std::max(w[i], r[i].size());
+    auto line = [&](const std::vector<std::string>& r) {
+      std::string s = "|";
+      for (size_t i = 0; i < w.size(); ++i) {
+        const std::string c = i < r.size() ? r[i] : "";
+        s += " " + c + std::string(w[i] - c.size(), ' ') + " |";
+      }
+      return s + "\n";
+    };
+    std::string out = "\n### " + title_ + " (" + precisionName() + " Bullet)\n\n" + line(header_);
+    std::string sep = "|";
+    for (size_t i = 0; i < w.size(); ++i) sep += std::string(w[i] + 2, '-') + "|";
+    out += sep + "\n";
+    for (const auto& r : rows_) out += line(r);
+    return out;
+  }
+  void emit() const {
+    const std::string s = str();
+    std::fputs(s.c_str(), stdout);
+    std::fflush(stdout);
+    if (const char* path = std::getenv("PATCHSPIN_STRESS_TABLE"); path && *path) {
+      if (FILE* f = std::fopen(path, "a")) {
+        std::fputs(s.c_str(), f);
+        std::fclose(f);
+      }
+    }
+  }
+
+ private:
+  std::string title_;
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+inline std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+inline const char* passFail(bool ok) { return ok ? "ok" : "FAIL"; }
+
+}  // namespace patchspin::bullet::stress
