@@ -1,0 +1,358 @@
+// demos/blocks runs headless with a few small frames: valid PNGs of the
+// requested size, not blank, changing from frame to frame, byte-identical on
+// a second run. summary.json: the tracked rectangle agrees with `patchspin
+// simulate --engine bullet` (exact and stock rows) and, within named
+// tolerances, with `patchspin simulate --engine reference`; the square
+// spinning in place stops when the closed forms say (mean |r| of the face by
+// brute-force quadrature here; Bullet's four corner points for stock); the
+// sphere, never opted in, ends rolling at 5/7 of its initial speed in every
+// row; the stack stands. Skips if the demo binary is not built.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <patchspin/render/image.hpp>
+#include <sstream>
+#include <string>
+
+#include "run_tool.hpp"
+
+namespace patchspin::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+constexpr int kFrames = 3;
+// The scene's parameters, passed to the demo; the predictions below are
+// computed from these, not from the summary.
+constexpr double kMu = 0.3;
+constexpr double kG = 9.81;
+constexpr double kSquareSide = 0.1, kSquareMass = 1.0, kSquareOmega0 = 20.0;
+constexpr double kSphereV0 = 0.15;
+constexpr double kRate = 240.0;
+const char* kSceneFlags =
+    "--mu 0.3 --g 9.81 --rect-size 0.15 0.075 0.04 --rect-mass 1 --rect-v0 0.5 --rect-omega0 15 "
+    "--square-side 0.1 --square-height 0.04 --square-mass 1 --square-omega0 20 --sphere-v0 0.15 --rate 240";
+// Simulated time [s]: every block stops within 0.35 s (the stock square's
+// spin within 0.17 s), the sphere rolls after 15 ms.
+constexpr double kTMax = 1.0;
+
+// A blank (uniform) frame has variance 0; sky, ground, blocks and text give far
+// more than a standard deviation of 10 grey levels.
+constexpr double kMinVariance = 100.0;
+// Consecutive frames 1/30 s apart (--slowmo 1): the blocks move and turn by
+// centimetres and tenths of a radian and the overlay numbers change, which
+// alters far more than 50 of 19200 pixels by more than 8 levels (the renderer
+// is deterministic, so any change is real).
+constexpr int kMinChangedPixels = 50;
+constexpr int kChangeThreshold = 8;
+// The demo builds the tracked rectangle's world exactly as `patchspin
+// simulate --engine bullet` (ground, body, margin, friction, solver) and the
+// other bodies never touch it, so the numbers agree to the 17 significant
+// digits of the JSON round trip; 1e-12 relative leaves room for the last
+// printed digit only.
+constexpr double kAgreementTol = 1e-12;
+// Yaw of the final pose against the summed rotation omega dt up to the stop:
+// Bullet integrates the same velocities into its quaternion, and stock Bullet
+// creeps on without turning after its stop (measured 1e-4 rad); 1e-3 rad.
+constexpr double kYawTol = 1e-3;
+// Bullet (240 Hz steps, float) against the reference dynamics (adaptive
+// Dormand-Prince), as tests/bullet/simulate_test.cpp: stop time within 2 %,
+// travel within one step at the initial speed (v0 dt), rotation within one
+// step at the initial spin (omega0 dt).
+constexpr double kReferenceStopTol = 0.02;
+// Square spinning in place with a patch law: the implicit step decelerates at
+// exactly the torque mu m g mean|r| and stops within the step, so the stop
+// time carries only float round-off (~1e-6 relative); 1e-3 leaves room for the
+// solver's iterations, and is far below the 85 % between face and corners.
+constexpr double kSpinDownTol = 1e-3;
+// Pure spin of a centred square: the patch force vanishes by symmetry; any
+// drift is float round-off of the face integrals (~1e-9 m).
+constexpr double kDriftTol = 1e-6;
+// Stock Bullet's square: four manifold points at the corners give the torque
+// mu m g d (d = half diagonal). The manifold keeps points from earlier steps
+// while the box turns 0.08 rad per step and refreshes them only past its
+// breaking threshold, so the arm fluctuates about d (step decelerations
+// 117-153 rad/s^2 about the predicted 125); over the spin-down they average
+// to within a few per cent. 5 % still separates it from the face's 0.296 s by
+// far (the prediction for corners is 0.160 s).
+constexpr double kCornerTol = 0.05;
+// Sphere: float round-off of ~240 steps of rolling (measured ~2e-5 relative);
+// 1e-4 relative. The rolling instant is resolved to one step.
+constexpr double kRollSpeedTol = 1e-4;
+// The stack stands: every block within 2 mm of where it started (settling into
+// 1 mm margins; toppling or sliding off moves it by centimetres).
+constexpr double kStackTol = 2e-3;
+
+std::string buildPath(const std::string& sub) {
+#ifdef PATCHSPIN_TOOL
+  return (fs::path(PATCHSPIN_TOOL).parent_path().parent_path() / sub).string();
+#else
+  (void)sub;
+  return "";
+#endif
+}
+
+std::string toolPath() {
+#ifdef PATCHSPIN_TOOL
+  return PATCHSPIN_TOOL;
+#else
+  return "";
+#endif
+}
+
+std::string tempDir(const std::string& name) {
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("patchspin_blocks_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+int countDifferentPixels(const Image& a, const Image& b, int threshold) {
+  int n = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
+      if (d > threshold) ++n;
+    }
+  }
+  return n;
+}
+
+std::string g17(double v) {
+  char s[40];
+  std::snprintf(s, sizeof s, "%.17g", v);
+  return s;
+}
+
+bool near(double a, double b, double tol) { return std::abs(a - b) <= tol * std::max(1.0, std::abs(b)); }
+
+// Mean distance from the centre of an a x b rectangle by a midpoint grid of
+// 2000 x 2000 cells (error ~1e-7 relative), independent of the demo's closed
+// form.
+double meanDistanceByQuadrature(double a, double b) {
+  constexpr int kN = 2000;
+  double sum = 0;
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) sum += std::hypot(((i + 0.5) / kN - 0.5) * a, ((j + 0.5) / kN - 0.5) * b);
+  return sum / (double(kN) * kN);
+}
+
+// `patchspin simulate` of the tracked rectangle of summary row `row`.
+nlohmann::json simulateRectangle(const nlohmann::json& s, const std::string& row, const std::string& engine) {
+  const nlohmann::json& p = s["rows"][row]["bodies"]["rect"]["parameters"];
+  std::ostringstream args;
+  args << "simulate --engine " << engine << " --model " << row << " --shape box:" << g17(p["LX"].get<double>()) << ","
+       << g17(p["LY"].get<double>()) << "," << g17(p["LZ"].get<double>()) << " --mass "
+       << g17(p["mass"].get<double>()) << " --mu " << g17(p["mu"].get<double>()) << " --g "
+       << g17(p["g"].get<double>()) << " --v0 " << g17(p["v0"][0].get<double>()) << ","
+       << g17(p["v0"][1].get<double>()) << " --omega0 " << g17(p["omega0"].get<double>()) << " --dt "
+       << g17(s["dt"].get<double>()) << " --t-max " << g17(s["t_max"].get<double>());
+  if (engine == "bullet") args << " --precision " << s["precision"].get<std::string>();
+  args << " --json";
+  const auto run = testing::runTool(toolPath(), args.str());
+  EXPECT_EQ(run.exitCode, 0) << run.err << "\n" << args.str();
+  if (run.exitCode != 0) return nullptr;
+  return nlohmann::json::parse(run.out);
+}
+
+class BlocksDemo : public ::testing::Test {
+ protected:
+  // Runs the demo twice into two directories (once per test suite).
+  static void SetUpTestSuite() {
+    const std::string demo = buildPath("demos/blocks");
+    if (demo.empty() || !fs::exists(demo)) return;
+    for (int run = 0; run < 2; ++run) {
+      dirs_[run] = tempDir("run" + std::to_string(run));
+      std::ostringstream args;
+      args << "--out " << dirs_[run] << " --frames " << kFrames << " --size " << kWidth << "x" << kHeight
+           << " --fps 30 --slowmo 1 --t-max " << kTMax << " " << kSceneFlags;
+      runs_[run] = testing::runTool(demo, args.str());
+    }
+  }
+  static void TearDownTestSuite() {
+    for (const std::string& d : dirs_)
+      if (!d.empty()) fs::remove_all(d);
+  }
+  void SetUp() override {
+    const std::string demo = buildPath("demos/blocks");
+    if (demo.empty() || !fs::exists(demo))
+      GTEST_SKIP() << "demos/blocks not built (needs the Bullet integration and the renderer): " << demo;
+    ASSERT_EQ(runs_[0].exitCode, 0) << runs_[0].err;
+    ASSERT_EQ(runs_[1].exitCode, 0) << runs_[1].err;
+  }
+  static nlohmann::json summary(int run = 0) {
+    return nlohmann::json::parse(fileBytes((fs::path(dirs_[run]) / "summary.json").string()));
+  }
+
+  static inline std::string dirs_[2];
+  static inline testing::ToolRun runs_[2];
+};
+
+TEST_F(BlocksDemo, FramesAreValidPngsOfTheRequestedSizeNotBlankAndChanging) {
+  Image previous;
+  for (int i = 0; i < kFrames; ++i) {
+    const std::string path = (fs::path(dirs_[0]) / ("frame_0000" + std::to_string(i) + ".png")).string();
+    ASSERT_TRUE(fs::exists(path)) << path;
+    const Image frame = readPng(path);  // throws on an invalid PNG
+    EXPECT_EQ(frame.width, kWidth);
+    EXPECT_EQ(frame.height, kHeight);
+    EXPECT_GT(pixelVariance(frame), kMinVariance) << path;
+    if (i > 0) {
+      EXPECT_GT(countDifferentPixels(previous, frame, kChangeThreshold), kMinChangedPixels) << path;
+    }
+    previous = frame;
+  }
+  EXPECT_FALSE(fs::exists(fs::path(dirs_[0]) / ("frame_0000" + std::to_string(kFrames) + ".png")));
+  // the progress bar goes to stderr and ends complete
+  EXPECT_NE(runs_[0].err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
+            std::string::npos)
+      << runs_[0].err;
+}
+
+TEST_F(BlocksDemo, TwoRunsGiveIdenticalBytes) {
+  for (int i = 0; i < kFrames; ++i) {
+    const std::string name = "frame_0000" + std::to_string(i) + ".png";
+    const std::string a = fileBytes((fs::path(dirs_[0]) / name).string());
+    ASSERT_FALSE(a.empty()) << name;
+    EXPECT_TRUE(a == fileBytes((fs::path(dirs_[1]) / name).string())) << name;
+  }
+  EXPECT_EQ(fileBytes((fs::path(dirs_[0]) / "summary.json").string()),
+            fileBytes((fs::path(dirs_[1]) / "summary.json").string()));
+}
+
+// The tracked rectangle, exact and stock rows, through `patchspin simulate
+// --engine bullet --shape box:...` with the parameters the summary reports.
+TEST_F(BlocksDemo, TrackedRectangleAgreesWithPatchspinSimulate) {
+  const nlohmann::json s = summary();
+  EXPECT_EQ(s["dt"].get<double>(), 1.0 / kRate);
+  for (const char* row : {"exact", "stock"}) {
+    SCOPED_TRACE(row);
+    ASSERT_TRUE(s["rows"].contains(row));
+    const nlohmann::json& m = s["rows"][row]["bodies"]["rect"];
+    const nlohmann::json ref = simulateRectangle(s, row, "bullet");
+    ASSERT_FALSE(ref.is_null());
+    ASSERT_TRUE(ref["stopped"].get<bool>());
+    ASSERT_EQ(m["stopped"].get<bool>(), true);
+    EXPECT_TRUE(near(m["t_stop"].get<double>(), ref["t_stop"].get<double>(), kAgreementTol))
+        << m["t_stop"] << " vs " << ref["t_stop"];
+    for (int i = 0; i < 3; ++i)
+      EXPECT_TRUE(near(m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>(), kAgreementTol)) << i;
+    for (int i = 0; i < 2; ++i)
+      EXPECT_TRUE(near(m["displacement"][i].get<double>(), ref["displacement"][i].get<double>(), kAgreementTol))
+          << i;
+    EXPECT_TRUE(near(m["rotation"].get<double>(), ref["rotation"].get<double>(), kAgreementTol));
+    // final yaw after the stop: the rotation up to the stop (stock creeps on
+    // without turning: its spin stopped first)
+    EXPECT_NEAR(std::remainder(m["final_yaw"].get<double>() - m["rotation"].get<double>(), 2 * std::acos(-1.0)), 0.0,
+                kYawTol);
+  }
+  // the visible difference: stock Bullet's corner friction turns the
+  // rectangle far less than the patch law before it stops
+  EXPECT_LT(s["rows"]["stock"]["bodies"]["rect"]["rotation"].get<double>(),
+            0.8 * s["rows"]["exact"]["bodies"]["rect"]["rotation"].get<double>());
+}
+
+// Exact row against the reference dynamics of the same block (independent of
+// Bullet), and the demo's own prediction field is that run.
+TEST_F(BlocksDemo, RectangleAgreesWithReferenceDynamics) {
+  const nlohmann::json s = summary();
+  const nlohmann::json& m = s["rows"]["exact"]["bodies"]["rect"];
+  const nlohmann::json ref = simulateRectangle(s, "exact", "reference");
+  ASSERT_FALSE(ref.is_null());
+  ASSERT_TRUE(ref["stopped"].get<bool>());
+  const double tRef = ref["t_stop"].get<double>();
+  EXPECT_NEAR(m["t_stop"].get<double>(), tRef, kReferenceStopTol * tRef);
+  const nlohmann::json& p = m["parameters"];
+  const double dt = s["dt"].get<double>();
+  const double travelTol = std::hypot(p["v0"][0].get<double>(), p["v0"][1].get<double>()) * dt;
+  const double dx = m["displacement"][0].get<double>() - ref["displacement"][0].get<double>();
+  const double dy = m["displacement"][1].get<double>() - ref["displacement"][1].get<double>();
+  EXPECT_LT(std::hypot(dx, dy), travelTol);
+  EXPECT_NEAR(m["rotation"].get<double>(), ref["rotation"].get<double>(), std::abs(p["omega0"].get<double>()) * dt);
+  ASSERT_FALSE(m["prediction"].is_null());
+  EXPECT_TRUE(near(m["prediction"]["t_stop"].get<double>(), tRef, kAgreementTol));
+  EXPECT_TRUE(near(m["prediction"]["rotation"].get<double>(), ref["rotation"].get<double>(), kAgreementTol));
+  // the patch law stops slip and spin together; w_stop a unit vector
+  double w2 = 0;
+  for (int i = 0; i < 3; ++i) w2 += std::pow(m["w_stop"][i].get<double>(), 2);
+  EXPECT_NEAR(w2, 1.0, 1e-9);
+}
+
+// Square spinning in place: t = omega0 J_z / (mu m g arm), J_z = m a^2 / 6;
+// arm = mean |r| over the face for the patch law (quadrature here; the demo
+// uses the closed form (a/6)(sqrt 2 + ln(1 + sqrt 2))), the half diagonal
+// a / sqrt 2 for stock Bullet's four corner points.
+TEST_F(BlocksDemo, SquareSpinDownMatchesClosedForms) {
+  const nlohmann::json s = summary();
+  const double meanR = meanDistanceByQuadrature(kSquareSide, kSquareSide);
+  const double jz = kSquareMass * kSquareSide * kSquareSide / 6;
+  const double tFace = kSquareOmega0 * jz / (kMu * kSquareMass * kG * meanR);
+  const double tCorners = kSquareOmega0 * jz / (kMu * kSquareMass * kG * kSquareSide / std::sqrt(2.0));
+
+  const nlohmann::json& exact = s["rows"]["exact"]["bodies"]["square"];
+  ASSERT_TRUE(exact["stopped"].get<bool>());
+  EXPECT_NEAR(exact["t_stop"].get<double>(), tFace, kSpinDownTol * tFace);
+  EXPECT_NEAR(exact["prediction"]["mean_r"].get<double>(), meanR, 1e-6 * meanR);
+  EXPECT_NEAR(exact["prediction"]["t_stop"].get<double>(), tFace, 1e-6 * tFace);
+  EXPECT_LT(std::hypot(exact["displacement"][0].get<double>(), exact["displacement"][1].get<double>()), kDriftTol);
+  // stopped in pure spin: w = (0, 0, 1)
+  EXPECT_NEAR(exact["w_stop"][2].get<double>(), 1.0, 1e-6);
+
+  const nlohmann::json& stock = s["rows"]["stock"]["bodies"]["square"];
+  ASSERT_FALSE(stock["t_spin_stop"].is_null());
+  EXPECT_NEAR(stock["t_spin_stop"].get<double>(), tCorners, kCornerTol * tCorners);
+  EXPECT_NEAR(stock["prediction"]["t_spin_stop"].get<double>(), tCorners, 1e-12 * tCorners);
+  std::printf("[blocks square] exact t_stop %.6f (face %.6f), stock t_spin_stop %.6f (corners %.6f)\n",
+              exact["t_stop"].get<double>(), tFace, stock["t_spin_stop"].get<double>(), tCorners);
+}
+
+// A sliding ball, never opted in: friction mu m g until v = (5/7) v0 rolling,
+// reached at t = 2 v0 / (7 mu g). The same in every row (the patch solver
+// leaves it to Bullet), to the last bit.
+TEST_F(BlocksDemo, SphereNeverOptedInRollsAtFiveSevenths) {
+  const nlohmann::json s = summary();
+  const double dt = 1.0 / kRate;
+  for (const char* row : {"exact", "stock"}) {
+    SCOPED_TRACE(row);
+    const nlohmann::json& b = s["rows"][row]["bodies"]["sphere"];
+    EXPECT_EQ(b["model"].get<std::string>(), "stock");
+    EXPECT_NEAR(b["final_speed"].get<double>(), 5.0 / 7.0 * kSphereV0, kRollSpeedTol * kSphereV0);
+    ASSERT_FALSE(b["t_roll"].is_null());
+    EXPECT_NEAR(b["t_roll"].get<double>(), 2 * kSphereV0 / (7 * kMu * kG), dt);
+  }
+  EXPECT_EQ(s["rows"]["exact"]["bodies"]["sphere"]["final_speed"], s["rows"]["stock"]["bodies"]["sphere"]["final_speed"]);
+}
+
+TEST_F(BlocksDemo, StackStands) {
+  const nlohmann::json s = summary();
+  for (const char* row : {"exact", "stock"}) {
+    SCOPED_TRACE(row);
+    const nlohmann::json& r = s["rows"][row];
+    EXPECT_TRUE(r["stack"]["stands"].get<bool>());
+    for (const char* key : {"stack0", "stack1", "stack2"}) {
+      const nlohmann::json& b = r["bodies"][key];
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i)
+        d2 += std::pow(b["final_position"][i].get<double>() - b["parameters"]["position"][i].get<double>(), 2);
+      EXPECT_LT(std::sqrt(d2), kStackTol) << key;
+      EXPECT_LE(b["max_shift"].get<double>(), kStackTol) << key;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace patchspin::render
