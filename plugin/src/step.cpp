@@ -27,40 +27,66 @@ void validate(const FrictionBlockInput& in) {
 
 // Ellipsoidal law q(w) = -Pi w. With A = L K Pi the slip s = b - A w must
 // equal r w: w = (r I + A)^-1 b with |w| = 1, a scalar root in r > 0.
-// phi(r) = |(r I + A)^-1 b|^2 - 1 is positive at r = 0 (slip case) and
-// negative for r > |b| + |A|_F, so a safeguarded Newton on the bracket
-// converges; phi'(r) = -2 w . (r I + A)^-1 w.
+// No matrix is factorised: by Cayley-Hamilton, for the 3x3 A with
+//   t = tr A,  m = (t^2 - tr A^2) / 2,  d = det A,  adj A = A^2 - t A + m I,
+//   (r I + A)^-1 = (r^2 I + r (t I - A) + adj A) / p(r),
+//   p(r) = r^3 + t r^2 + m r + d,
+// so w(r) = N(r) / p(r) with N(r) = r^2 b + r (t b - A b) + adj(A) b: three
+// vectors and four numbers, then every trial r costs a few dozen flops.
+// A is similar to L Pi^1/2 K Pi^1/2 (SPD), so its eigenvalues are positive and
+// p(r) > 0 for r >= 0.
+// Stick iff |A^-1 b| = |N(0)| / d <= 1.
+// Slip: f(r) = p(r) / |N(r)| - 1 = 0. f(0) < 0 and f grows without bound; for
+// A = a I, f = (r + a) / |b| - 1 is linear (Newton exact in one step), and
+// near-isotropic blocks, the common case, converge in two or three steps;
+// the bracket [lo, hi] with hi = |b| + |A|_F (where |w| < 1) safeguards.
 FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& in) {
   FrictionBlockResult out;
-  const Mat3 A = in.L * in.K * Pi;
-  Eigen::FullPivLU<Mat3> luA(A);
-  if (luA.isInvertible()) {
-    const Vec3 w0 = luA.solve(in.b);
-    if (w0.norm() <= 1.0) {  // stick: lambda = -L Pi w0 = -K^-1 b
-      out.sticking = true;
-      out.impulse = -in.L * (Pi * w0);
-      out.slip.setZero();
-      return out;
-    }
+  const Mat3 A = in.L * (in.K * Pi);
+  const double t = A.trace();
+  const Mat3 A2 = A * A;
+  const double m = 0.5 * (t * t - A2.trace());
+  const double d = A.determinant();
+  const Vec3 Ab = A * in.b;
+  const Vec3 n2 = in.b;
+  const Vec3 n1 = t * in.b - Ab;
+  const Vec3 n0 = A * Ab - t * Ab + m * in.b;  // adj(A) b
+  if (d > 0.0 && n0.norm() <= d) {  // stick: lambda = -L Pi A^-1 b = -K^-1 b
+    out.sticking = true;
+    out.impulse = -in.L * (Pi * (n0 / d));
+    out.slip.setZero();
+    return out;
   }
-  double lo = 0.0, hi = in.b.norm() + A.norm();
-  double r = hi;
-  if (in.warmSlip.norm() > 0.0 && in.warmSlip.norm() < hi) r = in.warmSlip.norm();
-  Vec3 w = in.b;
+  auto f = [&](double r, double& df, Vec3& N) {
+    N = (r * n2 + n1) * r + n0;
+    const Vec3 dN = 2.0 * r * n2 + n1;
+    const double p = ((r + t) * r + m) * r + d;
+    const double dp = (3.0 * r + 2.0 * t) * r + m;
+    const double nN = N.norm();
+    df = (dp * nN - p * N.dot(dN) / nN) / (nN * nN);
+    return p / nN - 1.0;
+  };
   const double scale = in.b.norm() + A.norm();
+  double lo = 0.0, hi = scale;
+  double r = std::max(0.0, in.b.norm() - t / 3.0);  // isotropic estimate
+  if (in.warmSlip.norm() > 0.0 && in.warmSlip.norm() < hi) r = in.warmSlip.norm();
+  Vec3 N = in.b;
   for (int it = 0; it < kMaxIterations; ++it) {
     out.iterations = it + 1;
-    const Eigen::PartialPivLU<Mat3> lu(r * Mat3::Identity() + A);
-    w = lu.solve(in.b);
-    const double phi = w.squaredNorm() - 1.0;
-    if (phi > 0.0) lo = r; else hi = r;
-    const double dphi = -2.0 * w.dot(lu.solve(w));
-    double next = (dphi < 0.0) ? r - phi / dphi : 0.5 * (lo + hi);
+    double df = 0.0;
+    const double fr = f(r, df, N);
+    if (fr < 0.0) lo = r; else hi = r;
+    if (std::abs(fr) <= kRelativeTolerance || hi - lo <= kRelativeTolerance * scale) break;
+    double next = df > 0.0 ? r - fr / df : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // safeguard: bisect
-    if (std::abs(phi) <= kRelativeTolerance || hi - lo <= kRelativeTolerance * scale) break;
+    if (std::abs(next - r) <= kRelativeTolerance * scale) {
+      r = next;
+      f(r, df, N);
+      break;
+    }
     r = next;
   }
-  w.normalize();
+  const Vec3 w = N.normalized();
   out.impulse = -in.L * (Pi * w);
   out.slip = in.b + in.K * out.impulse;
   return out;
@@ -86,16 +112,42 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     return out;
   }
 
+  // support gap of lambda0 against L E along u (see the slip branch below);
+  // h(u) < 0 for some u proves lambda0 outside L E: the block slips
+  const Vec3 Kinvb = Kinv * in.b;
+  auto gap = [&](const Vec3& u, Vec3& qu, Mat3* ju) {
+    qu = patch.unitQ(Model::Exact, u, ju);
+    return -u.dot(Kinvb) - in.L * qu.dot(u);
+  };
+  // cheap certificates first, one evaluation of the law each: the
+  // warm-start slip and the ellipsoidal solution. A block that keeps
+  // slipping, the common case inside solver iterations, then skips the
+  // gauge test below.
+  Vec3 bestU = in.b.normalized();
+  double bestScore = 0.0;  // most negative h / |u|_{K^-1}
+  auto scoreCandidate = [&](const Vec3& u) {
+    Vec3 qu;
+    const double score = gap(u, qu, nullptr) / std::sqrt(u.dot(Kinv * u));
+    if (score < bestScore) bestScore = score, bestU = u;
+  };
+  if (in.warmSlip.norm() > 0.0) scoreCandidate(in.warmSlip.normalized());
+  const Vec3 ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
+  if (ellipsoidalSlip.norm() > 0.0) scoreCandidate(ellipsoidalSlip.normalized());
+  const bool slipProven = bestScore < 0.0;
+
   // gauge of E along lambda0: residual = component of q(w) across lambda0
   const Vec3 l = lambda0 / lambda0Norm;
   Vec3 e1 = l.unitOrthogonal();
   Vec3 e2 = l.cross(e1);
-  Vec3 w = -(patch.Pi().fullPivLu().solve(l));  // ellipsoidal: q = -Pi w
-  if (!(w.norm() > 0.0) || !w.allFinite()) w = -l;
-  w.normalize();
+  Vec3 w = -l;
+  if (!slipProven) {
+    w = -(patch.Pi().fullPivLu().solve(l));  // ellipsoidal: q = -Pi w
+    if (!(w.norm() > 0.0) || !w.allFinite()) w = -l;
+    w.normalize();
+  }
   Vec3 q;
   Mat3 J;
-  for (int it = 0; it < kMaxIterations; ++it) {
+  for (int it = 0; it < kMaxIterations && !slipProven; ++it) {
     q = patch.unitQ(Model::Exact, w, &J);
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
     if (res.norm() <= kRelativeTolerance * q.norm() && q.dot(l) > 0.0) break;
@@ -111,7 +163,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     w = (w + step[0] * t1 + step[1] * t2).normalized();
     out.iterations = it + 1;
   }
-  if (q.dot(l) > 0.0 && lambda0Norm <= in.L * q.norm()) {
+  if (!slipProven && q.dot(l) > 0.0 && lambda0Norm <= in.L * q.norm()) {
     out.sticking = true;
     out.impulse = lambda0;
     out.slip.setZero();
@@ -127,27 +179,10 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // direction, and a coarse sphere if none has h < 0), then damped Newton on
   // D with every trial moved to r* on its ray; trials outside the cone are
   // rejected, which keeps the iterates off the kink of D at s = 0.
-  const Vec3 Kinvb = Kinv * in.b;
-  auto gap = [&](const Vec3& u, Vec3& qu, Mat3* ju) {
-    qu = patch.unitQ(Model::Exact, u, ju);
-    return -u.dot(Kinvb) - in.L * qu.dot(u);
-  };
-  std::vector<Vec3> candidates;
-  if (in.warmSlip.norm() > 0.0) candidates.push_back(in.warmSlip.normalized());
-  const Vec3 ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
-  if (ellipsoidalSlip.norm() > 0.0) candidates.push_back(ellipsoidalSlip.normalized());
-  candidates.push_back(in.b.normalized());
-  candidates.push_back(w);
-  Vec3 bestU = in.b.normalized();
-  double bestScore = 0.0;  // most negative h / |u|_{K^-1}
-  auto scoreCandidates = [&](const std::vector<Vec3>& dirs) {
-    for (const Vec3& u : dirs) {
-      Vec3 qu;
-      const double score = gap(u, qu, nullptr) / std::sqrt(u.dot(Kinv * u));
-      if (score < bestScore) bestScore = score, bestU = u;
-    }
-  };
-  scoreCandidates(candidates);
+  if (!slipProven) {
+    scoreCandidate(in.b.normalized());
+    scoreCandidate(w);
+  }
   if (!(bestScore < 0.0)) {
     // golden-angle (Fibonacci) sphere, deterministic
     std::vector<Vec3> sphere;
@@ -158,7 +193,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       const double phi = 2.39996322972865332 * i;
       sphere.emplace_back(rxy * std::cos(phi), rxy * std::sin(phi), z);
     }
-    scoreCandidates(sphere);
+    for (const Vec3& u : sphere) scoreCandidate(u);
   }
   if (!(bestScore < 0.0)) {
     // no direction with a support gap: lambda0 is inside L E after all
