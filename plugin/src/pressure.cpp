@@ -118,6 +118,22 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   // disk: z = T pi with z = (p(C), cx, cy)
   const Vec2 C = shape.centre();
   const double R = shape.radius();
+  // disk centred at O (every disk patch of the Bullet layer): M = diag(A, .)
+  // with the in-plane block a rotation times I / rho, so the admissible set
+  // is the circular cone |(y1, y2)| <= kappa y0, kappa = I / (A R rho), and
+  // the Euclidean projection has a closed form: with s = |(y1, y2)|,
+  //   s <= kappa y0        -> y (admissible, handled above)
+  //   kappa s <= -y0       -> 0 (y in the polar cone)
+  //   otherwise            -> (y0 + kappa s) / (1 + kappa^2) (1, kappa e),  e = (y1, y2) / s
+  const double cTol = 1e-12 * G.norm();
+  if (C.norm() <= 1e-12 * R && std::abs(G(0, 1)) <= cTol && std::abs(G(0, 2)) <= cTol &&
+      std::abs(G(1, 2)) <= cTol && std::abs(G(1, 1) - G(2, 2)) <= cTol) {
+    const double kappa = G(1, 1) / (G(0, 0) * R * rho);
+    const double sPerp = std::hypot(y[1], y[2]);
+    if (kappa * sPerp <= -y[0]) return PatchLoads{};
+    const double t = (y[0] + kappa * sPerp) / (1.0 + kappa * kappa);
+    return toLoads(Vec3(t, t * kappa * y[1] / sPerp, t * kappa * y[2] / sPerp));
+  }
   Mat3 T;
   T << 1.0, C.x(), C.y(),  //
       0.0, 1.0, 0.0,       //
