@@ -34,6 +34,7 @@ struct World {
   std::unique_ptr<btRigidBody> ground;
   std::vector<std::unique_ptr<btRigidBody>> coins;
   std::vector<btVector3> v0, w0;
+  std::vector<btTransform> start;
 
   World(int n, Variant variant) {
     if (variant == kStock)
@@ -60,6 +61,7 @@ struct World {
       auto coin = std::make_unique<btRigidBody>(info);
       coin->setActivationState(DISABLE_DEACTIVATION);
       world->addRigidBody(coin.get());
+      start.push_back(tr);
       v0.emplace_back(btScalar(0.3 * u(rng)), btScalar(0.3 * u(rng)), 0);
       w0.emplace_back(0, 0, btScalar(10 * u(rng)));
       if (variant == kEllipsoidal || variant == kExact)
@@ -73,9 +75,13 @@ struct World {
     for (auto& c : coins) world->removeRigidBody(c.get());
     world->removeRigidBody(ground.get());
   }
-  // the coins stop after ~0.2 s: restart them so that they keep sliding
+  // the coins stop after ~0.2 s: restart them from their initial state
+  // (place, orientation, velocities) so that every step of the benchmark is
+  // the same scene of coins sliding and spinning apart
   void reset() {
     for (size_t i = 0; i < coins.size(); ++i) {
+      coins[i]->setWorldTransform(start[i]);
+      coins[i]->setInterpolationWorldTransform(start[i]);
       coins[i]->setLinearVelocity(v0[i]);
       coins[i]->setAngularVelocity(w0[i]);
     }

@@ -45,9 +45,10 @@ struct PatchOutline {
 
 // A flat patch between face `a` of the moving body and face `b` it stands on.
 struct DetectedPatch {
-  btVector3 origin;                   // O (on b's plane), world
-  btVector3 normal;                   // z: b's outward normal (into a's body)
-  btVector3 xAxis, yAxis;             // in-plane axes
+  btVector3 origin{0, 0, 0};          // O (on b's plane), world
+  btVector3 normal{0, 0, 1};          // z: b's outward normal (into a's body)
+  btVector3 xAxis{1, 0, 0};           // in-plane axes
+  btVector3 yAxis{0, 1, 0};
   PatchOutline outline;               // overlap, patch frame about O
   double gap = 0.0;                   // signed distance of a's face centre above b's plane [m]
   btVector3 tilt{0, 0, 0};            // small rotation of a that makes it flat on b [rad]

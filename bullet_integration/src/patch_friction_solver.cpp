@@ -50,6 +50,14 @@ constexpr double kOutlineRelTol = 1e-6;
 // by less than this, relative, since its last solve keeps that solution: the
 // solve would return it up to round-off (float: velocities carry ~6e-8).
 constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-6;
+// The friction law for unit mu Pz (Pi of Eq. (40), the exact law's integrals)
+// depends on the linear pressure only through its shape, i.e. the centre of
+// pressure (Ty, -Tx) / Pz. It is refreshed when that point has moved by more
+// than this fraction of the patch diameter since the last refresh: Pi then
+// changes by ~1e-6 relative, far below the error of the solver's iterations,
+// while a body at rest or sliding flat (centre of pressure fixed) never pays
+// for a refresh, and a centred symmetric patch keeps Pi = I.
+constexpr double kPressureCopRelTol = 1e-6;
 
 Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
 btVector3 toBt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()), btScalar(v.z())); }
@@ -59,38 +67,44 @@ btVector3 toBt(const Vec3& v) { return btVector3(btScalar(v.x()), btScalar(v.y()
 // (∫ y p, -∫ x p) = (-Tx, -Ty) with Tx = -∫ y p, Ty = ∫ x p (Eq. (3)).
 PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lamN[2]}; }
 
-struct BodyJacobian {
+// One body's side of a patch: what the six patch DOFs need of it. The DOFs,
+// in the patch frame F = [ex ey n] at O (relative velocity of A over B):
+//   0: n.u(O)      1: ex.omega     2: ey.omega       (normal block)
+//   3: ex.u(O)     4: ey.u(O)      5: rho n.omega    (friction block: x_o)
+// with u(O) = v + omega x r, r = O - centre of mass. Kept small (no 6x3
+// Jacobians): the iterations stream over every patch ten times per step.
+struct BodyTerms {
   int id = -1;
   bool dynamic = false;
-  Mat63 Jl = Mat63::Zero();  // rows: constraint DOFs; linear part
-  Mat63 Ja = Mat63::Zero();  // angular part
-  Mat36 Dl = Mat36::Zero();  // velocity change per unit impulse (linear)
-  Mat36 Da = Mat36::Zero();  // (angular)
+  Vec3 r = Vec3::Zero();     // lever O - centre of mass, world [m]
+  Vec3 invM = Vec3::Zero();  // inverse mass (x) linear factor [1/kg]
+  Mat3 invI = Mat3::Zero();  // world inverse inertia with the angular factor [1/(kg m^2)]
 };
 
 // One flat patch of one manifold, for one island solve.
+struct PatchState;
 struct PatchConstraint {
-  btPersistentManifold* manifold = nullptr;
-  const btCollisionObject* body = nullptr;
-  const btCollisionObject* other = nullptr;
-  BodyJacobian a, b;
-  internal::DetectedPatch geometry;
+  PatchState* state = nullptr;
+  BodyTerms a, b;
+  Mat3 F = Mat3::Identity();  // columns ex, ey, n (world)
   Model model = Model::Ellipsoidal;
   double mu = 0.0, rho = 0.0, dt = 0.0;
-  // effective masses: K6 = [[W, Knf], [Knf^T, Kff]]
-  Mat3 W, Winv, Kff, Knf, Ks, G;
+  // effective masses: K6 = [[W, Knf], [Knf^T, Kff]], Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf
+  Mat3 Winv, Kff, Knf, Ks, G;
   Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
   Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
   Vec3 warmSlip = Vec3::Zero();
   bool interior = true;  // centre of pressure on the patch: normal block bilateral
   bool tipping = false;
   bool sticking = false;
-  FrictionPatch* friction = nullptr;  // owned by the manifold's PatchState
-  const PatchShape* shape = nullptr;  // friction->shape()
+  // converged: the last visit changed nothing, and while neither body's
+  // velocity has changed since (snapshot), a visit would change nothing again
+  bool settled = false;
+  btVector3 snapshot[4];  // delta linear / angular velocity of a, then b
   // last friction solve of this step, reused while its input stays put
   bool haveLast = false;
-  Vec3 lastB = Vec3::Zero(), lastLoads = Vec3::Zero();
   double lastL = 0.0;
+  Vec3 lastB = Vec3::Zero();
   FrictionBlockResult last;
 };
 
@@ -98,10 +112,16 @@ struct PatchConstraint {
 struct PatchState {
   const btCollisionObject* body = nullptr;
   const btCollisionObject* other = nullptr;
-  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), slip = Vec3::Zero();
+  // warm start in world axes (the patch frame turns with the body): normal
+  // impulse, tilt couple, tangential friction impulse and slip, spin parts
+  double normal = 0.0, frictionSpin = 0.0, slipSpin = 0.0;
+  Vec3 couple = Vec3::Zero(), frictionT = Vec3::Zero(), slipT = Vec3::Zero();
   bool flat = false;
+  // centre of pressure of the pressure `friction` was last refreshed with
+  Vec2 pressureCop = Vec2::Zero();
   std::optional<internal::PatchOutline> outline;  // shape of `friction`
   std::optional<FrictionPatch> friction;
+  internal::DetectedPatch geometry;               // this step's patch
   long lastSeen = std::numeric_limits<long>::min() / 2;
   long tipStep = std::numeric_limits<long>::min() / 2;
 };
@@ -112,7 +132,8 @@ struct PatchFrictionSolver::Impl {
   std::unordered_map<const btCollisionObject*, PatchOptions> options;
   std::unordered_map<const btPersistentManifold*, PatchState> states;
   std::vector<PatchConstraint> patches;  // current island
-  std::vector<PatchReport> reports;      // whole step
+  std::vector<PatchReport> reports;      // whole step (the first reportCount)
+  size_t reportCount = 0;
   long step = 0;
 
   const PatchOptions* optionsOf(const btCollisionObject* o) const {
@@ -158,64 +179,87 @@ Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
   return best;
 }
 
-Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
-  Vec6 c = Vec6::Zero();
-  Vec3 v, w;
+// Velocity of the patch DOFs from per-body (v, omega) read by `get`.
+template <class Get>
+Vec6 patchVelocity(const PatchConstraint& pc, Get get) {
+  Vec3 u = Vec3::Zero(), w = Vec3::Zero();
+  Vec3 v, om;
   if (pc.a.dynamic) {
-    velocityOf(pool[pc.a.id], v, w);
-    c += pc.a.Jl * v + pc.a.Ja * w;
+    get(pc.a.id, v, om);
+    u += v + om.cross(pc.a.r);
+    w += om;
   }
   if (pc.b.dynamic) {
-    velocityOf(pool[pc.b.id], v, w);
-    c += pc.b.Jl * v + pc.b.Ja * w;
+    get(pc.b.id, v, om);
+    u -= v + om.cross(pc.b.r);
+    w -= om;
   }
+  const Vec3 uf = pc.F.transpose() * u, wf = pc.F.transpose() * w;
+  Vec6 c;
+  c << uf.z(), wf.x(), wf.y(), uf.x(), uf.y(), pc.rho * wf.z();
   return c;
 }
 
-void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool, const Vec6& lam) {
-  if (pc.a.dynamic) {
-    pool[pc.a.id].m_deltaLinearVelocity += toBt(pc.a.Dl * lam);
-    pool[pc.a.id].m_deltaAngularVelocity += toBt(pc.a.Da * lam);
-  }
-  if (pc.b.dynamic) {
-    pool[pc.b.id].m_deltaLinearVelocity += toBt(pc.b.Dl * lam);
-    pool[pc.b.id].m_deltaAngularVelocity += toBt(pc.b.Da * lam);
-  }
+Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
+  return patchVelocity(pc, [&](int id, Vec3& v, Vec3& w) { velocityOf(pool[id], v, w); });
 }
 
-// Jacobian rows of the six patch DOFs for one body with lever r = O - c:
-//   0: n.u(O)      1: ex.omega     2: ey.omega       (normal block)
-//   3: ex.u(O)     4: ey.u(O)      5: rho n.omega    (friction block: x_o)
-// with u(O) = v + omega x r, so d.u(O) = d.v + (r x d).omega. `sign` is -1
-// for the body underneath (relative velocity).
-BodyJacobian makeJacobian(const btSolverBody& sb, int id, const Vec3& r, const Vec3& n,
-                          const Vec3& ex, const Vec3& ey, double rho, double sign) {
-  BodyJacobian j;
-  j.id = id;
-  j.dynamic = sb.m_originalBody != nullptr;
-  if (!j.dynamic) return j;
-  j.Jl.row(0) = sign * n.transpose();
-  j.Ja.row(0) = sign * r.cross(n).transpose();
-  j.Ja.row(1) = sign * ex.transpose();
-  j.Ja.row(2) = sign * ey.transpose();
-  j.Jl.row(3) = sign * ex.transpose();
-  j.Ja.row(3) = sign * r.cross(ex).transpose();
-  j.Jl.row(4) = sign * ey.transpose();
-  j.Ja.row(4) = sign * r.cross(ey).transpose();
-  j.Ja.row(5) = sign * rho * n.transpose();
-  // Bullet applies Delta v = invMass (x) linearFactor, Delta omega =
-  // (I^-1 (tau (x) angularFactor)) (x) angularFactor.
-  const btRigidBody* rb = sb.m_originalBody;
-  const Vec3 invM = toEigen(sb.m_invMass).cwiseProduct(toEigen(sb.m_linearFactor));
-  const btMatrix3x3& I = rb->getInvInertiaTensorWorld();
-  Mat3 invI;
+// Generalised impulse lam of the six DOFs -> world force f at O and couple m
+// on A (B gets -f, -m): f = F (l3, l4, l0), m = F (l1, l2, rho l5).
+template <class Add>
+void applyPatchImpulse(const PatchConstraint& pc, const Vec6& lam, Add add) {
+  const Vec3 f = pc.F * Vec3(lam[3], lam[4], lam[0]);
+  const Vec3 m = pc.F * Vec3(lam[1], lam[2], pc.rho * lam[5]);
+  if (pc.a.dynamic) add(pc.a.id, pc.a.invM.cwiseProduct(f), pc.a.invI * (m + pc.a.r.cross(f)));
+  if (pc.b.dynamic) add(pc.b.id, -pc.b.invM.cwiseProduct(f), -(pc.b.invI * (m + pc.b.r.cross(f))));
+}
+
+void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool, const Vec6& lam) {
+  applyPatchImpulse(pc, lam, [&](int id, const Vec3& dv, const Vec3& dw) {
+    pool[id].m_deltaLinearVelocity += toBt(dv);
+    pool[id].m_deltaAngularVelocity += toBt(dw);
+  });
+}
+
+// What the DOFs need of one body. Bullet applies Delta v = invMass (x)
+// linearFactor, Delta omega = (I^-1 (tau (x) angularFactor)) (x) angularFactor.
+BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r) {
+  BodyTerms t;
+  t.id = id;
+  t.dynamic = sb.m_originalBody != nullptr;
+  if (!t.dynamic) return t;
+  t.r = r;
+  t.invM = toEigen(sb.m_invMass).cwiseProduct(toEigen(sb.m_linearFactor));
+  const btMatrix3x3& I = sb.m_originalBody->getInvInertiaTensorWorld();
   for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) invI(i, k) = double(I[i][k]);
+    for (int k = 0; k < 3; ++k) t.invI(i, k) = double(I[i][k]);
   const Vec3 af = toEigen(sb.m_angularFactor);
-  invI = af.asDiagonal() * invI * af.asDiagonal();
-  j.Dl = invM.asDiagonal() * j.Jl.transpose();
-  j.Da = invI * j.Ja.transpose();
-  return j;
+  t.invI = af.asDiagonal() * t.invI * af.asDiagonal();
+  return t;
+}
+
+// Effective mass of the six DOFs for one body: K6 = J M^-1 J^T with, in the
+// patch frame (primes), linear rows S (selection of u' components) and
+// angular rows Ja' = [r' x e_z; e_x; e_y; r' x e_x; r' x e_y; rho e_z].
+Eigen::Matrix<double, 6, 6> effectiveMass(const BodyTerms& t, const Mat3& F, double rho) {
+  Eigen::Matrix<double, 6, 6> K = Eigen::Matrix<double, 6, 6>::Zero();
+  if (!t.dynamic) return K;
+  const Vec3 r = F.transpose() * t.r;
+  Eigen::Matrix<double, 6, 3> Jl = Eigen::Matrix<double, 6, 3>::Zero(), Ja = Eigen::Matrix<double, 6, 3>::Zero();
+  Jl(0, 2) = 1.0;
+  Jl(3, 0) = 1.0;
+  Jl(4, 1) = 1.0;
+  Ja.row(0) = r.cross(Vec3::UnitZ()).transpose();
+  Ja(1, 0) = 1.0;
+  Ja(2, 1) = 1.0;
+  Ja.row(3) = r.cross(Vec3::UnitX()).transpose();
+  Ja.row(4) = r.cross(Vec3::UnitY()).transpose();
+  Ja(5, 2) = rho;
+  const Mat3 invM = F.transpose() * t.invM.asDiagonal() * F;
+  const Mat3 invI = F.transpose() * t.invI * F;
+  K.noalias() += Jl * invM * Jl.transpose();
+  K.noalias() += Ja * invI * Ja.transpose();
+  return K;
 }
 
 }  // namespace
@@ -251,11 +295,12 @@ const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject*
 void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
   btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
   ++impl_->step;
-  impl_->reports.clear();
+  impl_->reportCount = 0;
 }
 
 void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
   btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
+  impl_->reports.resize(impl_->reportCount);
   // forget manifolds not seen for a while (they may have been deleted)
   for (auto it = impl_->states.begin(); it != impl_->states.end();) {
     if (it->second.lastSeen < impl_->step - kTipCooldownSteps - 1)
@@ -318,8 +363,10 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     }
     st.flat = flat && geo.has_value();
     if (!st.flat) {
-      st.lamN.setZero();
-      st.lamF.setZero();
+      st.normal = st.frictionSpin = st.slipSpin = 0.0;
+      st.couple.setZero();
+      st.frictionT.setZero();
+      st.slipT.setZero();
       convertContact(m, info);
       continue;
     }
@@ -330,24 +377,19 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
     }
 
-    PatchConstraint pc;
-    pc.manifold = m;
-    pc.body = A;
-    pc.other = B;
-    pc.geometry = std::move(*geo);
-    pc.model = opt.model;
-    pc.dt = dt;
-    pc.mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
+    st.geometry = std::move(*geo);
+    const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
     // shape and friction law: rebuilt only when the outline changes
-    const internal::PatchOutline& outline = pc.geometry.outline;
+    const internal::PatchOutline& outline = st.geometry.outline;
     const double size = outline.disk ? outline.radius
                                      : (outline.vertices.empty() ? 0.0 : outline.vertices[0].norm());
     if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
         (opt.rho && st.friction->rho() != *opt.rho)) {
       try {
         const PatchShape shape = outline.toShape();
-        st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), pc.mu, opt.rho ? *opt.rho : 0.0);
+        st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu, opt.rho ? *opt.rho : 0.0);
         st.outline = outline;
+        st.pressureCop = shape.centroid();  // uniform pressure
       } catch (const Error&) {
         st.flat = false;  // degenerate overlap: leave it to Bullet
         st.friction.reset();
@@ -356,37 +398,43 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         continue;
       }
     }
-    if (st.friction->mu() != pc.mu) st.friction->setMu(pc.mu);
-    pc.friction = &*st.friction;
-    pc.shape = &st.friction->shape();
+    if (st.friction->mu() != mu) st.friction->setMu(mu);
+
+    im.patches.emplace_back();
+    PatchConstraint& pc = im.patches.back();
+    pc.state = &st;
+    pc.model = opt.model;
+    pc.dt = dt;
+    pc.mu = mu;
     pc.rho = st.friction->rho();
     const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
     const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
-    const Vec3 O = toEigen(pc.geometry.origin);
-    const Vec3 n = toEigen(pc.geometry.normal);
-    const Vec3 ex = toEigen(pc.geometry.xAxis);
-    const Vec3 ey = toEigen(pc.geometry.yAxis);
+    const Vec3 O = toEigen(st.geometry.origin);
+    const Vec3 ex = toEigen(st.geometry.xAxis);
+    const Vec3 ey = toEigen(st.geometry.yAxis);
+    pc.F.col(0) = ex;
+    pc.F.col(1) = ey;
+    pc.F.col(2) = toEigen(st.geometry.normal);
     const btSolverBody& sbA = m_tmpSolverBodyPool[idA];
     const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
-    pc.a = makeJacobian(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()), n, ex, ey, pc.rho, 1.0);
-    pc.b = makeJacobian(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()), n, ex, ey, pc.rho, -1.0);
+    pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
+    pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
 
     // effective masses of the 6 DOFs and the friction block's Schur
     // complement (normal block held bilateral):
     //   Ks = Kff - Knf^T W^-1 Knf,   G = W^-1 Knf
-    Eigen::Matrix<double, 6, 6> K6 = Eigen::Matrix<double, 6, 6>::Zero();
-    if (pc.a.dynamic) K6 += pc.a.Jl * pc.a.Dl + pc.a.Ja * pc.a.Da;
-    if (pc.b.dynamic) K6 += pc.b.Jl * pc.b.Dl + pc.b.Ja * pc.b.Da;
-    pc.W = K6.topLeftCorner<3, 3>();
+    const Eigen::Matrix<double, 6, 6> K6 = effectiveMass(pc.a, pc.F, pc.rho) + effectiveMass(pc.b, pc.F, pc.rho);
+    const Mat3 W = K6.topLeftCorner<3, 3>();
     pc.Knf = K6.topRightCorner<3, 3>();
     pc.Kff = K6.bottomRightCorner<3, 3>();
-    Eigen::LDLT<Mat3> ldlt(pc.W);
-    if (ldlt.info() != Eigen::Success || !(pc.W.determinant() > 0.0)) {
+    const Eigen::LLT<Mat3> llt(W);
+    if (llt.info() != Eigen::Success || !(W.determinant() > 0.0)) {
+      im.patches.pop_back();
       st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
       convertContact(m, info);
       continue;
     }
-    pc.Winv = ldlt.solve(Mat3::Identity());
+    pc.Winv = W.inverse();  // 3x3 SPD: cofactors
     pc.G = pc.Winv * pc.Knf;
     pc.Ks = pc.Kff - pc.Knf.transpose() * pc.G;
     pc.Ks = 0.5 * (pc.Ks + pc.Ks.transpose());
@@ -394,8 +442,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     // position error: gap at O (< 0 penetrating) and tilt of the face
     //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
     //   otherwise:      Baumgarte with erp2 in the velocity target
-    const double gap = pc.geometry.gap;
-    const Vec3 tilt = toEigen(pc.geometry.tilt);
+    const double gap = st.geometry.gap;
+    const Vec3 tilt = toEigen(st.geometry.tilt);
     const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
     if (gap > 0.0) {
       pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
@@ -409,14 +457,13 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     // warm start from the previous step
     if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
       const double f = double(info.m_warmstartingFactor);
-      pc.lamN = f * st.lamN;
-      pc.lamF = f * st.lamF;
-      pc.warmSlip = st.slip;
+      pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
+      pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
+      pc.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
       Vec6 lam;
       lam << pc.lamN, pc.lamF;
       applyImpulse(pc, m_tmpSolverBodyPool, lam);
     }
-    im.patches.push_back(std::move(pc));
   }
 }
 
@@ -428,8 +475,25 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
   if (iteration >= info.m_numIterations) return residual;
   double worst = 0.0;
+  auto snapshotOf = [&](const PatchConstraint& pc, btVector3* out) {
+    const btSolverBody& a = m_tmpSolverBodyPool[pc.a.id];
+    const btSolverBody& b = m_tmpSolverBodyPool[pc.b.id];
+    out[0] = a.m_deltaLinearVelocity;
+    out[1] = a.m_deltaAngularVelocity;
+    out[2] = b.m_deltaLinearVelocity;
+    out[3] = b.m_deltaAngularVelocity;
+  };
   for (PatchConstraint& pc : impl_->patches) {
-    const PatchShape& shape = *pc.shape;
+    if (pc.settled) {
+      btVector3 now[4];
+      snapshotOf(pc, now);
+      if (now[0] == pc.snapshot[0] && now[1] == pc.snapshot[1] && now[2] == pc.snapshot[2] &&
+          now[3] == pc.snapshot[3])
+        continue;  // same input, same (zero) change: skip
+      pc.settled = false;
+    }
+    FrictionPatch& friction = *pc.state->friction;
+    const PatchShape& shape = friction.shape();
     // normal block: y = lamN - W^-1 (c_n - target), held exactly while its
     // centre of pressure lies on the patch (a rigid contact can carry any
     // p >= 0, not only a linear one); otherwise the centre of pressure is
@@ -460,6 +524,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     const Vec3 s = c.tail<3>() + pc.Knf.transpose() * d.head<3>();
     const double L = pc.mu * pc.lamN[0];
     Vec3 lamF = Vec3::Zero();
+    bool refreshedAny = false;
     if (L > 0.0) {
       const Mat3& K = pc.interior ? pc.Ks : pc.Kff;
       FrictionBlockInput in;
@@ -469,21 +534,26 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       in.warmSlip = pc.warmSlip;
       // friction pressure: the linear pressure of Eq. (94) carrying the loads,
       // or, when that would be negative somewhere (centre of pressure outside
-      // the kern), the nearest admissible linear one (DESIGN item 2)
-      PatchLoads loads = toLoads(pc.lamN);
-      if (!isAdmissible(shape, loads)) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
-      const Vec3 lv = loads.asVector();
-      const bool reuse = pc.haveLast && !pc.last.sticking &&
+      // the kern), the nearest admissible linear one (DESIGN item 2);
+      // refreshed only when its centre of pressure moves (kPressureCopRelTol)
+      const PatchLoads raw = toLoads(pc.lamN);
+      const Vec2 cop(raw.Ty / raw.Pz, -raw.Tx / raw.Pz);
+      bool refreshed = false;
+      if ((cop - pc.state->pressureCop).norm() > kPressureCopRelTol * shape.diameter()) {
+        PatchLoads loads = raw;
+        if (!isAdmissible(shape, loads)) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
+        friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
+        pc.state->pressureCop = cop;
+        refreshed = refreshedAny = true;
+      }
+      const bool reuse = pc.haveLast && !refreshed && !pc.last.sticking &&
                          (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
-                         std::abs(L - pc.lastL) <= kReuseRelTol * L &&
-                         (lv - pc.lastLoads).norm() <= kReuseRelTol * lv.norm();
+                         std::abs(L - pc.lastL) <= kReuseRelTol * L;
       if (!reuse) {
-        pc.friction->setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
-        pc.last = solveFrictionBlock(*pc.friction, pc.model, in);
+        pc.last = solveFrictionBlock(friction, pc.model, in);
         pc.haveLast = true;
         pc.lastB = in.b;
         pc.lastL = L;
-        pc.lastLoads = lv;
       }
       const FrictionBlockResult& res = pc.last;
       lamF = res.impulse;
@@ -500,6 +570,10 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     }
     applyImpulse(pc, m_tmpSolverBodyPool, d);
     worst = std::max(worst, d.squaredNorm());
+    if (d.isZero(0.0) && !refreshedAny) {
+      pc.settled = true;
+      snapshotOf(pc, pc.snapshot);
+    }
   }
   return std::max(residual, btScalar(worst));
 }
@@ -516,22 +590,20 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
   for (int it = 0; it < kPushIterations; ++it) {
     for (PatchConstraint& pc : impl_->patches) {
       if (pc.targetPush.isZero()) continue;
-      Vec3 c = Vec3::Zero();
-      for (const BodyJacobian* j : {&pc.a, &pc.b}) {
-        if (!j->dynamic) continue;
-        const btSolverBody& sb = m_tmpSolverBodyPool[j->id];
-        c += (j->Jl * toEigen(sb.m_pushVelocity) + j->Ja * toEigen(sb.m_turnVelocity)).head<3>();
-      }
+      auto& pool = m_tmpSolverBodyPool;
+      const Vec3 c = patchVelocity(pc, [&](int id, Vec3& v, Vec3& w) {
+                       v = toEigen(pool[id].m_pushVelocity);
+                       w = toEigen(pool[id].m_turnVelocity);
+                     }).head<3>();
       Vec3 lam = pc.lamPush - pc.Winv * (c - pc.targetPush);
       if (lam[0] < 0.0) lam.setZero();  // pushes only apart
-      const Vec3 d = lam - pc.lamPush;
+      Vec6 d = Vec6::Zero();
+      d.head<3>() = lam - pc.lamPush;
       pc.lamPush = lam;
-      for (const BodyJacobian* j : {&pc.a, &pc.b}) {
-        if (!j->dynamic) continue;
-        btSolverBody& sb = m_tmpSolverBodyPool[j->id];
-        sb.m_pushVelocity += toBt(j->Dl.leftCols<3>() * d);
-        sb.m_turnVelocity += toBt(j->Da.leftCols<3>() * d);
-      }
+      applyPatchImpulse(pc, d, [&](int id, const Vec3& dv, const Vec3& dw) {
+        pool[id].m_pushVelocity += toBt(dv);
+        pool[id].m_turnVelocity += toBt(dw);
+      });
     }
   }
 }
@@ -540,35 +612,42 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
                                                             const btContactSolverInfo& info) {
   Impl& im = *impl_;
   for (PatchConstraint& pc : im.patches) {
-    PatchState& st = im.states[pc.manifold];
+    PatchState& st = *pc.state;
     const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
-    st.lamN = pc.lamN;
-    st.lamF = pc.lamF;
-    st.slip = c.tail<3>();
+    const Vec3 ex = pc.F.col(0), ey = pc.F.col(1);
+    st.normal = pc.lamN[0];
+    st.couple = pc.lamN[1] * ex + pc.lamN[2] * ey;
+    st.frictionT = pc.lamF[0] * ex + pc.lamF[1] * ey;
+    st.frictionSpin = pc.lamF[2];
+    st.slipT = c[3] * ex + c[4] * ey;
+    st.slipSpin = c[5];
     if (pc.tipping) {
       st.tipStep = im.step;
       st.flat = false;
     }
-    PatchReport r;
-    r.body = pc.body;
-    r.other = pc.other;
-    r.origin = pc.geometry.origin;
-    r.normal = pc.geometry.normal;
-    r.xAxis = pc.geometry.xAxis;
-    r.yAxis = pc.geometry.yAxis;
-    r.shape = *pc.shape;
+    // reports are overwritten in place (no allocation once the vector and
+    // the shapes' storage have grown); allSolved() trims the vector
+    if (im.reportCount == im.reports.size()) im.reports.emplace_back();
+    PatchReport& r = im.reports[im.reportCount++];
+    r.body = st.body;
+    r.other = st.other;
+    r.origin = st.geometry.origin;
+    r.normal = st.geometry.normal;
+    r.xAxis = st.geometry.xAxis;
+    r.yAxis = st.geometry.yAxis;
+    const PatchShape& shape = st.friction->shape();
+    r.shape = shape;
     r.model = pc.model;
     r.mu = pc.mu;
     r.rho = pc.rho;
     const PatchLoads l = toLoads(pc.lamN);
     r.loads = PatchLoads{l.Pz / pc.dt, l.Tx / pc.dt, l.Ty / pc.dt};
-    if (r.loads.Pz > 0.0) r.pressure = LinearPressure::fromLoads(*pc.shape, r.loads);
+    r.pressure = r.loads.Pz > 0.0 ? LinearPressure::fromLoads(shape, r.loads) : LinearPressure();
     r.Q = pc.lamF / pc.dt;
     r.slip = c.tail<3>();
     r.r = r.slip.norm();
     r.sticking = pc.sticking;
     r.w = pc.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
-    im.reports.push_back(std::move(r));
   }
   im.patches.clear();
   return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
