@@ -1,4 +1,4 @@
-// Per simulation: error against wall time for the scenes of the validation
+// Per simulation: error against run time for the scenes of the validation
 // tests (tests/bullet/simulate_test.cpp), run in Bullet by
 // patchspin::bullet::simulate for each model and time step (issue 6):
 //
@@ -23,7 +23,7 @@
 // compared with its own reference dynamics (columns "*_own": the time-step
 // error alone, without the model error).
 //
-// Cost: wall time per simulated second = time of one simulate() call
+// Cost: CPU time per simulated second = time of one simulate() call
 // (world set-up included), measured as the thread's CPU time (the machine is
 // shared; a run is single-threaded, so this is its wall time on an idle
 // core), the fastest of kRunsPerSetting runs, / simulated time (the
@@ -33,7 +33,7 @@
 //
 // Output: Google Benchmark's table, a table per scene in the spirit of "which
 // model and step should I use", and with --csv=PATH the rows as CSV
-// (docs/bench/simulation_error.csv): scene,model,dt,wall_per_sim_s,
+// (docs/bench/simulation_error.csv): scene,model,dt,cpu_per_sim_s,
 // err_tstop,err_terminal,err_tstop_own,err_terminal_own,stopped,t_stop,
 // terminal,t_ref,terminal_ref,terminal_kind (terminal: v/(R omega), or w3 of
 // the terminal w). Empty fields: not applicable
@@ -62,7 +62,7 @@ using namespace patchspin;
 // validation tests (simulate_test.cpp: 2 % stopping time, 0.01 in w / ratio)
 constexpr double kGoodStop = 0.02;
 constexpr double kGoodTerminal = 0.01;
-constexpr int kRunsPerSetting = 3;  // wall time: the fastest of these
+constexpr int kRunsPerSetting = 3;  // run time: the fastest of these
 
 struct Scene {
   std::string name;
@@ -132,7 +132,7 @@ double terminalError(const Scene& s, const SimulationResult& r, const Simulation
 
 struct Row {
   std::string scene, model, dt;
-  double wallPerSimS = 0;
+  double cpuPerSimS = 0;
   double errStop = NAN, errTerminal = NAN, errStopOwn = NAN, errTerminalOwn = NAN;
   bool stopped = false;
   double tStop = 0, terminal = NAN, tRef = 0, terminalRef = NAN;
@@ -159,7 +159,7 @@ SimulationResult runReference(SimulationSpec spec, const std::string& model) {
 }
 
 // one setting: runs kRunsPerSetting times (the benchmark's iterations), keeps
-// the fastest wall time and the (deterministic) result
+// the fastest run time and the (deterministic) result
 void runSetting(benchmark::State& state, const Scene& scene, const References& refs, const std::string& model,
                 const Steps* step) {
   SimulationSpec spec = scene.spec;
@@ -189,7 +189,7 @@ void runSetting(benchmark::State& state, const Scene& scene, const References& r
   row.tRef = refs.exact.tStop;
   row.terminalRef = terminalOf(scene, refs.exact);
   const double simulated = result.stopped ? result.tStop : spec.tMax;
-  row.wallPerSimS = best / simulated;
+  row.cpuPerSimS = best / simulated;
   if (result.stopped) row.errStop = std::abs(result.tStop - refs.exact.tStop) / refs.exact.tStop;
   row.errTerminal = terminalError(scene, result, refs.exact);
   if (model == "ellipsoidal") {
@@ -199,7 +199,7 @@ void runSetting(benchmark::State& state, const Scene& scene, const References& r
     row.errStopOwn = row.errStop;
     row.errTerminalOwn = row.errTerminal;
   }
-  state.counters["wall_per_sim_s"] = row.wallPerSimS;
+  state.counters["cpu_per_sim_s"] = row.cpuPerSimS;
   state.counters["err_tstop"] = row.errStop;
   state.counters["err_terminal"] = row.errTerminal;
   gRows.push_back(row);
@@ -213,8 +213,8 @@ std::string fmt(double x, const char* f = "%.3g") {
 }
 
 void printTables(const std::vector<Scene>& all, const std::map<std::string, References>& refs) {
-  std::printf("\nPer simulation: error against the exact law's reference dynamics, and wall time per simulated\n"
-              "second (CPU time of the run; Bullet %s precision, 10 solver iterations, one body; fastest of %d runs).\n",
+  std::printf("\nPer simulation: error against the exact law's reference dynamics, and run time per simulated\n"
+              "second (CPU ms of the run per simulated s; Bullet %s precision, 10 solver iterations, one body; fastest of %d runs).\n",
               bullet::buildPrecision(), kRunsPerSetting);
   for (const Scene& s : all) {
     const References& r = refs.at(s.name);
@@ -227,12 +227,12 @@ void printTables(const std::vector<Scene>& all, const std::map<std::string, Refe
     if (s.name == "coin from 0.653")
       std::printf(" (closed form, infinitely thin: %.5f s, 0.6530)",
                   1.0600 * s.spec.R * s.spec.omega0 / (s.spec.mu * s.spec.g));
-    std::printf("\n%-22s %-8s %14s %11s %12s %11s %12s\n", "model", "dt [s]", "wall [ms/s]", "err t_stop",
+    std::printf("\n%-22s %-8s %14s %11s %12s %11s %12s\n", "model", "dt [s]", "CPU ms per s", "err t_stop",
                 s.ratio ? "err v/(Rw)" : "err |w|", "own t_stop", "own term.");
     for (const Row& row : gRows) {
       if (row.scene != s.name) continue;
       std::printf("%-22s %-8s %14.3f %11s %12s %11s %12s\n", row.model.c_str(), row.dt.c_str(),
-                  1e3 * row.wallPerSimS, row.stopped ? fmt(row.errStop).c_str() : "no stop",
+                  1e3 * row.cpuPerSimS, row.stopped ? fmt(row.errStop).c_str() : "no stop",
                   fmt(row.errTerminal).c_str(), fmt(row.errStopOwn).c_str(), fmt(row.errTerminalOwn).c_str());
     }
     // recommendation: cheapest Bullet setting per model within the validation tests' accuracy
@@ -242,11 +242,11 @@ void printTables(const std::vector<Scene>& all, const std::map<std::string, Refe
       const Row* best = nullptr;
       for (const Row& row : gRows)
         if (row.scene == s.name && row.model == model && row.errStop <= kGoodStop &&
-            row.errTerminal <= kGoodTerminal && (!best || row.wallPerSimS < best->wallPerSimS))
+            row.errTerminal <= kGoodTerminal && (!best || row.cpuPerSimS < best->cpuPerSimS))
           best = &row;
       if (best)
         std::printf("  %-12s dt = %-7s (%.3f ms per simulated s)\n", model, best->dt.c_str(),
-                    1e3 * best->wallPerSimS);
+                    1e3 * best->cpuPerSimS);
       else
         std::printf("  %-12s none of the steps\n", model);
     }
@@ -301,10 +301,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_bullet_simulation: cannot write %s\n", csvPath.c_str());
       return 1;
     }
-    f << "scene,model,dt,wall_per_sim_s,err_tstop,err_terminal,err_tstop_own,err_terminal_own,stopped,t_stop,"
+    f << "scene,model,dt,cpu_per_sim_s,err_tstop,err_terminal,err_tstop_own,err_terminal_own,stopped,t_stop,"
          "terminal,t_ref,terminal_ref,terminal_kind\n";
     for (const Row& r : gRows) {
-      f << '"' << r.scene << "\",\"" << r.model << "\"," << r.dt << ',' << fmt(r.wallPerSimS, "%.6g") << ','
+      f << '"' << r.scene << "\",\"" << r.model << "\"," << r.dt << ',' << fmt(r.cpuPerSimS, "%.6g") << ','
         << fmt(r.errStop, "%.6g") << ',' << fmt(r.errTerminal, "%.6g") << ',' << fmt(r.errStopOwn, "%.6g") << ','
         << fmt(r.errTerminalOwn, "%.6g") << ',' << (r.stopped ? 1 : 0) << ',' << fmt(r.tStop, "%.6g") << ','
         << fmt(r.terminal, "%.6g") << ',' << fmt(r.tRef, "%.6g") << ',' << fmt(r.terminalRef, "%.6g") << ','

@@ -3,7 +3,13 @@
 #   bifurcation_force.png  limit directions against F, thin disk, T = 0 (Fig. 11 analogue)
 #   bifurcation_plane.png  number and types of limit directions over (F, T) (Fig. 13 analogue)
 #   pareto_exact.png       time against error of the exact law's accuracy knob
-# from `patchspin sweep` and the benchmark JSON in BUILD_DIR/bench-results.
+#   pareto_patch.png       per patch: time per friction-block solve against the
+#                          impulse's error, ellipsoidal / exact / stock point friction
+#   pareto_sim_coin.png, pareto_sim_coin_limit.png, pareto_sim_pushed.png
+#                          per simulation: CPU time per simulated second against the
+#                          error vs the reference dynamics, one point per time step
+# from `patchspin sweep`, the benchmark JSON in BUILD_DIR/bench-results and the
+# CSVs in docs/bench/ (all three from scripts/run_benchmarks.sh).
 # Runs in a few seconds on 2 cores. The gnuplot scripts (.gp, data inline) that
 # the plot functions write next to each PNG are removed unless KEEP_GP=1.
 #
@@ -93,7 +99,22 @@ EOF
   --title "exact law: time against error over the tolerance knob" \
   --time-label "time per evaluation (value only) [s]" --error-label "max relative error"
 
+# (4) per patch and per simulation, from the CSVs of bench_patch_error and
+# bench_bullet_simulation (docs/bench/, committed with the README's tables)
+csv="$root/docs/bench"
+"$plots" pareto-patch --csv "$csv/patch_error.csv" --out "$img/pareto_patch.png" --size 900x600 \
+  --title "per patch: friction-block solve, time against error (disk, rectangle, hexagon pooled)"
+"$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "coin from 1" --out "$img/pareto_sim_coin.png" \
+  --size 900x600 --title "free coin from v = R omega: error against CPU time per simulated second"
+"$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "coin from 0.653" \
+  --out "$img/pareto_sim_coin_limit.png" --size 900x600 \
+  --title "free coin on the exact law's limit ratio 0.653: error against CPU time per simulated second"
+"$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "pushed disk" --out "$img/pareto_sim_pushed.png" \
+  --size 900x600 --title "pushed disk (Sect. 6.1, Case 3): error against CPU time per simulated second"
+
+made=(bifurcation_force bifurcation_plane pareto_exact pareto_patch pareto_sim_coin pareto_sim_coin_limit
+  pareto_sim_pushed)
 if [[ "${KEEP_GP:-0}" != 1 ]]; then
-  rm -f "$img"/{bifurcation_force,bifurcation_plane,pareto_exact}.gp
+  for f in "${made[@]}"; do rm -f "$img/$f.gp"; done
 fi
-echo "make_gallery: wrote $img/{bifurcation_force,bifurcation_plane,pareto_exact}.png"
+echo "make_gallery: wrote $(printf "$img/%s.png " "${made[@]}")"

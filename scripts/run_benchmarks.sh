@@ -1,40 +1,142 @@
 #!/usr/bin/env bash
-# Runs every benchmark program and refreshes the README's benchmark section
-# (between the "bench:begin" and "bench:end" markers). Not part of the tests.
+# Runs every benchmark program (bench/bench_*.cpp) and refreshes the README's
+# benchmark tables and the CSVs in docs/bench/. Not part of the tests.
 #   bash scripts/run_benchmarks.sh [BUILD_DIR]
-# Set MIN_TIME (seconds per benchmark, default 0.2) for steadier figures.
+# Takes about 5 minutes on 2 cores (most of it the world-scale benchmark's
+# 10000-body pile); progress goes to stderr.
+#
+# Environment:
+#   MIN_TIME=0.2              seconds per micro-benchmark (steadier figures: more)
+#   SKIP_BUILD=1              do not (re)build first (BUILD_DIR must hold the programs)
+#   PATCHSPIN_SCALE_MAX_N=1000  skip the 10000-body world (bench_bullet_scale)
+#   README_FILE=path          refresh this file instead of README.md (to try the script)
+#
+# README sections, each between a pair of markers (a missing pair is reported
+# and skipped; the table is then only in BUILD_DIR/bench-results):
+#   <!-- bench:begin -->            <!-- bench:end -->            raw tables of the
+#                                   micro-benchmarks (models, exact law, analysis, Bullet world)
+#   <!-- bench-patch:begin -->      <!-- bench-patch:end -->      per patch: time against error
+#   <!-- bench-simulation:begin --> <!-- bench-simulation:end --> per simulation
+#   <!-- bench-scale:begin -->      <!-- bench-scale:end -->      world scale
+# CSVs: docs/bench/patch_error.csv, simulation_error.csv, world_scale.csv
+# (scripts/make_gallery.sh plots the first two).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=${1:-$root/build}
+build=$(cd "${1:-$root/build}" 2>/dev/null && pwd || echo "${1:-$root/build}")
 min_time=${MIN_TIME:-0.2}
 out=$build/bench-results
-mkdir -p "$out"
-BUILD_DIR=$build bash "$root/scripts/quickstart.sh" build
+csvdir=$root/docs/bench
+readme=${README_FILE:-$root/README.md}
+if [[ "${SKIP_BUILD:-0}" != 1 ]]; then
+  echo "== building (scripts/quickstart.sh build)" >&2
+  BUILD_DIR=$build bash "$root/scripts/quickstart.sh" build
+fi
+mkdir -p "$out" "$csvdir"
 
+# the micro-benchmarks whose raw table goes into the "bench" section, then
+# the time-against-error benchmarks with their own sections
+micro=(bench_models bench_exact_disk bench_exact_polygon bench_analysis bench_bullet_world)
+declare -A section_of=([bench_patch_error]=bench-patch [bench_bullet_simulation]=bench-simulation
+  [bench_bullet_scale]=bench-scale)
+declare -A csv_of=([bench_patch_error]=patch_error.csv [bench_bullet_simulation]=simulation_error.csv
+  [bench_bullet_scale]=world_scale.csv)
+declare -A args_of=([bench_patch_error]="--benchmark_min_time=$min_time")
+error_benches=(bench_patch_error bench_bullet_simulation bench_bullet_scale)
+# anything else named bench_* in the build joins the raw section
+for exe in "$build"/bench/bench_*; do
+  b=$(basename "$exe")
+  [[ -x $exe && -f $exe ]] || continue
+  [[ " ${micro[*]} ${error_benches[*]} " == *" $b "* ]] || micro+=("$b")
+done
+all=("${micro[@]}" "${error_benches[@]}")
+total=${#all[@]}
+count=0
+start=$SECONDS
+
+run() {  # bench, extra args...
+  local b=$1
+  shift
+  count=$((count + 1))
+  echo "[$count/$total] $b ($((SECONDS - start)) s so far)" >&2
+  if ! "$build/bench/$b" "$@" --benchmark_out="$out/$b.json" --benchmark_out_format=json \
+    >"$out/$b.txt" 2>"$out/$b.err"; then
+    echo "   $b failed; see $out/$b.err" >&2
+    return 1
+  fi
+}
+
+# replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in the
+# README with FILE; a README without that pair is left alone (reported)
+replace_section() {  # name, file
+  local name=$1 file=$2
+  if ! grep -q "<!-- $name:begin -->" "$readme" || ! grep -q "<!-- $name:end -->" "$readme"; then
+    echo "   README has no <!-- $name:begin --> / <!-- $name:end --> pair: section not refreshed ($file)" >&2
+    return 0
+  fi
+  awk -v file="$file" -v begin="<!-- $name:begin -->" -v end="<!-- $name:end -->" '
+    index($0, begin) { print; while ((getline line < file) > 0) print line; skip = 1; next }
+    index($0, end) { skip = 0 }
+    !skip { print }
+  ' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
+  echo "   README section $name refreshed" >&2
+}
+
+stamp="Measured on $(nproc) cores ($(uname -m)), $(date -u +%Y-%m-%d)"
+failed=0
+
+# (1) micro-benchmarks: raw Google Benchmark tables
 section=$(mktemp)
+trap 'rm -f "$section" "$section".*' EXIT
 {
-  echo "Measured on $(nproc) cores ($(uname -m)), $(date -u +%Y-%m-%d); CPU time per call."
+  echo "$stamp; CPU time per call."
   echo "Regenerate with \`bash scripts/run_benchmarks.sh\`."
-  for b in bench_models bench_exact_disk bench_exact_polygon bench_analysis bench_bullet_world; do
-    exe=$build/bench/$b
-    [[ -x $exe ]] || continue
-    echo "running $b" >&2
-    "$exe" --benchmark_min_time="$min_time" --benchmark_out="$out/$b.json" --benchmark_out_format=json \
-      >"$out/$b.txt" 2>"$out/$b.err"
+} >"$section"
+incomplete=0
+for b in "${micro[@]}"; do
+  if [[ ! -x $build/bench/$b ]]; then
+    count=$((count + 1))
+    echo "[$count/$total] $b: not built, skipped" >&2
+    incomplete=1
+    continue
+  fi
+  run "$b" --benchmark_min_time="$min_time" || { failed=1; incomplete=1; continue; }
+  {
     echo
     echo "\`$b\`:"
     echo
     echo '```'
-    grep -E '^(Benchmark|BM_|-)' "$out/$b.txt" | grep -v '^-' | sed 's/ *$//'
+    grep -E '^(Benchmark|BM_)' "$out/$b.txt" | sed 's/ *$//'
     echo '```'
-  done
-} >"$section"
+  } >>"$section"
+done
+# a partial run would drop tables: then the section stays as it was
+if ((incomplete)); then
+  echo "   some micro-benchmarks did not run: README section bench left as it was" >&2
+else
+  replace_section bench "$section"
+fi
 
-readme=$root/README.md
-awk -v file="$section" '
-  /<!-- bench:begin -->/ { print; while ((getline line < file) > 0) print line; skip = 1; next }
-  /<!-- bench:end -->/ { skip = 0 }
-  !skip { print }
-' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
-rm -f "$section"
-echo "README benchmark section refreshed from $out" >&2
+# (2) time against error: each program's own summary (everything from its
+# first summary line on), CSV into docs/bench/
+for b in "${error_benches[@]}"; do
+  if [[ ! -x $build/bench/$b ]]; then
+    count=$((count + 1))
+    echo "[$count/$total] $b: not built, skipped" >&2
+    continue
+  fi
+  # shellcheck disable=SC2086
+  run "$b" ${args_of[$b]:-} --csv="$csvdir/${csv_of[$b]}" || { failed=1; continue; }
+  {
+    echo "$stamp. Regenerate with \`bash scripts/run_benchmarks.sh\`; data: \`docs/bench/${csv_of[$b]}\`."
+    echo
+    echo '```'
+    awk '/^(Per patch|Per simulation|World scale)/ { on = 1 } on && !/^wrote / { print }' "$out/$b.txt" |
+      sed 's/ *$//'
+    echo '```'
+  } >"$section.$b"
+  replace_section "${section_of[$b]}" "$section.$b"
+done
+
+echo "done in $((SECONDS - start)) s: results in $out, CSVs in $csvdir" >&2
+echo "plots: bash scripts/make_gallery.sh $build" >&2
+exit $failed
