@@ -18,14 +18,6 @@
 // recorded when r first falls below 1% of r0; stopped once r <= 1e-5 r0, the
 // instant extrapolated within the step. See README (blocks demo) for the
 // summary.json keys and the predictions they are compared with.
-#include "demo_common.hpp"
-
-#include <patchspin/analysis.hpp>
-#include <patchspin/bullet/patch_friction_solver.hpp>
-#include <patchspin/bullet/simulate.hpp>
-#include <patchspin/geometry.hpp>
-#include <patchspin/render/renderer.hpp>
-
 #include <btBulletDynamicsCommon.h>
 
 #include <CLI/CLI.hpp>
@@ -37,9 +29,16 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <patchspin/analysis.hpp>
+#include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/geometry.hpp>
+#include <patchspin/render/renderer.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "demo_common.hpp"
 
 namespace {
 
@@ -92,8 +91,12 @@ struct Args {
   bool progress = true;
 };
 
-btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
-btVector3 bt(const Vec3& v) { return bt(v.x(), v.y(), v.z()); }
+btVector3 bt(double x, double y, double z) {
+  return btVector3(btScalar(x), btScalar(y), btScalar(z));
+}
+btVector3 bt(const Vec3& v) {
+  return bt(v.x(), v.y(), v.z());
+}
 
 // ---- closed forms -------------------------------------------------------------------
 
@@ -103,7 +106,8 @@ btVector3 bt(const Vec3& v) { return bt(v.x(), v.y(), v.z()); }
 //   d = sqrt(a^2 + b^2); for a square of side s: (s/6)(sqrt 2 + ln(1 + sqrt 2)).
 double meanDistanceRectangle(double lx, double ly) {
   const double a = 0.5 * lx, b = 0.5 * ly, d = std::hypot(a, b);
-  const double integral = (2 * a * b * d + a * a * a * std::log((b + d) / a) + b * b * b * std::log((a + d) / b)) / 6;
+  const double integral =
+      (2 * a * b * d + a * a * a * std::log((b + d) / a) + b * b * b * std::log((a + d) / b)) / 6;
   return 4 * integral / (lx * ly);
 }
 
@@ -127,10 +131,10 @@ struct BodyDef {
 struct Sample {
   double t = 0.0;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // body -> own world
-  Vec3 patchCentre = Vec3::Zero();                          // world [m]
-  Vec2 velocity = Vec2::Zero();                             // of the patch centre [m/s]
-  double omega = 0.0;                                       // spin [rad/s]
-  Vec3 x = Vec3::Zero();                                    // (u_x, u_y, rho w_z) [m/s]
+  Vec3 patchCentre = Vec3::Zero();                         // world [m]
+  Vec2 velocity = Vec2::Zero();                            // of the patch centre [m/s]
+  double omega = 0.0;                                      // spin [rad/s]
+  Vec3 x = Vec3::Zero();                                   // (u_x, u_y, rho w_z) [m/s]
   double r = 0.0;
 };
 
@@ -215,7 +219,8 @@ std::vector<BodyDef> sceneBodies(const Args& a) {
   }
 
   // right of the rectangle (beyond its travel): the coin, then the sphere
-  const double rectTravel = a.rectV0 * a.rectV0 / (2 * a.mu * a.g) * 2.0;  // twice the pure-sliding travel
+  const double rectTravel =
+      a.rectV0 * a.rectV0 / (2 * a.mu * a.g) * 2.0;  // twice the pure-sliding travel
   const double coinTravel = a.coinV0 * a.coinV0 / (2 * a.mu * a.g) * 2.0;
   BodyDef coin;
   coin.key = "coin";
@@ -234,7 +239,8 @@ std::vector<BodyDef> sceneBodies(const Args& a) {
   sphere.kind = Kind::Sphere;
   sphere.size = Vec3(a.sphereRadius, a.sphereRadius, 2 * a.sphereRadius);
   sphere.mass = a.sphereMass;
-  sphere.position = Vec3(coin.position.x() + coinTravel + a.coinRadius + a.sphereRadius + 0.06, 0, a.sphereRadius);
+  sphere.position = Vec3(coin.position.x() + coinTravel + a.coinRadius + a.sphereRadius + 0.06, 0,
+                         a.sphereRadius);
   sphere.v0 = Vec2(a.sphereV0, 0);
   sphere.patch = false;
   defs.push_back(sphere);
@@ -260,7 +266,8 @@ class RowWorld {
       run.def = &d;
       run.body = addBody(a, d);
       run.halfHeight = d.kind == Kind::Sphere ? d.size.x() : 0.5 * d.size.z();
-      if (d.kind == Kind::Box) run.rho = patchspin::PatchShape::rectangle(d.size.x(), d.size.y()).defaultRho();
+      if (d.kind == Kind::Box)
+        run.rho = patchspin::PatchShape::rectangle(d.size.x(), d.size.y()).defaultRho();
       if (d.kind == Kind::Cylinder) run.rho = patchspin::PatchShape::disk(d.size.x()).defaultRho();
       if (d.v0.norm() > 0) run.e1 = d.v0.normalized();
       row.runs.push_back(std::move(run));
@@ -285,7 +292,8 @@ class RowWorld {
       case Kind::Box: {
         const double lx = d.size.x(), ly = d.size.y(), lz = d.size.z();
         shape = std::make_unique<btBoxShape>(bt(lx / 2, ly / 2, lz / 2));
-        inertia = bt(m * (ly * ly + lz * lz) / 12, m * (lx * lx + lz * lz) / 12, m * (lx * lx + ly * ly) / 12);
+        inertia = bt(m * (ly * ly + lz * lz) / 12, m * (lx * lx + lz * lz) / 12,
+                     m * (lx * lx + ly * ly) / 12);
         minHalf = std::min({lx / 2, ly / 2, lz / 2});
         break;
       }
@@ -308,8 +316,8 @@ class RowWorld {
     start.setIdentity();
     start.setOrigin(bt(d.position));
     motions_.push_back(std::make_unique<btDefaultMotionState>(start));
-    auto body = std::make_unique<btRigidBody>(
-        btRigidBody::btRigidBodyConstructionInfo(btScalar(m), motions_.back().get(), shape.get(), inertia));
+    auto body = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(
+        btScalar(m), motions_.back().get(), shape.get(), inertia));
     body->setFriction(btScalar(a.mu));
     body->setRollingFriction(0);
     body->setSpinningFriction(0);
@@ -348,15 +356,17 @@ Sample observe(const BodyRun& run, double t) {
   const btVector3 c = tr.getOrigin();
   // patch centre: the face centre below the centre of mass (the sphere's
   // lowest point)
-  const btVector3 p = run.def->kind == Kind::Sphere ? c - btVector3(0, 0, btScalar(run.halfHeight))
-                                                    : tr * btVector3(0, 0, btScalar(-run.halfHeight));
+  const btVector3 p = run.def->kind == Kind::Sphere
+                          ? c - btVector3(0, 0, btScalar(run.halfHeight))
+                          : tr * btVector3(0, 0, btScalar(-run.halfHeight));
   const btVector3 w = body.getAngularVelocity();
   const btVector3 v = body.getLinearVelocity() + w.cross(p - c);
   Sample s;
   s.t = t;
   const btQuaternion q = tr.getRotation();
-  s.pose.linear() =
-      Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z())).normalized().toRotationMatrix();
+  s.pose.linear() = Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z()))
+                        .normalized()
+                        .toRotationMatrix();
   s.pose.translation() = Vec3(double(c.x()), double(c.y()), double(c.z()));
   s.patchCentre = Vec3(double(p.x()), double(p.y()), double(p.z()));
   s.velocity = Vec2(double(v.x()), double(v.y()));
@@ -404,7 +414,8 @@ void track(BodyRun& run, const Sample& s, double dt) {
     run.wStop = at.r > 0 ? Vec3(at.x / at.r) : Vec3::Zero();
     if (at.omega != 0.0) {
       run.ratioStop = at.velocity.norm() / (run.rho * std::abs(at.omega));
-      if (run.def->kind == Kind::Cylinder) run.epsStop = at.velocity.norm() / (run.def->size.x() * std::abs(at.omega));
+      if (run.def->kind == Kind::Cylinder)
+        run.epsStop = at.velocity.norm() / (run.def->size.x() * std::abs(at.omega));
     }
   }
   if (s.r <= kStopFraction * r0) {
@@ -436,7 +447,8 @@ void simulateRow(const Args& a, Row& row, const std::vector<BodyDef>& defs, doub
   }
 }
 
-render::SceneBody drawBody(const BodyRun& run, const Sample& s, const Vec3& offset, const render::Rgb& colour) {
+render::SceneBody drawBody(const BodyRun& run, const Sample& s, const Vec3& offset,
+                           const render::Rgb& colour) {
   render::SceneBody b;
   b.pose = Eigen::Translation3d(offset) * s.pose;
   b.colour = colour;
@@ -457,7 +469,8 @@ render::SceneBody drawBody(const BodyRun& run, const Sample& s, const Vec3& offs
       const double golden = std::acos(-1.0) * (3.0 - std::sqrt(5.0));
       for (int i = 0; i < kPoints; ++i) {
         const double z = 1.0 - 2.0 * (i + 0.5) / kPoints, rr = std::sqrt(1.0 - z * z);
-        b.hullPoints.push_back(d.size.x() * Vec3(rr * std::cos(golden * i), rr * std::sin(golden * i), z));
+        b.hullPoints.push_back(d.size.x() *
+                               Vec3(rr * std::cos(golden * i), rr * std::sin(golden * i), z));
       }
       break;
     }
@@ -472,11 +485,13 @@ render::SceneBody drawBody(const BodyRun& run, const Sample& s, const Vec3& offs
 // that the scene is centred in the window (the scene is wide and flat; a
 // bounding sphere would waste most of the frame).
 constexpr double kFitX = 0.94, kFitBottom = -0.86;
-render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg, double elevationDeg, double aspect,
-                              double fitTop, double fovYDeg = 35.0) {
+render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg,
+                              double elevationDeg, double aspect, double fitTop,
+                              double fovYDeg = 35.0) {
   const double pi = std::acos(-1.0);
   const double az = azimuthDeg * pi / 180.0, el = elevationDeg * pi / 180.0;
-  const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));  // target -> eye
+  const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                 std::sin(el));  // target -> eye
   const Vec3 fwd = -dir;
   const Vec3 right = fwd.cross(Vec3::UnitZ()).normalized();
   const Vec3 up = right.cross(fwd);
@@ -510,7 +525,10 @@ render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg
       double xMax, yMin, yMax;
       range(D, m, xMax, yMin, yMax);
       // raising the target moves the points down the frame
-      if (0.5 * (yMin + yMax) > 0.5 * (fitTop + kFitBottom)) a = m; else b = m;
+      if (0.5 * (yMin + yMax) > 0.5 * (fitTop + kFitBottom))
+        a = m;
+      else
+        b = m;
     }
     return 0.5 * (a + b);
   };
@@ -519,7 +537,10 @@ render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg
     const double D = 0.5 * (dLo + dHi);
     double xMax, yMin, yMax;
     range(D, centredShift(D), xMax, yMin, yMax);
-    if (xMax <= kFitX && yMax - yMin <= fitTop - kFitBottom) dHi = D; else dLo = D;
+    if (xMax <= kFitX && yMax - yMin <= fitTop - kFitBottom)
+      dHi = D;
+    else
+      dLo = D;
   }
   render::Camera cam;
   cam.target = centre + centredShift(dHi) * up;
@@ -531,15 +552,17 @@ render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg
 
 // Corners of the drawn body (its bounding box) in the world.
 void addCorners(const render::SceneBody& b, std::vector<Vec3>& out) {
-  const Vec3 h = b.kind == render::SceneBody::Cylinder ? Vec3(b.dimensions.x(), b.dimensions.y(), 0.5 * b.dimensions.z())
-                 : b.kind == render::SceneBody::Box    ? Vec3(0.5 * b.dimensions)
-                                                       : Vec3::Zero();
+  const Vec3 h = b.kind == render::SceneBody::Cylinder
+                     ? Vec3(b.dimensions.x(), b.dimensions.y(), 0.5 * b.dimensions.z())
+                 : b.kind == render::SceneBody::Box ? Vec3(0.5 * b.dimensions)
+                                                    : Vec3::Zero();
   if (b.kind == render::SceneBody::ConvexHull) {
     for (const Vec3& p : b.hullPoints) out.push_back(b.pose * p);
     return;
   }
   for (int i = 0; i < 8; ++i)
-    out.push_back(b.pose * Vec3((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(), (i & 4 ? 1 : -1) * h.z()));
+    out.push_back(b.pose * Vec3((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
+                                (i & 4 ? 1 : -1) * h.z()));
 }
 
 // Row colours: the patch laws warm or blue, stock Bullet grey (as in coin).
@@ -550,7 +573,8 @@ render::Rgb rowColour(const std::string& model) {
 }
 
 render::Rgb shade(const render::Rgb& c, double f) {
-  return {std::clamp(c.r * f, 0.0, 1.0), std::clamp(c.g * f, 0.0, 1.0), std::clamp(c.b * f, 0.0, 1.0)};
+  return {std::clamp(c.r * f, 0.0, 1.0), std::clamp(c.g * f, 0.0, 1.0),
+          std::clamp(c.b * f, 0.0, 1.0)};
 }
 
 render::Rgb bodyColour(const Row& row, const BodyDef& d) {
@@ -567,11 +591,16 @@ std::string rowLabel(const std::string& model) {
   return model + " patch law";
 }
 
-nlohmann::json vec(const Vec2& v) { return {v.x(), v.y()}; }
-nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vec(const Vec2& v) {
+  return {v.x(), v.y()};
+}
+nlohmann::json vec(const Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 // The SimulationSpec of a box or cylinder as `patchspin simulate` takes it.
-patchspin::SimulationSpec specOf(const Args& a, const BodyDef& d, const std::string& model, double dt, double tMax) {
+patchspin::SimulationSpec specOf(const Args& a, const BodyDef& d, const std::string& model,
+                                 double dt, double tMax) {
   patchspin::SimulationSpec s;
   if (d.kind == Kind::Box) {
     s.shape = patchspin::SimulationSpec::Shape::Box;
@@ -595,15 +624,16 @@ patchspin::SimulationSpec specOf(const Args& a, const BodyDef& d, const std::str
 }
 
 // Stopping data and predictions of one body of one row.
-nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, double dt, double tMax) {
+nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, double dt,
+                           double tMax) {
   const BodyDef& d = *run.def;
   const Sample& last = run.samples.back();
   nlohmann::json m;
   m["label"] = d.label;
   m["kind"] = d.kind == Kind::Box ? "box" : d.kind == Kind::Cylinder ? "cylinder" : "sphere";
   m["model"] = (row.model != "stock" && d.patch) ? row.model : "stock";
-  nlohmann::json p = {{"mass", d.mass}, {"mu", a.mu}, {"g", a.g}, {"v0", vec(d.v0)}, {"omega0", d.omega0},
-                      {"position", vec(d.position)}};
+  nlohmann::json p = {{"mass", d.mass},  {"mu", a.mu},         {"g", a.g},
+                      {"v0", vec(d.v0)}, {"omega0", d.omega0}, {"position", vec(d.position)}};
   if (d.kind == Kind::Box) {
     p["LX"] = d.size.x();
     p["LY"] = d.size.y();
@@ -627,7 +657,8 @@ nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, do
     const Sample& end = run.samples.back();
     const Sample& before = run.samples[run.samples.size() - 2];
     m["final_speed"] = (end.pose.translation() - before.pose.translation()).head<2>().norm() / dt;
-    m["final_displacement"] = vec(Vec2((end.patchCentre - run.samples.front().patchCentre).head<2>()));
+    m["final_displacement"] =
+        vec(Vec2((end.patchCentre - run.samples.front().patchCentre).head<2>()));
     m["prediction"] = {{"source", "sliding ball: rolls at v = 5/7 v0 after t = 2 v0 / (7 mu g)"},
                        {"t_roll", 2 * v0 / (7 * a.mu * a.g)},
                        {"speed", 5.0 / 7.0 * v0}};
@@ -638,7 +669,8 @@ nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, do
   m["t_stop"] = run.stopped ? nlohmann::json(run.tStop) : nlohmann::json(nullptr);
   m["w_stop"] = run.recorded ? vec(run.wStop) : nlohmann::json(nullptr);
   m["ratio_stop"] = run.ratioStop ? demos::jsonOrNull(*run.ratioStop) : nlohmann::json(nullptr);
-  if (d.kind == Kind::Cylinder) m["eps_stop"] = run.epsStop ? demos::jsonOrNull(*run.epsStop) : nlohmann::json(nullptr);
+  if (d.kind == Kind::Cylinder)
+    m["eps_stop"] = run.epsStop ? demos::jsonOrNull(*run.epsStop) : nlohmann::json(nullptr);
   m["displacement"] = vec(run.displacement);
   m["distance"] = run.path;
   m["rotation"] = run.rotation;
@@ -646,7 +678,8 @@ nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, do
   m["t_spin_stop"] = run.tSpinStop ? nlohmann::json(*run.tSpinStop) : nlohmann::json(nullptr);
   // stock Bullet creeps on after its stop (coin demo): the slip at the end
   m["final_slip"] = last.r;
-  m["final_displacement"] = vec(Vec2((last.patchCentre - run.samples.front().patchCentre).head<2>()));
+  m["final_displacement"] =
+      vec(Vec2((last.patchCentre - run.samples.front().patchCentre).head<2>()));
 
   // predictions
   const bool patchLaw = m["model"] != "stock";
@@ -659,10 +692,11 @@ nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, do
     const double jz = d.mass * (d.size.x() * d.size.x() + d.size.y() * d.size.y()) / 12;
     const double arm = patchLaw ? meanDistanceRectangle(d.size.x(), d.size.y())
                                 : 0.5 * std::hypot(d.size.x(), d.size.y());
-    pred = {{"source", patchLaw ? "closed form: t = omega0 J_z / (mu m g mean|r|)"
-                                : "four corner points: t = omega0 J_z / (mu m g d), d = half diagonal"},
-            {patchLaw ? "mean_r" : "half_diagonal", arm},
-            {"t_spin_stop", std::abs(d.omega0) * jz / (a.mu * d.mass * a.g * arm)}};
+    pred = {
+        {"source", patchLaw ? "closed form: t = omega0 J_z / (mu m g mean|r|)"
+                            : "four corner points: t = omega0 J_z / (mu m g d), d = half diagonal"},
+        {patchLaw ? "mean_r" : "half_diagonal", arm},
+        {"t_spin_stop", std::abs(d.omega0) * jz / (a.mu * d.mass * a.g * arm)}};
     // the patch laws stop slip and spin together (no drift by symmetry);
     // stock Bullet stops spinning, then creeps (final_slip)
     if (patchLaw) pred["t_stop"] = pred["t_spin_stop"];
@@ -677,7 +711,8 @@ nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, do
             {"w_stop", vec(r.wStop)},
             {"displacement", vec(r.displacement)},
             {"rotation", r.rotation}};
-    if (d.kind == Kind::Cylinder && row.model == "exact") pred["reference_ratio"] = kCoinReferenceRatio;
+    if (d.kind == Kind::Cylinder && row.model == "exact")
+      pred["reference_ratio"] = kCoinReferenceRatio;
   }
   m["prediction"] = pred;
   return m;
@@ -686,16 +721,20 @@ nlohmann::json bodySummary(const Args& a, const Row& row, const BodyRun& run, do
 int run(const Args& a) {
   int width = 0, height = 0;
   demos::parseSize(a.size, width, height);
-  const std::vector<double> positive = {a.g,          a.rectLX,     a.rectLY,      a.rectLZ,     a.rectMass,
-                                        a.squareSide, a.squareLZ,   a.squareMass,  a.coinRadius, a.coinHeight,
-                                        a.coinMass,   a.sphereRadius, a.sphereMass, a.stackBottom, a.stackMiddle,
-                                        a.stackTop,   a.stackLZ,    a.stackMass,   a.fps,        a.rate,
-                                        a.slowmo,     a.tMax};
+  const std::vector<double> positive = {
+      a.g,          a.rectLX,      a.rectLY,      a.rectLZ,     a.rectMass, a.squareSide,
+      a.squareLZ,   a.squareMass,  a.coinRadius,  a.coinHeight, a.coinMass, a.sphereRadius,
+      a.sphereMass, a.stackBottom, a.stackMiddle, a.stackTop,   a.stackLZ,  a.stackMass,
+      a.fps,        a.rate,        a.slowmo,      a.tMax};
   for (double v : positive)
-    if (!(v > 0 && std::isfinite(v))) throw CLI::ValidationError("parameters", "sizes, masses, g, fps, rate, slowmo, "
-                                                                             "t-max must be > 0");
-  for (double v : {a.mu, a.rectV0, a.rectV0Angle, a.rectOmega0, a.squareOmega0, a.coinV0, a.coinOmega0, a.sphereV0})
-    if (!std::isfinite(v)) throw CLI::ValidationError("parameters", "speeds and spins must be finite");
+    if (!(v > 0 && std::isfinite(v)))
+      throw CLI::ValidationError("parameters",
+                                 "sizes, masses, g, fps, rate, slowmo, "
+                                 "t-max must be > 0");
+  for (double v : {a.mu, a.rectV0, a.rectV0Angle, a.rectOmega0, a.squareOmega0, a.coinV0,
+                   a.coinOmega0, a.sphereV0})
+    if (!std::isfinite(v))
+      throw CLI::ValidationError("parameters", "speeds and spins must be finite");
   if (a.mu < 0) throw CLI::ValidationError("--mu", "must be >= 0");
   if (a.frames < 1) throw CLI::ValidationError("--frames", "must be >= 1");
 
@@ -706,7 +745,8 @@ int run(const Args& a) {
     std::string m;
     while (std::getline(list, m, ',')) {
       if (m != "exact" && m != "ellipsoidal" && m != "stock")
-        throw CLI::ValidationError("--model", "must be exact, ellipsoidal or stock, or a comma list: got '" + m + "'");
+        throw CLI::ValidationError(
+            "--model", "must be exact, ellipsoidal or stock, or a comma list: got '" + m + "'");
       for (const Row& r : rows)
         if (r.model == m) throw CLI::ValidationError("--model", "lists " + m + " twice");
       Row row;
@@ -729,7 +769,8 @@ int run(const Args& a) {
   double reach = 0.0;
   for (const BodyDef& d : defs) reach = std::max(reach, 0.5 * std::hypot(d.size.x(), d.size.y()));
   const double pi = std::acos(-1.0);
-  const double rectTravelY = a.rectV0 * a.rectV0 / (a.mu * a.g) * std::abs(std::sin(a.rectV0Angle * pi / 180.0));
+  const double rectTravelY =
+      a.rectV0 * a.rectV0 / (a.mu * a.g) * std::abs(std::sin(a.rectV0Angle * pi / 180.0));
   const double spacing = 2 * reach + rectTravelY + kRowGap;
   for (std::size_t i = 0; i < rows.size(); ++i)
     rows[i].offset = Vec3(0, spacing * (0.5 * double(rows.size() - 1) - double(i)), 0);
@@ -740,11 +781,13 @@ int run(const Args& a) {
   for (const Row& row : rows)
     for (const BodyRun& r : row.runs)
       for (long s = 0; s <= frameSteps; s += k)
-        addCorners(drawBody(r, r.samples[std::size_t(s)], row.offset, bodyColour(row, *r.def)), corners);
+        addCorners(drawBody(r, r.samples[std::size_t(s)], row.offset, bodyColour(row, *r.def)),
+                   corners);
   const int panelLines = 2 + 3 * int(rows.size());
   const double panelFraction = (panelLines * 1.35 + 2.2) / 36.0;
   const double fitTop = std::max(kFitBottom + 0.5, 1.0 - 2.0 * panelFraction);
-  const render::Camera camera = fitSceneCamera(corners, -90.0, 40.0, double(width) / height, fitTop);
+  const render::Camera camera =
+      fitSceneCamera(corners, -90.0, 40.0, double(width) / height, fitTop);
 
   render::RenderOptions options;
   options.width = width;
@@ -754,20 +797,27 @@ int run(const Args& a) {
   std::string rowsText;
   const char* places[] = {"back", "front", "middle"};
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const char* place = rows.size() == 1 ? "" : i == 0 ? places[0] : i + 1 == rows.size() ? places[1] : places[2];
-    rowsText += std::string(rowsText.empty() ? "" : ", ") + rows[i].label + (*place ? " (" : "") + place +
-                (*place ? ")" : "");
+    const char* place = rows.size() == 1       ? ""
+                        : i == 0               ? places[0]
+                        : i + 1 == rows.size() ? places[1]
+                                               : places[2];
+    rowsText += std::string(rowsText.empty() ? "" : ", ") + rows[i].label + (*place ? " (" : "") +
+                place + (*place ? ")" : "");
   }
   char title[200];
   std::snprintf(title, sizeof title, "blocks, mu = %g: %s", a.mu, rowsText.c_str());
   // the spin-down times of the square the caption quotes
   const double squareJz = a.squareMass * a.squareSide * a.squareSide / 6;
-  const double tFace = std::abs(a.squareOmega0) * squareJz /
-                       (a.mu * a.squareMass * a.g * meanDistanceRectangle(a.squareSide, a.squareSide));
-  const double tCorners = std::abs(a.squareOmega0) * squareJz / (a.mu * a.squareMass * a.g * a.squareSide / std::sqrt(2.0));
+  const double tFace =
+      std::abs(a.squareOmega0) * squareJz /
+      (a.mu * a.squareMass * a.g * meanDistanceRectangle(a.squareSide, a.squareSide));
+  const double tCorners = std::abs(a.squareOmega0) * squareJz /
+                          (a.mu * a.squareMass * a.g * a.squareSide / std::sqrt(2.0));
   char caption[200];
-  std::snprintf(caption, sizeof caption, "square spinning in place stops after %.3f s with friction on its face, "
-                "%.3f s at 4 corner points; the sphere is never opted in", tFace, tCorners);
+  std::snprintf(caption, sizeof caption,
+                "square spinning in place stops after %.3f s with friction on its face, "
+                "%.3f s at 4 corner points; the sphere is never opted in",
+                tFace, tCorners);
   std::string modelText;
   for (const Row& row : rows) modelText += (modelText.empty() ? "" : " | ") + row.model;
   if (a.progress) demos::printProgress("blocks", 0, a.frames);
@@ -790,11 +840,13 @@ int run(const Args& a) {
         const std::size_t stride = std::max<std::size_t>(1, now / 200);
         for (std::size_t j = now % stride; j <= now; j += stride)
           trail.points.push_back(Vec3(r.samples[j].patchCentre.x() + row.offset.x(),
-                                      r.samples[j].patchCentre.y() + row.offset.y(), options.groundHeight));
+                                      r.samples[j].patchCentre.y() + row.offset.y(),
+                                      options.groundHeight));
         scene.trails.push_back(trail);
         if (r.def->kind == Kind::Sphere) continue;
         render::TrackedBody tracked;
-        tracked.label = (row.model == "stock" ? std::string("stock ") : row.model + " ") + r.def->label;
+        tracked.label =
+            (row.model == "stock" ? std::string("stock ") : row.model + " ") + r.def->label;
         tracked.colour = colour;
         // as the coin demo: stock Bullet stops spinning first and creeps on
         const bool spinless = r.rho * std::abs(s.omega) <= kStopFraction * r.r0();
@@ -807,7 +859,8 @@ int run(const Args& a) {
           tracked.w = Vec3(s.x / s.r);
         } else if (s.r > 0) {
           tracked.w = Vec3(s.x / s.r);
-          if (r.def->kind == Kind::Cylinder) tracked.slipRatio = s.velocity.norm() / (r.def->size.x() * std::abs(s.omega));
+          if (r.def->kind == Kind::Cylinder)
+            tracked.slipRatio = s.velocity.norm() / (r.def->size.x() * std::abs(s.omega));
         }
         scene.overlay.tracked.push_back(tracked);
       }
@@ -819,8 +872,9 @@ int run(const Args& a) {
   // summary.json
   nlohmann::json summary;
   summary["parameters"] = {{"mu", a.mu}, {"g", a.g}, {"rate", a.rate}, {"t_max", tMax}};
-  summary["video"] = {{"frames", a.frames}, {"fps", a.fps},     {"steps_per_frame", k},
-                      {"width", width},     {"height", height}, {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
+                      {"steps_per_frame", k}, {"width", width},
+                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
   summary["precision"] = patchspin::bullet::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
@@ -863,10 +917,10 @@ int run(const Args& a) {
         if (!r.def->moving) continue;
         for (const Sample& q : r.samples) {
           char line[256];
-          std::snprintf(line, sizeof line, "%s,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", row.model.c_str(),
-                        r.def->key.c_str(), q.t, q.patchCentre.x(), q.patchCentre.y(),
-                        std::atan2(q.pose.linear()(1, 0), q.pose.linear()(0, 0)), q.velocity.x(), q.velocity.y(),
-                        q.omega, q.r);
+          std::snprintf(line, sizeof line, "%s,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n",
+                        row.model.c_str(), r.def->key.c_str(), q.t, q.patchCentre.x(),
+                        q.patchCentre.y(), std::atan2(q.pose.linear()(1, 0), q.pose.linear()(0, 0)),
+                        q.velocity.x(), q.velocity.y(), q.omega, q.r);
           csv << line;
         }
       }
@@ -881,23 +935,30 @@ int run(const Args& a) {
 
 int main(int argc, char** argv) {
   Args a;
-  CLI::App app{"blocks: rectangular and square blocks sliding and spinning to rest with the patch law and with "
-               "stock Bullet, side by side, plus a stack, a coin and a sphere (headless, PNG frames)"};
+  CLI::App app{
+      "blocks: rectangular and square blocks sliding and spinning to rest with the patch law and "
+      "with "
+      "stock Bullet, side by side, plus a stack, a coin and a sphere (headless, PNG frames)"};
   app.add_option("--out", a.out, "output directory (frames, summary.json)");
   app.add_option("--frames", a.frames, "number of frames (default 150)");
   app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
   app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
-  app.add_option("--model", a.model,
-                 "exact | ellipsoidal | stock, or a comma list drawn as rows (default exact,stock)");
-  app.add_option("--mu", a.mu, "friction coefficient of every body on the floor and on each other (default 0.3)");
+  app.add_option(
+      "--model", a.model,
+      "exact | ellipsoidal | stock, or a comma list drawn as rows (default exact,stock)");
+  app.add_option("--mu", a.mu,
+                 "friction coefficient of every body on the floor and on each other (default 0.3)");
   app.add_option("--g", a.g, "gravity [m/s^2] (default 9.81)");
-  app.add_option("--rect-size", [&a](const CLI::results_t& r) {
-                   if (r.size() != 3) return false;
-                   a.rectLX = std::stod(r[0]);
-                   a.rectLY = std::stod(r[1]);
-                   a.rectLZ = std::stod(r[2]);
-                   return true;
-                 }, "rectangle LX LY LZ [m] (default 0.15 0.075 0.04)")
+  app.add_option(
+         "--rect-size",
+         [&a](const CLI::results_t& r) {
+           if (r.size() != 3) return false;
+           a.rectLX = std::stod(r[0]);
+           a.rectLY = std::stod(r[1]);
+           a.rectLZ = std::stod(r[2]);
+           return true;
+         },
+         "rectangle LX LY LZ [m] (default 0.15 0.075 0.04)")
       ->expected(3);
   app.add_option("--rect-mass", a.rectMass, "rectangle mass [kg] (default 1)");
   app.add_option("--rect-v0", a.rectV0, "rectangle initial speed [m/s] (default 0.5)");
@@ -906,7 +967,8 @@ int main(int argc, char** argv) {
   app.add_option("--square-side", a.squareSide, "square block side [m] (default 0.1)");
   app.add_option("--square-height", a.squareLZ, "square block height [m] (default 0.04)");
   app.add_option("--square-mass", a.squareMass, "square block mass [kg] (default 1)");
-  app.add_option("--square-omega0", a.squareOmega0, "square block spin, in place [rad/s] (default 20)");
+  app.add_option("--square-omega0", a.squareOmega0,
+                 "square block spin, in place [rad/s] (default 20)");
   app.add_option("--coin-radius", a.coinRadius, "coin radius [m] (default 0.05)");
   app.add_option("--coin-height", a.coinHeight, "coin thickness [m] (default 0.005)");
   app.add_option("--coin-mass", a.coinMass, "coin mass [kg] (default 0.03)");
@@ -914,14 +976,18 @@ int main(int argc, char** argv) {
   app.add_option("--coin-omega0", a.coinOmega0, "coin initial spin [rad/s] (default 20)");
   app.add_option("--sphere-radius", a.sphereRadius, "sphere radius [m] (default 0.03)");
   app.add_option("--sphere-mass", a.sphereMass, "sphere mass [kg] (default 0.1)");
-  app.add_option("--sphere-v0", a.sphereV0, "sphere initial speed along x, not rolling [m/s] (default 0.15)");
-  app.add_option("--stack-sides", [&a](const CLI::results_t& r) {
-                   if (r.size() != 3) return false;
-                   a.stackBottom = std::stod(r[0]);
-                   a.stackMiddle = std::stod(r[1]);
-                   a.stackTop = std::stod(r[2]);
-                   return true;
-                 }, "sides of the stacked square blocks, bottom to top [m] (default 0.12 0.1 0.08)")
+  app.add_option("--sphere-v0", a.sphereV0,
+                 "sphere initial speed along x, not rolling [m/s] (default 0.15)");
+  app.add_option(
+         "--stack-sides",
+         [&a](const CLI::results_t& r) {
+           if (r.size() != 3) return false;
+           a.stackBottom = std::stod(r[0]);
+           a.stackMiddle = std::stod(r[1]);
+           a.stackTop = std::stod(r[2]);
+           return true;
+         },
+         "sides of the stacked square blocks, bottom to top [m] (default 0.12 0.1 0.08)")
       ->expected(3);
   app.add_option("--stack-height", a.stackLZ, "height of each stacked block [m] (default 0.04)");
   app.add_option("--stack-mass", a.stackMass, "mass of each stacked block [kg] (default 0.5)");

@@ -38,7 +38,8 @@ constexpr double kSphereV0 = 0.15;
 constexpr double kRate = 240.0;
 const char* kSceneFlags =
     "--mu 0.3 --g 9.81 --rect-size 0.15 0.075 0.04 --rect-mass 1 --rect-v0 0.5 --rect-omega0 15 "
-    "--square-side 0.1 --square-height 0.04 --square-mass 1 --square-omega0 20 --sphere-v0 0.15 --rate 240";
+    "--square-side 0.1 --square-height 0.04 --square-mass 1 --square-omega0 20 --sphere-v0 0.15 "
+    "--rate 240";
 // Simulated time [s]: every block stops within 0.35 s (the stock square's
 // spin within 0.17 s), the sphere rolls after 15 ms.
 constexpr double kTMax = 1.0;
@@ -120,8 +121,8 @@ std::string toolPath() {
 }
 
 std::string tempDir(const std::string& name) {
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("patchspin_blocks_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       ("patchspin_blocks_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   return dir.string();
 }
@@ -150,7 +151,9 @@ std::string g17(double v) {
   return s;
 }
 
-bool near(double a, double b, double tol) { return std::abs(a - b) <= tol * std::max(1.0, std::abs(b)); }
+bool near(double a, double b, double tol) {
+  return std::abs(a - b) <= tol * std::max(1.0, std::abs(b));
+}
 
 // Mean distance from the centre of an a x b rectangle by a midpoint grid of
 // 2000 x 2000 cells (error ~1e-7 relative), independent of the demo's closed
@@ -159,20 +162,23 @@ double meanDistanceByQuadrature(double a, double b) {
   constexpr int kN = 2000;
   double sum = 0;
   for (int i = 0; i < kN; ++i)
-    for (int j = 0; j < kN; ++j) sum += std::hypot(((i + 0.5) / kN - 0.5) * a, ((j + 0.5) / kN - 0.5) * b);
+    for (int j = 0; j < kN; ++j)
+      sum += std::hypot(((i + 0.5) / kN - 0.5) * a, ((j + 0.5) / kN - 0.5) * b);
   return sum / (double(kN) * kN);
 }
 
 // `patchspin simulate` of the tracked rectangle of summary row `row`.
-nlohmann::json simulateRectangle(const nlohmann::json& s, const std::string& row, const std::string& engine) {
+nlohmann::json simulateRectangle(const nlohmann::json& s, const std::string& row,
+                                 const std::string& engine) {
   const nlohmann::json& p = s["rows"][row]["bodies"]["rect"]["parameters"];
   std::ostringstream args;
-  args << "simulate --engine " << engine << " --model " << row << " --shape box:" << g17(p["LX"].get<double>()) << ","
-       << g17(p["LY"].get<double>()) << "," << g17(p["LZ"].get<double>()) << " --mass "
-       << g17(p["mass"].get<double>()) << " --mu " << g17(p["mu"].get<double>()) << " --g "
-       << g17(p["g"].get<double>()) << " --v0 " << g17(p["v0"][0].get<double>()) << ","
-       << g17(p["v0"][1].get<double>()) << " --omega0 " << g17(p["omega0"].get<double>()) << " --dt "
-       << g17(s["dt"].get<double>()) << " --t-max " << g17(s["t_max"].get<double>());
+  args << "simulate --engine " << engine << " --model " << row
+       << " --shape box:" << g17(p["LX"].get<double>()) << "," << g17(p["LY"].get<double>()) << ","
+       << g17(p["LZ"].get<double>()) << " --mass " << g17(p["mass"].get<double>()) << " --mu "
+       << g17(p["mu"].get<double>()) << " --g " << g17(p["g"].get<double>()) << " --v0 "
+       << g17(p["v0"][0].get<double>()) << "," << g17(p["v0"][1].get<double>()) << " --omega0 "
+       << g17(p["omega0"].get<double>()) << " --dt " << g17(s["dt"].get<double>()) << " --t-max "
+       << g17(s["t_max"].get<double>());
   if (engine == "bullet") args << " --precision " << s["precision"].get<std::string>();
   args << " --json";
   const auto run = testing::runTool(toolPath(), args.str());
@@ -205,7 +211,8 @@ class BlocksDemo : public ::testing::Test {
   void SetUp() override {
     const std::string demo = buildPath("demos/blocks");
     if (demo.empty() || !fs::exists(demo))
-      GTEST_SKIP() << "demos/blocks not built (needs the Bullet integration and the renderer): " << demo;
+      GTEST_SKIP() << "demos/blocks not built (needs the Bullet integration and the renderer): "
+                   << demo;
     ASSERT_EQ(run_.exitCode, 0) << run_.err;
   }
   static nlohmann::json summary() {
@@ -219,7 +226,8 @@ class BlocksDemo : public ::testing::Test {
 TEST_F(BlocksDemo, FramesAreValidPngsNotBlankChangingAndIdenticalOnRerun) {
   Image previous;
   for (int i = 0; i < kFrames; ++i) {
-    const std::string path = (fs::path(dir_) / ("frame_0000" + std::to_string(i) + ".png")).string();
+    const std::string path =
+        (fs::path(dir_) / ("frame_0000" + std::to_string(i) + ".png")).string();
     ASSERT_TRUE(fs::exists(path)) << path;
     const Image frame = readPng(path);  // throws on an invalid PNG
     EXPECT_EQ(frame.width, kWidth);
@@ -232,7 +240,8 @@ TEST_F(BlocksDemo, FramesAreValidPngsNotBlankChangingAndIdenticalOnRerun) {
   }
   EXPECT_FALSE(fs::exists(fs::path(dir_) / ("frame_0000" + std::to_string(kFrames) + ".png")));
   // the progress bar goes to stderr and ends complete
-  EXPECT_NE(run_.err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"), std::string::npos)
+  EXPECT_NE(run_.err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
+            std::string::npos)
       << run_.err;
 
   // a second run gives the same bytes
@@ -267,15 +276,18 @@ TEST_F(BlocksDemo, TrackedRectangleAgreesWithPatchspinSimulate) {
     EXPECT_TRUE(near(m["t_stop"].get<double>(), ref["t_stop"].get<double>(), kAgreementTol))
         << m["t_stop"] << " vs " << ref["t_stop"];
     for (int i = 0; i < 3; ++i)
-      EXPECT_TRUE(near(m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>(), kAgreementTol)) << i;
+      EXPECT_TRUE(near(m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>(), kAgreementTol))
+          << i;
     for (int i = 0; i < 2; ++i)
-      EXPECT_TRUE(near(m["displacement"][i].get<double>(), ref["displacement"][i].get<double>(), kAgreementTol))
+      EXPECT_TRUE(near(m["displacement"][i].get<double>(), ref["displacement"][i].get<double>(),
+                       kAgreementTol))
           << i;
     EXPECT_TRUE(near(m["rotation"].get<double>(), ref["rotation"].get<double>(), kAgreementTol));
     // final yaw after the stop: the rotation up to the stop (stock creeps on
     // without turning: its spin stopped first)
-    EXPECT_NEAR(std::remainder(m["final_yaw"].get<double>() - m["rotation"].get<double>(), 2 * std::acos(-1.0)), 0.0,
-                kYawTol);
+    EXPECT_NEAR(std::remainder(m["final_yaw"].get<double>() - m["rotation"].get<double>(),
+                               2 * std::acos(-1.0)),
+                0.0, kYawTol);
   }
   // the visible difference: stock Bullet's corner friction turns the
   // rectangle far less than the patch law before it stops
@@ -296,10 +308,12 @@ TEST_F(BlocksDemo, TrackedRectangleAgreesWithPatchspinSimulate) {
   const double dx = m["displacement"][0].get<double>() - ref["displacement"][0].get<double>();
   const double dy = m["displacement"][1].get<double>() - ref["displacement"][1].get<double>();
   EXPECT_LT(std::hypot(dx, dy), travelTol);
-  EXPECT_NEAR(m["rotation"].get<double>(), ref["rotation"].get<double>(), std::abs(p["omega0"].get<double>()) * dt);
+  EXPECT_NEAR(m["rotation"].get<double>(), ref["rotation"].get<double>(),
+              std::abs(p["omega0"].get<double>()) * dt);
   ASSERT_FALSE(m["prediction"].is_null());
   EXPECT_TRUE(near(m["prediction"]["t_stop"].get<double>(), tRef, kAgreementTol));
-  EXPECT_TRUE(near(m["prediction"]["rotation"].get<double>(), ref["rotation"].get<double>(), kAgreementTol));
+  EXPECT_TRUE(near(m["prediction"]["rotation"].get<double>(), ref["rotation"].get<double>(),
+                   kAgreementTol));
   // the patch law stops slip and spin together; w_stop a unit vector
   double w2 = 0;
   for (int i = 0; i < 3; ++i) w2 += std::pow(m["w_stop"][i].get<double>(), 2);
@@ -315,24 +329,29 @@ TEST_F(BlocksDemo, SquareSpinDownMatchesClosedForms) {
   const double meanR = meanDistanceByQuadrature(kSquareSide, kSquareSide);
   const double jz = kSquareMass * kSquareSide * kSquareSide / 6;
   const double tFace = kSquareOmega0 * jz / (kMu * kSquareMass * kG * meanR);
-  const double tCorners = kSquareOmega0 * jz / (kMu * kSquareMass * kG * kSquareSide / std::sqrt(2.0));
+  const double tCorners =
+      kSquareOmega0 * jz / (kMu * kSquareMass * kG * kSquareSide / std::sqrt(2.0));
 
   const nlohmann::json& exact = s["rows"]["exact"]["bodies"]["square"];
   ASSERT_TRUE(exact["stopped"].get<bool>());
   EXPECT_NEAR(exact["t_stop"].get<double>(), tFace, kSpinDownTol * tFace);
   EXPECT_NEAR(exact["prediction"]["mean_r"].get<double>(), meanR, kQuadratureTol * meanR);
   EXPECT_NEAR(exact["prediction"]["t_stop"].get<double>(), tFace, kQuadratureTol * tFace);
-  EXPECT_LT(std::hypot(exact["displacement"][0].get<double>(), exact["displacement"][1].get<double>()), kDriftTol);
+  EXPECT_LT(
+      std::hypot(exact["displacement"][0].get<double>(), exact["displacement"][1].get<double>()),
+      kDriftTol);
   // stopped in pure spin: w = (0, 0, 1)
-  EXPECT_LT(std::hypot(exact["w_stop"][0].get<double>(), exact["w_stop"][1].get<double>()), kPureSpinTol);
+  EXPECT_LT(std::hypot(exact["w_stop"][0].get<double>(), exact["w_stop"][1].get<double>()),
+            kPureSpinTol);
   EXPECT_GT(exact["w_stop"][2].get<double>(), 0.0);
 
   const nlohmann::json& stock = s["rows"]["stock"]["bodies"]["square"];
   ASSERT_FALSE(stock["t_spin_stop"].is_null());
   EXPECT_NEAR(stock["t_spin_stop"].get<double>(), tCorners, kCornerTol * tCorners);
   EXPECT_NEAR(stock["prediction"]["t_spin_stop"].get<double>(), tCorners, kAgreementTol * tCorners);
-  std::printf("[blocks square] exact t_stop %.6f (face %.6f), stock t_spin_stop %.6f (corners %.6f)\n",
-              exact["t_stop"].get<double>(), tFace, stock["t_spin_stop"].get<double>(), tCorners);
+  std::printf(
+      "[blocks square] exact t_stop %.6f (face %.6f), stock t_spin_stop %.6f (corners %.6f)\n",
+      exact["t_stop"].get<double>(), tFace, stock["t_spin_stop"].get<double>(), tCorners);
 }
 
 // A sliding ball, never opted in: friction mu m g until v = (5/7) v0 rolling,
@@ -349,7 +368,8 @@ TEST_F(BlocksDemo, SphereRollsAtFiveSeventhsAndStackStands) {
     ASSERT_FALSE(b["t_roll"].is_null());
     EXPECT_NEAR(b["t_roll"].get<double>(), 2 * kSphereV0 / (7 * kMu * kG), dt);
   }
-  EXPECT_EQ(s["rows"]["exact"]["bodies"]["sphere"]["final_speed"], s["rows"]["stock"]["bodies"]["sphere"]["final_speed"]);
+  EXPECT_EQ(s["rows"]["exact"]["bodies"]["sphere"]["final_speed"],
+            s["rows"]["stock"]["bodies"]["sphere"]["final_speed"]);
 
   // the stack stands in every row
   for (const char* row : {"exact", "stock"}) {
@@ -360,7 +380,8 @@ TEST_F(BlocksDemo, SphereRollsAtFiveSeventhsAndStackStands) {
       const nlohmann::json& b = r["bodies"][key];
       double d2 = 0;
       for (int i = 0; i < 3; ++i)
-        d2 += std::pow(b["final_position"][i].get<double>() - b["parameters"]["position"][i].get<double>(), 2);
+        d2 += std::pow(
+            b["final_position"][i].get<double>() - b["parameters"]["position"][i].get<double>(), 2);
       EXPECT_LT(std::sqrt(d2), kStackTol) << key;
       EXPECT_LE(b["max_shift"].get<double>(), kStackTol) << key;
     }
