@@ -12,12 +12,28 @@
 // In the patch rows every body but the sphere is opted in
 // (PatchFrictionSolver::enablePatchFriction); in the stock row none is.
 //
-// Writes <out>/frame_NNNNN.png and <out>/summary.json. Stopping data follow
+// Writes <out>/frame_NNNNN.png, <out>/summary.json and <out>/blocks_series.csv
+// (every moving body's samples). Stopping data follow
 // patchspin::bullet::simulate (simulate.hpp): slip x = (u_x, u_y, rho w_z) of
 // the patch centre in the frame of v0, rho = Eq. (11) for the face; w_stop
 // recorded when r first falls below 1% of r0; stopped once r <= 1e-5 r0, the
-// instant extrapolated within the step. See README (blocks demo) for the
-// summary.json keys and the predictions they are compared with.
+// instant extrapolated within the step.
+//
+// summary.json: rows.<model>.bodies.<key> with
+//   rect, square, coin   parameters, stopped, t_stop [s], w_stop, ratio_stop
+//                        = |v| / (rho |omega|) at the record (coin also eps_stop
+//                        = |v| / (R |omega|)), displacement [m] and distance
+//                        (path length) [m] and rotation [rad] up to the stop,
+//                        t_spin_stop (|omega| <= 1e-5 |omega0|, extrapolated),
+//                        final_yaw [rad], final_slip [m/s] (stock Bullet creeps),
+//                        prediction: square: the closed form t = omega0 J_z /
+//                        (mu m g arm), arm = mean|r| of the face (patch laws) or
+//                        the half diagonal (stock: 4 corner points); rect, coin
+//                        in patch rows: the reference dynamics of the same body
+//                        (`patchspin simulate --engine reference`)
+//   sphere               t_roll, final_speed; prediction 5/7 v0 after 2 v0/(7 mu g)
+//   stack0..2            max_shift [m], max_tilt [rad], final_position
+// and rows.<model>.stack: stands (every block within 2 mm of its start).
 #include <btBulletDynamicsCommon.h>
 
 #include <CLI/CLI.hpp>
