@@ -66,13 +66,15 @@ StandResult standStill(const std::vector<btVector3>& positions, Friction model, 
   return r;
 }
 
-// Known defect (reported): the patch blocks are warm started with Bullet's
-// m_warmstartingFactor (0.85), so each step the contacts under a column of
-// blocks start 15 % short and 10 iterations do not rebuild the load: the
-// blocks keep a steady sinking velocity (2.7 cm/s at the top of the stack of
-// 10) that the split-impulse push cancels in position. With factor 1 the
-// stack stands to 1e-8 m/s. Finiteness is asserted always; a stand failure
-// skips the test with the figures, and the test passes once it is fixed.
+// Known defect (reported; solver of commit ebe872d): the patch blocks were
+// warm started with Bullet's m_warmstartingFactor (0.85), so each step the
+// contacts under a column of blocks started 15 % short and 10 iterations did
+// not rebuild the load: the blocks kept a steady sinking velocity (2.7 cm/s
+// at the top of the stack of 10, 6 mm sunk) that the split-impulse push
+// cancelled in position. With a full warm start (kPatchWarmStartFactor = 1,
+// the lead's change in progress) both scenes stand and the test passes.
+// Finiteness is asserted always; a stand failure skips the test with the
+// figures.
 void reportStand(const char* scene, const std::vector<btVector3>& positions) {
   Table table(scene, {"model", "finite", "max displacement [m]", "max speed [m/s]", "stands"});
   std::string defects;
