@@ -23,6 +23,9 @@ void validate(const FrictionBlockInput& in) {
   if (!in.K.allFinite()) throw Error("friction block matrix K must be finite");
   internal::requireFinite(in.L, "friction block bound L");
   if (in.L < 0.0) throw Error("friction block bound L must be >= 0: got " + internal::formatDouble(in.L));
+  internal::requireFinite(in.tolerance, "friction block tolerance");
+  if (in.tolerance < 0.0 || in.tolerance >= 1.0)
+    throw Error("friction block tolerance must lie in [0, 1): got " + internal::formatDouble(in.tolerance));
 }
 
 // Ellipsoidal law q(w) = -Pi w. With A = L K Pi the slip s = b - A w must
@@ -42,6 +45,7 @@ void validate(const FrictionBlockInput& in) {
 // the bracket [lo, hi] with hi = |b| + |A|_F (where |w| < 1) safeguards.
 FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& in) {
   FrictionBlockResult out;
+  const double tol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
   const Mat3 A = in.L * (in.K * Pi);
   const double t = A.trace();
   const Mat3 A2 = A * A;
@@ -76,10 +80,10 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     double df = 0.0;
     const double fr = f(r, df, N);
     if (fr < 0.0) lo = r; else hi = r;
-    if (std::abs(fr) <= kRelativeTolerance || hi - lo <= kRelativeTolerance * scale) break;
+    if (std::abs(fr) <= tol || hi - lo <= tol * scale) break;
     double next = df > 0.0 ? r - fr / df : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // safeguard: bisect
-    if (std::abs(next - r) <= kRelativeTolerance * scale) {
+    if (std::abs(next - r) <= tol * scale) {
       r = next;
       f(r, df, N);
       break;
@@ -102,9 +106,11 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
 // ellipsoidal inverse), then stick iff |lambda0| <= L |q(w)|.
 FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockInput& in) {
   FrictionBlockResult out;
-  const Eigen::LLT<Mat3> llt(0.5 * (in.K + in.K.transpose()));
+  const double tol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
+  const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
+  const Eigen::LLT<Mat3> llt(Ksym);
   if (llt.info() != Eigen::Success) throw Error("friction block matrix K is not positive definite");
-  const Mat3 Kinv = llt.solve(Mat3::Identity());
+  const Mat3 Kinv = Ksym.inverse();  // 3x3 SPD: cofactors
   const Vec3 lambda0 = -Kinv * in.b;
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {
@@ -120,19 +126,29 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     return -u.dot(Kinvb) - in.L * qu.dot(u);
   };
   // cheap certificates first, one evaluation of the law each: the
-  // warm-start slip and the ellipsoidal solution. A block that keeps
+  // warm-start slip, else the ellipsoidal solution. A block that keeps
   // slipping, the common case inside solver iterations, then skips the
-  // gauge test below.
-  Vec3 bestU = in.b.normalized();
-  double bestScore = 0.0;  // most negative h / |u|_{K^-1}
-  auto scoreCandidate = [&](const Vec3& u) {
+  // gauge test below, and its evaluation (with the Jacobian) also starts
+  // the Newton iteration.
+  Vec3 bestU = in.b.normalized(), bestQ = Vec3::Zero();
+  Mat3 bestJ = Mat3::Zero();
+  bool bestHasJ = false;
+  double bestScore = 0.0, bestH = 0.0;  // most negative h / |u|_{K^-1}, its h
+  auto scoreCandidate = [&](const Vec3& u, bool withJ) {
     Vec3 qu;
-    const double score = gap(u, qu, nullptr) / std::sqrt(u.dot(Kinv * u));
-    if (score < bestScore) bestScore = score, bestU = u;
+    Mat3 ju;
+    const double h = gap(u, qu, withJ ? &ju : nullptr);
+    const double score = h / std::sqrt(u.dot(Kinv * u));
+    if (score < bestScore) {
+      bestScore = score, bestU = u, bestQ = qu, bestH = h, bestHasJ = withJ;
+      if (withJ) bestJ = ju;
+    }
   };
-  if (in.warmSlip.norm() > 0.0) scoreCandidate(in.warmSlip.normalized());
-  const Vec3 ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
-  if (ellipsoidalSlip.norm() > 0.0) scoreCandidate(ellipsoidalSlip.normalized());
+  if (in.warmSlip.norm() > 0.0) scoreCandidate(in.warmSlip.normalized(), true);
+  if (!(bestScore < 0.0)) {
+    const Vec3 ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
+    if (ellipsoidalSlip.norm() > 0.0) scoreCandidate(ellipsoidalSlip.normalized(), true);
+  }
   const bool slipProven = bestScore < 0.0;
 
   // gauge of E along lambda0: residual = component of q(w) across lambda0
@@ -150,7 +166,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   for (int it = 0; it < kMaxIterations && !slipProven; ++it) {
     q = patch.unitQ(Model::Exact, w, &J);
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
-    if (res.norm() <= kRelativeTolerance * q.norm() && q.dot(l) > 0.0) break;
+    if (res.norm() <= tol * q.norm() && q.dot(l) > 0.0) break;
     // tangent basis at w and the 2x2 Newton system
     const Vec3 t1 = w.unitOrthogonal(), t2 = w.cross(t1);
     Eigen::Matrix2d Jr;
@@ -180,8 +196,8 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // D with every trial moved to r* on its ray; trials outside the cone are
   // rejected, which keeps the iterates off the kink of D at s = 0.
   if (!slipProven) {
-    scoreCandidate(in.b.normalized());
-    scoreCandidate(w);
+    scoreCandidate(in.b.normalized(), false);
+    scoreCandidate(w, false);
   }
   if (!(bestScore < 0.0)) {
     // golden-angle (Fibonacci) sphere, deterministic
@@ -193,7 +209,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       const double phi = 2.39996322972865332 * i;
       sphere.emplace_back(rxy * std::cos(phi), rxy * std::sin(phi), z);
     }
-    for (const Vec3& u : sphere) scoreCandidate(u);
+    for (const Vec3& u : sphere) scoreCandidate(u, false);
   }
   if (!(bestScore < 0.0)) {
     // no direction with a support gap: lambda0 is inside L E after all
@@ -213,7 +229,15 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     return 0.5 * d.dot(Kinv * d) - in.L * qx.dot(x);
   };
   bool inCone = true;
-  Vec3 s = radialOptimum(bestU, q, J, inCone);
+  // start at the radial optimum of the best candidate (evaluated already if
+  // it came with its Jacobian)
+  Vec3 s;
+  if (bestHasJ) {
+    q = bestQ, J = bestJ;
+    s = (-bestH / bestU.dot(Kinv * bestU)) * bestU;
+  } else {
+    s = radialOptimum(bestU, q, J, inCone);
+  }
   double D = potential(s, q);
   Vec3 grad = Kinv * (s - in.b) - in.L * q;
   const double scale = in.b.norm() + in.L * in.K.norm();
@@ -223,9 +247,9 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   for (int it = 0; it < kMaxIterations; ++it) {
     ++out.iterations;
     // converged: the slip b + K L q(s^) equals s to ~1e-14 of the slip scale
-    if ((in.K * grad).norm() <= kRelativeTolerance * scale) break;
+    if ((in.K * grad).norm() <= tol * scale) break;
     const Mat3 H = Kinv - (in.L / s.norm()) * 0.5 * (J + J.transpose());
-    Vec3 dir = -H.ldlt().solve(grad);
+    Vec3 dir = -(H.inverse() * grad);  // 3x3: cofactors; non-descent caught below
     if (!dir.allFinite() || dir.dot(grad) >= 0.0) dir = -in.K * grad;  // fall back to descent
     // backtracking: sufficient decrease of D, or (at round-off level of D) of |grad D|
     double t = 1.0;

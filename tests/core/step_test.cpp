@@ -161,6 +161,32 @@ TEST(FrictionBlockTest, NeverAddsEnergy) {
   }
 }
 
+// A coarser stopping tolerance (what the single-precision Bullet layer asks
+// for) moves the solution by at most ~cond(K) x tolerance of the slip scale:
+// compared with the default (1e-14) solve of the same block. K here has
+// eigenvalues in [0.2, 5] (cond <= 25), so 1e-9 -> 25e-9 of |b| + L|K|; the
+// bound 1e-7 leaves a factor 4 for the Newton iterations' last step.
+TEST(FrictionBlockTest, CoarserToleranceStaysClose) {
+  constexpr double kCoarse = 1e-9;
+  constexpr double kBound = 1e-7;
+  std::mt19937 rng(21);
+  for (const Model model : {Model::Ellipsoidal, Model::Exact}) {
+    const FrictionPatch patch = tiltedRectangle();
+    for (int trial = 0; trial < 60; ++trial) {
+      FrictionBlockInput in;
+      in.K = randomSpd(rng, 0.2, 5.0);
+      in.L = std::uniform_real_distribution<double>(0.1, 2.0)(rng);
+      in.b = randomUnit(rng) * std::uniform_real_distribution<double>(0.01, 5.0)(rng);
+      const auto fine = solveFrictionBlock(patch, model, in);
+      in.tolerance = kCoarse;
+      const auto coarse = solveFrictionBlock(patch, model, in);
+      const double scale = in.b.norm() + in.L * in.K.norm();
+      EXPECT_EQ(coarse.sticking, fine.sticking) << toString(model);
+      EXPECT_LT((coarse.slip - fine.slip).norm(), kBound * scale) << toString(model);
+    }
+  }
+}
+
 TEST(FrictionBlockTest, RejectsBadInput) {
   const FrictionPatch patch = tiltedDisk();
   FrictionBlockInput in;
@@ -172,6 +198,11 @@ TEST(FrictionBlockTest, RejectsBadInput) {
   in.b = Vec3(1.0, 0.0, 0.0);
   in.K = -Mat3::Identity();
   EXPECT_THROW(solveFrictionBlock(patch, Model::Exact, in), Error);
+  in.K = Mat3::Identity();
+  for (const double tol : {-1e-9, 1.0, double(NAN)}) {
+    in.tolerance = tol;
+    EXPECT_THROW(solveFrictionBlock(patch, Model::Ellipsoidal, in), Error) << tol;
+  }
 }
 
 }  // namespace

@@ -25,6 +25,10 @@ struct FrictionBlockInput {
   Mat3 K = Mat3::Identity();    // slip change per unit impulse, SPD [1/(kg)]
   double L = 0.0;               // mu * normal impulse [N s], >= 0
   Vec3 warmSlip = Vec3::Zero(); // previous solution's slip, or zero
+  // Relative residual at which the iterations stop, in [0, 1); 0 selects the
+  // default 1e-14 (~100 ulps of double). A caller whose inputs carry less
+  // precision (single-precision Bullet: ~6e-8) may stop earlier.
+  double tolerance = 0.0;
 };
 
 struct FrictionBlockResult {
