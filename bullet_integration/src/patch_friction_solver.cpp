@@ -50,6 +50,18 @@ constexpr double kOutlineRelTol = 1e-6;
 // by less than this, relative, since its last solve keeps that solution: the
 // solve would return it up to round-off (float: velocities carry ~6e-8).
 constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-6;
+// Relative residual at which a friction block solve stops: far below the
+// precision of the velocities it is computed from (single precision carries
+// ~6e-8), instead of the core's default 1e-14.
+constexpr double kBlockRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-9;
+// Warm start of the patch blocks: the full impulses of the last step, not
+// Bullet's m_warmstartingFactor (0.85 by default), which damps its scalar
+// rows. Each patch block is solved directly (3x3 normal block, implicit
+// friction block), so a full warm start lets a steadily sliding or resting
+// patch converge in one visit and then be skipped (measured: 1.2x -> 1.09x
+// stock for the ellipsoidal coins, 2.5x -> 1.9x for the exact law, in
+// instructions); the validation tests (no creep, stacks, energy) hold.
+constexpr double kPatchWarmStartFactor = 1.0;
 // The friction law for unit mu Pz (Pi of Eq. (40), the exact law's integrals)
 // depends on the linear pressure only through its shape, i.e. the centre of
 // pressure (Ty, -Tx) / Pz. It is refreshed when that point has moved by more
@@ -456,7 +468,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
 
     // warm start from the previous step
     if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
-      const double f = double(info.m_warmstartingFactor);
+      const double f = kPatchWarmStartFactor;
       pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
       pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
       pc.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
@@ -532,6 +544,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       in.K = K;
       in.L = L;
       in.warmSlip = pc.warmSlip;
+      in.tolerance = kBlockRelTol;
       // friction pressure: the linear pressure of Eq. (94) carrying the loads,
       // or, when that would be negative somewhere (centre of pressure outside
       // the kern), the nearest admissible linear one (DESIGN item 2);
