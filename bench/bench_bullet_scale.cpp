@@ -51,6 +51,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -105,7 +106,8 @@ struct World {
   btBoxShape boxShape{kBoxHalf};
   std::vector<std::unique_ptr<btRigidBody>> statics, bodies;
 
-  World(int n, Variant variant) {
+  // bodies start at `states` (their transforms; velocities are set by restore)
+  World(int n, Variant variant, const std::vector<BodyState>& states) {
     if (variant == kStock)
       solver = std::make_unique<btSequentialImpulseConstraintSolver>();
     else
@@ -136,6 +138,7 @@ struct World {
                                                     coin ? static_cast<btCollisionShape*>(&coinShape) : &boxShape,
                                                     coin ? coinInertia : boxInertia);
       info.m_friction = btScalar(kMu);
+      info.m_startWorldTransform = states[std::size_t(i)].transform;
       auto body = std::make_unique<btRigidBody>(info);
       body->setActivationState(DISABLE_DEACTIVATION);
       if (coin)
@@ -164,22 +167,24 @@ struct World {
   }
 
   // the rain: grid cells layer by layer, seeded tilt, slide and spin
-  void rain(unsigned seed) {
+  static std::vector<BodyState> rain(int n, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const int perSide = int(std::lround(side(int(bodies.size())) / kCell));
-    for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const int layer = int(i) / (perSide * perSide), cell = int(i) % (perSide * perSide);
-      const double x = -side(int(bodies.size())) / 2 + kCell * (cell % perSide + 0.5) + 0.01 * u(rng);
-      const double y = -side(int(bodies.size())) / 2 + kCell * (cell / perSide + 0.5) + 0.01 * u(rng);
+    const int perSide = int(std::lround(side(n) / kCell));
+    std::vector<BodyState> out;
+    for (int i = 0; i < n; ++i) {
+      const int layer = i / (perSide * perSide), cell = i % (perSide * perSide);
+      const double x = -side(n) / 2 + kCell * (cell % perSide + 0.5) + 0.01 * u(rng);
+      const double y = -side(n) / 2 + kCell * (cell / perSide + 0.5) + 0.01 * u(rng);
       const double z = 0.05 + 0.1 * layer;
       const btVector3 axis = btVector3(btScalar(u(rng)), btScalar(u(rng)), 0).normalized();
       btQuaternion q(axis, btScalar(0.3 * std::abs(u(rng))));
       q = btQuaternion(btVector3(0, 0, 1), btScalar(3.14159 * u(rng))) * q;
-      BodyState s{btTransform(q, btVector3(btScalar(x), btScalar(y), btScalar(z))),
-                  btVector3(btScalar(0.5 * u(rng)), btScalar(0.5 * u(rng)), 0), btVector3(0, 0, btScalar(5 * u(rng)))};
-      place(*bodies[i], s);
+      out.push_back({btTransform(q, btVector3(btScalar(x), btScalar(y), btScalar(z))),
+                     btVector3(btScalar(0.5 * u(rng)), btScalar(0.5 * u(rng)), 0),
+                     btVector3(0, 0, btScalar(5 * u(rng)))});
     }
+    return out;
   }
   static void place(btRigidBody& b, const BodyState& s) {
     b.setWorldTransform(s.transform);
@@ -235,8 +240,9 @@ const std::vector<BodyState>& savedPile(int n, Phase phase) {
   if (it != piles[phase].end()) return it->second;
   std::fprintf(stderr, "bench_bullet_scale: raining %d bodies (%s, %.2f s)\n", n, kVariantNames[kRainVariant],
                kSaveAt[kRest]);
-  World w(n, kRainVariant);
-  w.rain(12345u + unsigned(n));
+  const std::vector<BodyState> start = World::rain(n, 12345u + unsigned(n));
+  World w(n, kRainVariant, start);
+  w.restore(start);
   const int impactSteps = int(std::lround(kSaveAt[kImpact] / kDt)), restSteps = int(std::lround(kSaveAt[kRest] / kDt));
   for (int k = 1; k <= restSteps; ++k) {
     w.step();
@@ -258,7 +264,7 @@ std::map<std::string, Row> gRows;
 
 void BM_Scale(benchmark::State& state, int n, Variant variant, Phase phase, const std::string& key) {
   const std::vector<BodyState>& saved = savedPile(n, phase);
-  World w(n, variant);
+  World w(n, variant, saved);
   w.restore(saved);
   for (int k = 0; k < kWarmSteps; ++k) w.step();
   long k = 0;
@@ -283,6 +289,7 @@ void BM_Scale(benchmark::State& state, int n, Variant variant, Phase phase, cons
 
 class CapturingReporter : public benchmark::ConsoleReporter {
  public:
+  CapturingReporter() : ConsoleReporter(isatty(1) ? OO_ColorTabular : OO_Tabular) {}
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& r : runs) {
       if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;

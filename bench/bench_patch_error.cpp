@@ -43,15 +43,15 @@
 // Bullet has no spin friction row by default (m_spinningFriction = 0): spin
 // is resisted only through the points' lever arms, as here.
 //
-// Warm starts: the block rows run cold (warmSlip = 0, the first solver
-// iteration) and warm (warmSlip = the answer's slip turned by kWarmOffset,
-// standing in for the previous iteration's slip).
-//
-// Accuracy settings. The exact model's friction block has one setting:
-// solveFrictionBlock always evaluates the law at full accuracy (unitQ with
-// tolerance 0) and iterates to 1e-14 of the slip scale; neither is a
-// parameter. The exact law itself has a knob (ExactAccuracy::tolerance, on
-// FrictionPatch::exactQ only), measured here at the law level ("law" rows:
+// Settings of the block rows: cold start (warmSlip = 0, the first solver
+// iteration) or warm (warmSlip = the answer's slip turned by kWarmOffset,
+// standing in for the previous iteration's slip), and the block's stopping
+// tolerance FrictionBlockInput::tolerance (default 1e-14; the Bullet layer
+// uses 1e-9 with float and 1e-12 with double Bullet). That tolerance is the
+// block's only accuracy knob: solveFrictionBlock evaluates the exact law at
+// full accuracy (unitQ, ExactAccuracy tolerance 0). The law's own knob
+// (ExactAccuracy::tolerance, on FrictionPatch::exactQ only) is measured at
+// the law level ("law" rows:
 // time per Q(w) evaluation and |q - q*| / |q*|), next to the ellipsoidal law
 // and the closed-form point-friction law (Q of the points' Coulomb forces,
 // with exact directions, i.e. what converged point friction gives while
@@ -80,6 +80,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -275,25 +276,31 @@ std::vector<Setting> settings() {
   std::vector<Setting> s;
   auto blockRef = [](const Problem& p) { return p.lambda; };
   auto lawRef = [](const Problem& p) { return p.q; };
-  s.push_back({"block", "ellipsoidal", "cold start",
-               [](const Problem& p) { return solveFrictionBlock(p.patch, Model::Ellipsoidal, p.input).impulse; },
-               blockRef});
-  s.push_back({"block", "exact", "full, cold start",
-               [](const Problem& p) { return solveFrictionBlock(p.patch, Model::Exact, p.input).impulse; }, blockRef});
-  // the same with a warm start near the answer, as in the solver's later iterations
-  auto warmed = [](const Problem& p) {
-    FrictionBlockInput in = p.input;
-    in.warmSlip = p.warm;
-    return in;
+  // block rows: cold (warmSlip = 0) or warm start, at the block's tolerance
+  // (FrictionBlockInput::tolerance; 0 = its default 1e-14)
+  auto block = [](Model model, bool warm, double tol) {
+    return [model, warm, tol](const Problem& p) {
+      FrictionBlockInput in = p.input;
+      if (warm) in.warmSlip = p.warm;
+      in.tolerance = tol;
+      return solveFrictionBlock(p.patch, model, in).impulse;
+    };
   };
-  s.push_back({"block", "ellipsoidal", "warm start",
-               [warmed](const Problem& p) {
-                 return solveFrictionBlock(p.patch, Model::Ellipsoidal, warmed(p)).impulse;
-               },
-               blockRef});
-  s.push_back({"block", "exact", "full, warm start",
-               [warmed](const Problem& p) { return solveFrictionBlock(p.patch, Model::Exact, warmed(p)).impulse; },
-               blockRef});
+  struct BlockSetting {
+    bool warm;
+    double tol;
+    const char* name;
+  };
+  const BlockSetting blockSettings[] = {{false, 0.0, "cold, tol 1e-14 (default)"},
+                                        {false, 1e-12, "cold, tol 1e-12"},
+                                        {false, 1e-9, "cold, tol 1e-9"},
+                                        {false, 1e-6, "cold, tol 1e-6"},
+                                        {true, 0.0, "warm, tol 1e-14 (default)"},
+                                        {true, 1e-9, "warm, tol 1e-9"}};
+  for (Model model : {Model::Ellipsoidal, Model::Exact})
+    for (const BlockSetting& b : blockSettings)
+      s.push_back({"block", model == Model::Exact ? "exact" : "ellipsoidal", b.name, block(model, b.warm, b.tol),
+                   blockRef});
   for (int it : {4, 10, 50}) {
     s.push_back({"block", "stock", "PGS " + std::to_string(it) + " it" + (it == 10 ? " (default)" : ""),
                  [it](const Problem& p) { return solvePointFriction(p.points, p.patch.rho(), p.input, it); },
@@ -344,6 +351,7 @@ std::map<std::string, Row> gRows;  // by benchmark name
 
 class CapturingReporter : public benchmark::ConsoleReporter {
  public:
+  CapturingReporter() : ConsoleReporter(isatty(1) ? OO_ColorTabular : OO_Tabular) {}
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& r : runs) {
       if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;

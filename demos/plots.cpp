@@ -149,7 +149,8 @@ struct ParetoCsv {
   }
 };
 
-// per patch: one series per model, one point per setting (its label), over
+// per patch: one series per model (and start, for the block rows), one point
+// per setting (its label), over
 // all shapes: mean time, and the error statistic pooled over the shapes
 // (rms: root of the mean square, the shapes having equal samples; max: the
 // largest; median: the median of the shapes' medians)
@@ -164,8 +165,12 @@ void plotPatchPareto(const std::string& csv, const std::string& level, const std
   std::vector<Point> points;  // in order of first appearance
   for (std::size_t i = 0; i < t.rows.size(); ++i) {
     if (t.at(i, "level") != level) continue;
-    const std::string& model = t.at(i, "model");
-    const std::string& setting = t.at(i, "setting");
+    // "cold, tol 1e-9" -> series "<model>, cold", label "tol 1e-9"
+    std::string model = t.at(i, "model"), setting = t.at(i, "setting");
+    if (const auto comma = setting.find(", "); comma != std::string::npos) {
+      model += ", " + setting.substr(0, comma);
+      setting = setting.substr(comma + 2);
+    }
     auto it = std::find_if(points.begin(), points.end(),
                            [&](const Point& p) { return p.model == model && p.setting == setting; });
     if (it == points.end()) it = points.insert(points.end(), Point{model, setting, {}, {}});
@@ -175,7 +180,10 @@ void plotPatchPareto(const std::string& csv, const std::string& level, const std
   std::vector<std::string> models;
   for (const Point& p : points)
     if (std::find(models.begin(), models.end(), p.model) == models.end()) models.push_back(p.model);
-  for (const std::string& model : models)
+  // a label only where the point stands apart from every labelled one
+  // (settings that change nothing would print on top of each other)
+  std::vector<std::pair<double, double>> labelled;
+  for (const std::string& model : models) {
     for (Point& p : points) {
       if (p.model != model) continue;
       double time = 0, error = 0;
@@ -189,8 +197,13 @@ void plotPatchPareto(const std::string& csv, const std::string& level, const std
         std::sort(p.errors.begin(), p.errors.end());
         error = p.errors[p.errors.size() / 2];
       }
-      pareto.add(model, time, error, p.setting == "-" ? "" : p.setting);
+      bool apart = true;
+      for (const auto& [t0, e0] : labelled)
+        apart = apart && (std::abs(std::log10(time / t0)) > 0.2 || std::abs(std::log10(error / e0)) > 0.5);
+      if (apart) labelled.emplace_back(time, error);
+      pareto.add(model, time, error, p.setting == "-" || !apart ? "" : p.setting);
     }
+  }
   const std::string data = pareto.finish();
   render::ParetoOptions p;
   p.timeLabel = level == "block" ? "CPU time per friction-block solve [s]" : "CPU time per law evaluation [s]";
