@@ -141,6 +141,7 @@ struct PatchState {
   std::optional<internal::PatchOutline> outline;  // shape of `friction`
   std::optional<FrictionPatch> friction;
   internal::DetectedPatch geometry;               // this step's patch
+  long shapeId = 0;                               // unique per built `friction`
   long lastSeen = std::numeric_limits<long>::min() / 2;
   long tipStep = std::numeric_limits<long>::min() / 2;
 };
@@ -153,6 +154,8 @@ struct PatchFrictionSolver::Impl {
   std::vector<PatchConstraint> patches;  // current island
   std::vector<PatchReport> reports;      // whole step (the first reportCount)
   size_t reportCount = 0;
+  std::vector<long> reportShapeIds;  // shapeId of each report's shape (copied only when it changes)
+  long shapeCount = 0;
   std::vector<btRigidBody*> flushBodies;  // bodies of this island's patches
   long step = 0;
 
@@ -265,20 +268,28 @@ Eigen::Matrix<double, 6, 6> effectiveMass(const BodyTerms& t, const Mat3& F, dou
   Eigen::Matrix<double, 6, 6> K = Eigen::Matrix<double, 6, 6>::Zero();
   if (!t.dynamic) return K;
   const Vec3 r = F.transpose() * t.r;
-  Eigen::Matrix<double, 6, 3> Jl = Eigen::Matrix<double, 6, 3>::Zero(), Ja = Eigen::Matrix<double, 6, 3>::Zero();
-  Jl(0, 2) = 1.0;
-  Jl(3, 0) = 1.0;
-  Jl(4, 1) = 1.0;
-  Ja.row(0) = r.cross(Vec3::UnitZ()).transpose();
-  Ja(1, 0) = 1.0;
-  Ja(2, 1) = 1.0;
-  Ja.row(3) = r.cross(Vec3::UnitX()).transpose();
-  Ja.row(4) = r.cross(Vec3::UnitY()).transpose();
-  Ja(5, 2) = rho;
   const Mat3 invM = F.transpose() * t.invM.asDiagonal() * F;
   const Mat3 invI = F.transpose() * t.invI * F;
-  K.noalias() += Jl * invM * Jl.transpose();
-  K.noalias() += Ja * invI * Ja.transpose();
+  // linear part: rows 0, 3, 4 select u'_z, u'_x, u'_y
+  constexpr int kSel[3] = {0, 3, 4}, kComp[3] = {2, 0, 1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) K(kSel[i], kSel[j]) = invM(kComp[i], kComp[j]);
+  // angular part, row by row (the rows are sparse): X = Ja invI', K += X Ja^T
+  Vec3 a[6];
+  a[0] = Vec3(r.y(), -r.x(), 0.0);  // r' x e_z
+  a[1] = Vec3::UnitX();
+  a[2] = Vec3::UnitY();
+  a[3] = Vec3(0.0, r.z(), -r.y());  // r' x e_x
+  a[4] = Vec3(-r.z(), 0.0, r.x());  // r' x e_y
+  a[5] = Vec3(0.0, 0.0, rho);
+  Vec3 x[6];
+  for (int i = 0; i < 6; ++i) x[i] = invI * a[i];  // invI' symmetric
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) {
+      const double v = a[i].dot(x[j]);
+      K(i, j) += v;
+      if (j != i) K(j, i) += v;
+    }
   return K;
 }
 
@@ -357,6 +368,7 @@ void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
 void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
   btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
   impl_->reports.resize(impl_->reportCount);
+  impl_->reportShapeIds.resize(impl_->reportCount);
   // forget manifolds not seen for a while (they may have been deleted)
   for (auto it = impl_->states.begin(); it != impl_->states.end();) {
     if (it->second.lastSeen < impl_->step - kTipCooldownSteps - 1)
@@ -446,6 +458,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu, opt.rho ? *opt.rho : 0.0);
         st.outline = outline;
         st.pressureCop = shape.centroid();  // uniform pressure
+        st.shapeId = ++im.shapeCount;
       } catch (const Error&) {
         st.flat = false;  // degenerate overlap: leave it to Bullet
         st.friction.reset();
@@ -562,7 +575,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     if (y[0] > 0.0) {
       // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
       const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
-      if (shape.contains(cop)) {
+      const bool onPatch = shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= shape.radius() * shape.radius()
+                                          : shape.contains(cop);
+      if (onPatch) {
         lamN = y;
         pc.interior = true;
       } else {
@@ -598,7 +613,12 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       bool refreshed = false;
       if ((cop - pc.state->pressureCop).norm() > kPressureCopRelTol * shape.diameter()) {
         PatchLoads loads = raw;
-        if (!isAdmissible(shape, loads)) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
+        // a disk's linear pressure is >= 0 iff the centre of pressure lies in
+        // its kern, |cop - C| <= I / (A R) = R / 4; polygons: isAdmissible
+        const bool admissible =
+            shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= 0.0625 * shape.radius() * shape.radius()
+                           : isAdmissible(shape, loads);
+        if (!admissible) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
         friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
         pc.state->pressureCop = cop;
         refreshed = refreshedAny = true;
@@ -684,8 +704,12 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     }
     // reports are overwritten in place (no allocation once the vector and
     // the shapes' storage have grown); allSolved() trims the vector
-    if (im.reportCount == im.reports.size()) im.reports.emplace_back();
-    PatchReport& r = im.reports[im.reportCount++];
+    if (im.reportCount == im.reports.size()) {
+      im.reports.emplace_back();
+      im.reportShapeIds.push_back(0);
+    }
+    const size_t slot = im.reportCount++;
+    PatchReport& r = im.reports[slot];
     r.body = st.body;
     r.other = st.other;
     r.origin = st.geometry.origin;
@@ -693,7 +717,10 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     r.xAxis = st.geometry.xAxis;
     r.yAxis = st.geometry.yAxis;
     const PatchShape& shape = st.friction->shape();
-    r.shape = shape;
+    if (im.reportShapeIds[slot] != st.shapeId || !r.shape) {
+      r.shape = shape;
+      im.reportShapeIds[slot] = st.shapeId;
+    }
     r.model = pc.model;
     r.mu = pc.mu;
     r.rho = pc.rho;
