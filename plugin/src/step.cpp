@@ -250,7 +250,18 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     if ((in.K * grad).norm() <= tol * scale) break;
     const Mat3 H = Kinv - (in.L / s.norm()) * 0.5 * (J + J.transpose());
     Vec3 dir = -(H.inverse() * grad);  // 3x3: cofactors; non-descent caught below
-    if (!dir.allFinite() || dir.dot(grad) >= 0.0) dir = -in.K * grad;  // fall back to descent
+    if (!dir.allFinite() || dir.dot(grad) >= 0.0) {
+      dir = -in.K * grad;  // fall back to descent
+    } else if (dir.norm() <= std::sqrt(tol) * s.norm()) {
+      // last Newton step: the residual after it is O((|dir| / |s|)^2) <= tol
+      // of the slip scale (quadratic convergence), so take it without a new
+      // evaluation of the law, with q linearised along the sphere:
+      //   q(u + du) = q(u) + J du + O(|du|^2)
+      const Vec3 du = (s + dir).normalized() - s.normalized();
+      q += J * du;
+      ++out.iterations;
+      break;
+    }
     // backtracking: sufficient decrease of D, or (at round-off level of D) of |grad D|
     double t = 1.0;
     bool accepted = false;
