@@ -11,6 +11,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -19,6 +20,14 @@ using patchspin::Model;
 using patchspin::bullet::PatchFrictionSolver;
 
 enum Variant { kEllipsoidal = 0, kExact = 1, kStock = 2, kNoneOptedIn = 3 };
+
+// Scene options beyond the variant (the skip-what-isn't-needed benchmarks).
+struct SceneOptions {
+  bool moving = true;        // seeded slide and spin; false: coins at rest
+  bool allowSleep = false;   // Bullet may put resting coins to sleep
+  double exactFraction = -1; // >= 0: this fraction exact, the rest ellipsoidal
+  patchspin::bullet::PatchSolverSettings settings;
+};
 
 constexpr double kDt = 1.0 / 240.0;
 constexpr double kR = 0.05, kH = 0.01;
@@ -35,8 +44,9 @@ struct World {
   std::vector<std::unique_ptr<btRigidBody>> coins;
   std::vector<btVector3> v0, w0;
   std::vector<btTransform> start;
+  SceneOptions options;
 
-  World(int n, Variant variant) {
+  World(int n, Variant variant, const SceneOptions& opt = SceneOptions()) : options(opt) {
     if (variant == kStock)
       solver = std::make_unique<btSequentialImpulseConstraintSolver>();
     else
@@ -59,18 +69,23 @@ struct World {
       info.m_startWorldTransform = tr;
       info.m_friction = btScalar(0.3);
       auto coin = std::make_unique<btRigidBody>(info);
-      coin->setActivationState(DISABLE_DEACTIVATION);
+      if (!opt.allowSleep) coin->setActivationState(DISABLE_DEACTIVATION);
       world->addRigidBody(coin.get());
       start.push_back(tr);
-      v0.emplace_back(btScalar(0.3 * u(rng)), btScalar(0.3 * u(rng)), 0);
-      w0.emplace_back(0, 0, btScalar(10 * u(rng)));
-      if (variant == kEllipsoidal || variant == kExact)
-        static_cast<PatchFrictionSolver*>(solver.get())
-            ->enablePatchFriction(coin.get(), {variant == kExact ? Model::Exact : Model::Ellipsoidal});
+      const double vx = 0.3 * u(rng), vy = 0.3 * u(rng), wz = 10 * u(rng);
+      v0.emplace_back(btScalar(opt.moving ? vx : 0.0), btScalar(opt.moving ? vy : 0.0), 0);
+      w0.emplace_back(0, 0, btScalar(opt.moving ? wz : 0.0));
+      if (variant == kEllipsoidal || variant == kExact) {
+        Model model = variant == kExact ? Model::Exact : Model::Ellipsoidal;
+        if (opt.exactFraction >= 0) model = (i % 100) < int(100 * opt.exactFraction) ? Model::Exact : Model::Ellipsoidal;
+        patchSolver()->enablePatchFriction(coin.get(), {model});
+      }
       coins.push_back(std::move(coin));
     }
+    if (variant != kStock) patchSolver()->setSettings(opt.settings);
     reset();
   }
+  PatchFrictionSolver* patchSolver() { return static_cast<PatchFrictionSolver*>(solver.get()); }
   ~World() {
     for (auto& c : coins) world->removeRigidBody(c.get());
     world->removeRigidBody(ground.get());
@@ -80,6 +95,7 @@ struct World {
   // the same scene of coins sliding and spinning apart
   void reset() {
     for (size_t i = 0; i < coins.size(); ++i) {
+      if (options.allowSleep) continue;  // resting scene: leave them be
       coins[i]->setWorldTransform(start[i]);
       coins[i]->setInterpolationWorldTransform(start[i]);
       coins[i]->setLinearVelocity(v0[i]);
@@ -87,6 +103,16 @@ struct World {
     }
   }
 };
+
+// What the solver did in the last step, per active patch.
+void addSolverCounters(benchmark::State& state, const PatchFrictionSolver& solver) {
+  const auto& s = solver.stats();
+  const double p = s.patches > 0 ? double(s.patches) : 1.0;
+  state.counters["solves/patch"] = double(s.blockSolves) / p;
+  state.counters["refreshes/patch"] = double(s.pressureRefreshes) / p;
+  state.counters["visits/patch"] = double(s.visits) / p;
+  state.counters["skipped/patch"] = double(s.skippedVisits) / p;
+}
 
 void BM_BulletWorldStep(benchmark::State& state) {
   const int n = int(state.range(0));
@@ -98,6 +124,7 @@ void BM_BulletWorldStep(benchmark::State& state) {
     w.world->stepSimulation(btScalar(kDt), 0);
   }
   state.counters["bodies"] = n;
+  if (variant == kEllipsoidal || variant == kExact) addSolverCounters(state, *w.patchSolver());
   state.SetLabel(variant == kEllipsoidal ? "patch ellipsoidal"
                  : variant == kExact     ? "patch exact"
                  : variant == kStock     ? "stock Bullet"
@@ -106,6 +133,76 @@ void BM_BulletWorldStep(benchmark::State& state) {
 BENCHMARK(BM_BulletWorldStep)
     ->ArgsProduct({{10, 100, 1000}, {kStock, kNoneOptedIn, kEllipsoidal, kExact}})
     ->Unit(benchmark::kMicrosecond);
+
+// ---- skip what a scene doesn't need (issue 6) ---------------------------------------
+// 1000 sliding, spinning coins, ellipsoidal, with the solver's work-saving
+// rules switched off one at a time: 0 default, 1 no skipping of settled
+// patches, 2 Pi refreshed on every change of the centre of pressure, 3 both.
+void BM_SkipRules(benchmark::State& state) {
+  SceneOptions opt;
+  const int rules = int(state.range(0));
+  opt.settings.skipSettledPatches = !(rules & 1);
+  if (rules & 2) opt.settings.pressureRefreshTolerance = 0.0;
+  World w(1000, kEllipsoidal, opt);
+  long k = 0;
+  for (auto _ : state) {
+    if (++k % 24 == 0) w.reset();
+    w.world->stepSimulation(btScalar(kDt), 0);
+  }
+  addSolverCounters(state, *w.patchSolver());
+  state.SetLabel(rules == 0 ? "default" : rules == 1 ? "no settled-patch skipping"
+                 : rules == 2 ? "Pi refreshed on every change" : "neither");
+}
+BENCHMARK(BM_SkipRules)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+
+// 1000 coins at rest on the plane (uniform pressure: Pi = I, never
+// refreshed), awake: patch ellipsoidal / exact against stock; and the same
+// with Pi refreshed on every change (round-off moves the centre of pressure).
+void BM_RestingCoins(benchmark::State& state) {
+  SceneOptions opt;
+  opt.moving = false;
+  const int variant = int(state.range(0));
+  if (variant == 4) opt.settings.pressureRefreshTolerance = 0.0;
+  World w(1000, variant == 4 ? kEllipsoidal : Variant(variant), opt);
+  for (int k = 0; k < 24; ++k) w.world->stepSimulation(btScalar(kDt), 0);  // settle
+  for (auto _ : state) w.world->stepSimulation(btScalar(kDt), 0);
+  if (variant != kStock) addSolverCounters(state, *w.patchSolver());
+  state.SetLabel(variant == kEllipsoidal ? "patch ellipsoidal" : variant == kExact ? "patch exact"
+                 : variant == kStock ? "stock Bullet" : "patch ellipsoidal, Pi refreshed on every change");
+}
+BENCHMARK(BM_RestingCoins)->Arg(kStock)->Arg(kEllipsoidal)->Arg(kExact)->Arg(4)->Unit(benchmark::kMicrosecond);
+
+// 1000 coins put to sleep by Bullet (deactivation allowed, at rest for > 2 s):
+// patches of sleeping bodies cost nothing (their islands are not solved).
+void BM_SleepingCoins(benchmark::State& state) {
+  SceneOptions opt;
+  opt.moving = false;
+  opt.allowSleep = true;
+  World w(1000, Variant(state.range(0)), opt);
+  for (int k = 0; k < 720; ++k) w.world->stepSimulation(btScalar(kDt), 0);  // 3 s: asleep
+  int sleeping = 0;
+  for (const auto& c : w.coins) sleeping += c->getActivationState() == ISLAND_SLEEPING;
+  for (auto _ : state) w.world->stepSimulation(btScalar(kDt), 0);
+  state.counters["sleeping"] = sleeping;
+  state.SetLabel(state.range(0) == kStock ? "stock Bullet" : state.range(0) == kExact ? "patch exact" : "patch ellipsoidal");
+}
+BENCHMARK(BM_SleepingCoins)->Arg(kStock)->Arg(kEllipsoidal)->Arg(kExact)->Unit(benchmark::kMicrosecond);
+
+// The exact law only where a body asks for it: 1000 sliding coins with 0 %,
+// 10 % and 100 % of them exact (the rest ellipsoidal).
+void BM_ExactWhereAsked(benchmark::State& state) {
+  SceneOptions opt;
+  opt.exactFraction = double(state.range(0)) / 100.0;
+  World w(1000, kEllipsoidal, opt);
+  long k = 0;
+  for (auto _ : state) {
+    if (++k % 24 == 0) w.reset();
+    w.world->stepSimulation(btScalar(kDt), 0);
+  }
+  state.counters["exact %"] = double(state.range(0));
+  state.SetLabel(std::to_string(state.range(0)) + " % exact");
+}
+BENCHMARK(BM_ExactWhereAsked)->Arg(0)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

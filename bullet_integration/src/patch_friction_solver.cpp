@@ -62,14 +62,6 @@ constexpr double kBlockRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-
 // stock for the ellipsoidal coins, 2.5x -> 1.9x for the exact law, in
 // instructions); the validation tests (no creep, stacks, energy) hold.
 constexpr double kPatchWarmStartFactor = 1.0;
-// The friction law for unit mu Pz (Pi of Eq. (40), the exact law's integrals)
-// depends on the linear pressure only through its shape, i.e. the centre of
-// pressure (Ty, -Tx) / Pz. It is refreshed when that point has moved by more
-// than this fraction of the patch diameter since the last refresh: Pi then
-// changes by ~1e-6 relative, far below the error of the solver's iterations,
-// while a body at rest or sliding flat (centre of pressure fixed) never pays
-// for a refresh, and a centred symmetric patch keeps Pi = I.
-constexpr double kPressureCopRelTol = 1e-6;
 
 Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
 // Double -> btScalar with values below the smallest normal btScalar flushed
@@ -154,6 +146,8 @@ struct PatchFrictionSolver::Impl {
   std::vector<PatchConstraint> patches;  // current island
   std::vector<PatchReport> reports;      // whole step (the first reportCount)
   size_t reportCount = 0;
+  PatchSolverSettings settings;
+  PatchSolverStats stats;
   std::vector<long> reportShapeIds;  // shapeId of each report's shape (copied only when it changes)
   long shapeCount = 0;
   std::vector<btRigidBody*> flushBodies;  // bodies of this island's patches
@@ -353,6 +347,16 @@ bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) 
 
 const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const { return impl_->reports; }
 
+void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
+  patchspin::internal::requireFinite(settings.pressureRefreshTolerance, "PatchSolverSettings::pressureRefreshTolerance");
+  if (settings.pressureRefreshTolerance < 0.0)
+    throw Error("PatchSolverSettings::pressureRefreshTolerance must be >= 0: got " +
+                patchspin::internal::formatDouble(settings.pressureRefreshTolerance));
+  impl_->settings = settings;
+}
+const PatchSolverSettings& PatchFrictionSolver::settings() const { return impl_->settings; }
+const PatchSolverStats& PatchFrictionSolver::stats() const { return impl_->stats; }
+
 const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
   for (const PatchReport& r : impl_->reports)
     if (r.body == body) return &r;
@@ -363,6 +367,7 @@ void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
   btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
   ++impl_->step;
   impl_->reportCount = 0;
+  impl_->stats = PatchSolverStats();
 }
 
 void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
@@ -552,13 +557,18 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     out[2] = b.m_deltaLinearVelocity;
     out[3] = b.m_deltaAngularVelocity;
   };
+  PatchSolverStats& stats = impl_->stats;
+  const PatchSolverSettings& settings = impl_->settings;
   for (PatchConstraint& pc : impl_->patches) {
+    ++stats.visits;
     if (pc.settled) {
       btVector3 now[4];
       snapshotOf(pc, now);
       if (now[0] == pc.snapshot[0] && now[1] == pc.snapshot[1] && now[2] == pc.snapshot[2] &&
-          now[3] == pc.snapshot[3])
+          now[3] == pc.snapshot[3]) {
+        ++stats.skippedVisits;
         continue;  // same input, same (zero) change: skip
+      }
       pc.settled = false;
     }
     FrictionPatch& friction = *pc.state->friction;
@@ -611,7 +621,15 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       const PatchLoads raw = toLoads(pc.lamN);
       const Vec2 cop(raw.Ty / raw.Pz, -raw.Tx / raw.Pz);
       bool refreshed = false;
-      if ((cop - pc.state->pressureCop).norm() > kPressureCopRelTol * shape.diameter()) {
+      // The friction law for unit mu Pz (Pi of Eq. (40), the exact law's
+      // integrals) depends on the linear pressure only through its shape,
+      // i.e. the centre of pressure (Ty, -Tx) / Pz: refreshed when that point
+      // has moved by more than settings.pressureRefreshTolerance (default
+      // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
+      // while a body at rest or sliding steadily never pays for a refresh
+      // and a centred symmetric patch keeps Pi = I.
+      if ((cop - pc.state->pressureCop).norm() > settings.pressureRefreshTolerance * shape.diameter()) {
+        ++stats.pressureRefreshes;
         PatchLoads loads = raw;
         // a disk's linear pressure is >= 0 iff the centre of pressure lies in
         // its kern, |cop - C| <= I / (A R) = R / 4; polygons: isAdmissible
@@ -627,6 +645,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
                          (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
                          std::abs(L - pc.lastL) <= kReuseRelTol * L;
       if (!reuse) {
+        ++stats.blockSolves;
         pc.last = solveFrictionBlock(friction, pc.model, in);
         pc.haveLast = true;
         pc.lastB = in.b;
@@ -647,7 +666,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     }
     applyImpulse(pc, m_tmpSolverBodyPool, d);
     worst = std::max(worst, d.squaredNorm());
-    if (d.isZero(0.0) && !refreshedAny) {
+    if (settings.skipSettledPatches && d.isZero(0.0) && !refreshedAny) {
       pc.settled = true;
       snapshotOf(pc, pc.snapshot);
     }
@@ -688,6 +707,7 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
 btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                                             const btContactSolverInfo& info) {
   Impl& im = *impl_;
+  im.stats.patches += long(im.patches.size());
   for (PatchConstraint& pc : im.patches) {
     PatchState& st = *pc.state;
     const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);

@@ -155,6 +155,41 @@ TEST(PatchFrictionSolver, FlatCoinCarriesNoSubnormalCrumbs) {
   EXPECT_EQ(crumbs, 0);
 }
 
+// The work-saving rules (settled patches skipped, Pi refreshed only when the
+// centre of pressure moves by 1e-6 of the diameter) change the result by no
+// more than that: a sliding, spinning coin run with both rules off stops at
+// the same time and place. Bound: the refresh rule leaves Pi ~1e-6 relative
+// behind, i.e. ~1e-6 of the travel and of the stopping time; 1e-4 leaves room
+// for float round-off accumulated over ~250 steps (sqrt(250) * 6e-8 * 100).
+TEST(PatchFrictionSolver, WorkSavingRulesDoNotChangeTheMotion) {
+  auto run = [](bool savings, double* stopTime, PatchSolverStats* stats) {
+    Coin coin(true, Model::Exact);
+    if (!savings) coin.scene.solver().setSettings(PatchSolverSettings{0.0, false});
+    coin.body->setLinearVelocity(btVector3(0.5, 0.1, 0));
+    coin.body->setAngularVelocity(btVector3(0, 0, 12));
+    *stopTime = -1;
+    for (int k = 0; k < 480 && *stopTime < 0; ++k) {
+      coin.scene.step(kDt);
+      if (k == 10) *stats = coin.scene.solver().stats();
+      if (coin.body->getLinearVelocity().length() < 1e-6 && coin.body->getAngularVelocity().length() < 1e-5)
+        *stopTime = (k + 1) * kDt;
+    }
+    return coin.body->getWorldTransform().getOrigin();
+  };
+  double tOn = 0, tOff = 0;
+  PatchSolverStats sOn, sOff;
+  const btVector3 pOn = run(true, &tOn, &sOn), pOff = run(false, &tOff, &sOff);
+  std::printf("[savings] stop %.5f s vs %.5f s; travel differs by %.2e m; solves/step %ld vs %ld, refreshes %ld vs %ld\n",
+              tOn, tOff, double((pOn - pOff).length()), sOn.blockSolves, sOff.blockSolves, sOn.pressureRefreshes,
+              sOff.pressureRefreshes);
+  ASSERT_GT(tOn, 0.0);
+  EXPECT_NEAR(tOn, tOff, 1.5 * kDt);  // same step, or the neighbour
+  EXPECT_LT(double((pOn - pOff).length()), 1e-4 * double(pOn.length()));
+  EXPECT_EQ(sOn.patches, 1);
+  EXPECT_LT(sOn.blockSolves, sOff.blockSolves) << "the rules should save block solves";
+  EXPECT_THROW(Coin(true).scene.solver().setSettings(PatchSolverSettings{-1e-6, true}), Error);
+}
+
 // ---- patches from shapes: overlap geometry ---------------------------------------
 // A coin on a static box (a table) lies fully inside the top face: an exact
 // disk. Moved so that its centre is d inside the table's edge, the patch is

@@ -85,6 +85,27 @@ struct PatchReport {
   bool sticking = false;                     // friction block in its stick branch
 };
 
+// Work-saving rules of the solver, exposed so that their effect can be
+// measured (bench_bullet_world) and, if ever needed, switched off.
+struct PatchSolverSettings {
+  // Pi (and the exact law's pressure) is refreshed when the centre of
+  // pressure has moved by more than this fraction of the patch diameter
+  // since the last refresh; 0 refreshes on every change.
+  double pressureRefreshTolerance = 1e-6;
+  // A patch whose last visit changed nothing is skipped while neither of its
+  // bodies' velocities has changed since.
+  bool skipSettledPatches = true;
+};
+
+// What the solver did in the last step (all islands), for profiling.
+struct PatchSolverStats {
+  long patches = 0;          // active patches
+  long visits = 0;           // patch visits in the solver iterations
+  long skippedVisits = 0;    // visits skipped (settled patch, bodies untouched)
+  long blockSolves = 0;      // friction block solves (others reused the last solution)
+  long pressureRefreshes = 0;  // Pi / exact-law pressure refreshes
+};
+
 class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
  public:
   PatchFrictionSolver();
@@ -97,6 +118,10 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   void enablePatchFriction(btRigidBody* body, const PatchOptions& options = PatchOptions());
   void disablePatchFriction(btRigidBody* body);
   bool isPatchFrictionEnabled(const btCollisionObject* body) const;
+
+  void setSettings(const PatchSolverSettings& settings);
+  const PatchSolverSettings& settings() const;
+  const PatchSolverStats& stats() const;
 
   // Patches that were active in the last step (all islands).
   const std::vector<PatchReport>& patchReports() const;
