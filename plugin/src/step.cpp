@@ -107,10 +107,14 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
 FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockInput& in) {
   FrictionBlockResult out;
   const double tol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
+  // positive definite by Sylvester's criterion (leading minors > 0), then
+  // the inverse by cofactors
   const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
-  const Eigen::LLT<Mat3> llt(Ksym);
-  if (llt.info() != Eigen::Success) throw Error("friction block matrix K is not positive definite");
-  const Mat3 Kinv = Ksym.inverse();  // 3x3 SPD: cofactors
+  const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
+  const double det = Ksym.determinant();
+  if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && det > 0.0))
+    throw Error("friction block matrix K is not positive definite");
+  const Mat3 Kinv = Ksym.inverse();
   const Vec3 lambda0 = -Kinv * in.b;
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {
