@@ -397,8 +397,14 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     btPersistentManifold* m = manifolds[i];
     const btCollisionObject* o0 = m->getBody0();
     const btCollisionObject* o1 = m->getBody1();
-    const PatchOptions* opt0 = im.optionsOf(o0);
-    const PatchOptions* opt1 = opt0 ? nullptr : im.optionsOf(o1);
+    // the patch belongs to an opted-in dynamic body (a static or kinematic
+    // body opted in has no patch of its own: what stands on it decides)
+    auto dynamicOptions = [&](const btCollisionObject* o) -> const PatchOptions* {
+      const btRigidBody* rb = btRigidBody::upcast(o);
+      return rb && rb->getInvMass() > 0 ? im.optionsOf(o) : nullptr;
+    };
+    const PatchOptions* opt0 = dynamicOptions(o0);
+    const PatchOptions* opt1 = opt0 ? nullptr : dynamicOptions(o1);
     if ((!opt0 && !opt1) || m->getNumContacts() == 0) {
       convertContact(m, info);
       continue;

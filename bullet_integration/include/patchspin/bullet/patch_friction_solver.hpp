@@ -115,6 +115,12 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
 
   // Opts `body` in (or replaces its options). Throws Error for a null body,
   // mu < 0, rho <= 0 or a non-positive/non-finite flatness tolerance.
+  // Only dynamic bodies get patches; a static or kinematic body opted in is
+  // ignored (what stands on it decides). The options are kept under the
+  // body's address until disablePatchFriction: call it before deleting an
+  // opted-in body (as for a btTypedConstraint on it), or a new body that
+  // happens to get the same address inherits them. Removing a body from the
+  // world without deleting it keeps its options for when it comes back.
   void enablePatchFriction(btRigidBody* body, const PatchOptions& options = PatchOptions());
   void disablePatchFriction(btRigidBody* body);
   bool isPatchFrictionEnabled(const btCollisionObject* body) const;
