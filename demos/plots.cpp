@@ -212,7 +212,7 @@ void plotPatchPareto(const std::string& csv, const std::string& level, const std
   if (options.title.empty())
     options.title = std::string("per patch: time against error (") + (level == "block" ? "friction block" : "law") +
                     "; disk, rectangle, hexagon pooled)";
-  if (pareto.dropped) options.title += " [" + std::to_string(pareto.dropped) + " zero-error rows not shown]";
+  if (pareto.dropped) options.title += " (" + std::to_string(pareto.dropped) + " zero-error rows off the log axes)";
   render::plotPareto(data, out, p, options);
 }
 
@@ -247,7 +247,7 @@ void plotSimulationPareto(const std::string& csv, const std::string& scene, cons
                                         : "max(rel. error of t_{stop}, " + terminalName + ")";
   if (options.title.empty()) options.title = scene + ": error against the exact law's reference dynamics";
   if (pareto.dropped)
-    options.title += " [" + std::to_string(pareto.dropped) + " runs without a stop or with zero error not shown]";
+    options.title += " (" + std::to_string(pareto.dropped) + " runs off the log axes: no stop or zero error)";
   render::plotPareto(data, out, p, options);
 }
 

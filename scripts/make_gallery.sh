@@ -103,14 +103,13 @@ EOF
 # bench_bullet_simulation (docs/bench/, committed with the README's tables)
 csv="$root/docs/bench"
 "$plots" pareto-patch --csv "$csv/patch_error.csv" --out "$img/pareto_patch.png" --size 900x600 \
-  --title "per patch: friction-block solve, time against error (disk, rectangle, hexagon pooled)"
+  --title "per patch: friction-block solve (disk, rectangle, hexagon pooled)"
 "$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "coin from 1" --out "$img/pareto_sim_coin.png" \
-  --size 900x600 --title "free coin from v = R omega: error against CPU time per simulated second"
+  --size 900x700 --title "free coin started at v = R omega"
 "$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "coin from 0.653" \
-  --out "$img/pareto_sim_coin_limit.png" --size 900x600 \
-  --title "free coin on the exact law's limit ratio 0.653: error against CPU time per simulated second"
+  --out "$img/pareto_sim_coin_limit.png" --size 900x700 --title "free coin started on the limit ratio 0.653"
 "$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "pushed disk" --out "$img/pareto_sim_pushed.png" \
-  --size 900x600 --title "pushed disk (Sect. 6.1, Case 3): error against CPU time per simulated second"
+  --size 900x700 --title "pushed disk, Sect. 6.1 Case 3"
 
 made=(bifurcation_force bifurcation_plane pareto_exact pareto_patch pareto_sim_coin pareto_sim_coin_limit
   pareto_sim_pushed)
