@@ -197,11 +197,15 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
                  fmt("%.0f", kPourTime) + " s";
   }
   table.emit();
-  // Known defect (reported): coins that land tilted by more than the
-  // flatness tolerance (0.02 rad) are stock Bullet point contacts and keep
-  // wobbling on their rim (tilt 0.03-0.07 rad, 6-8 rad/s after 4 s, stock
-  // Bullet alike); the patch takes them over only once they lie flat.
-  if (!defects.empty()) GTEST_SKIP() << "known defect: tilted coins wobble on stock point contacts" << defects;
+  // Known defect (reported): the pour is not at rest after 4 s, stock Bullet
+  // alike. In the 100-coin pour the moving coins landed tilted by more than
+  // the flatness tolerance (0.02 rad), are stock Bullet point contacts and
+  // keep wobbling on their rim (tilt 0.03-0.07 rad, 6-8 rad/s after 4 s;
+  // after 10 s still 5 cm/s); the patch takes a coin over only once it lies
+  // flat. The 1000-coin pile (1 m/s after 4 s) is not analysed further.
+  if (!defects.empty())
+    GTEST_SKIP() << "known defect: poured coins not at rest after " << kPourTime
+                 << " s (tilted coins wobbling on stock point contacts)" << defects;
 }
 
 // ---- incline -----------------------------------------------------------------------
