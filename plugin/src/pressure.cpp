@@ -64,7 +64,10 @@ bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTo
 //   l~ = (Pz, Tx / rho, Ty / rho) = M (p0, cx, cy).
 // Polygons: the set is the polyhedral cone {a_i . l~ >= 0}, a_i = M^-T (1, x_i, y_i);
 // the projection is the nearest feasible candidate over the active sets of
-// size 0, 1 and 2 (faces, edges) and the apex 0.
+// size 0, 1 and 2 (faces, edges) and the apex 0. An edge of the cone is a
+// pressure vanishing at two vertices and >= 0 at the others, so its zero
+// line is a side of the (convex) polygon: only adjacent vertices pair up,
+// n + n candidates instead of n + n(n-1)/2 (a cut disk has 64 vertices).
 // Disks: the cone {z0 >= R |(z1, z2)|}, z = (p(C), cx, cy); the boundary is
 // the rays t (1, cos th / R, sin th / R) (in z), and the projection maximises
 // (N u . y)^2 / |N u|^2 over th (sampled, then golden-section refined).
@@ -105,12 +108,11 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
     };
     for (std::size_t i = 0; i < a.size(); ++i) {
       consider(y - a[i].dot(y) / a[i].squaredNorm() * a[i]);
-      for (std::size_t j = i + 1; j < a.size(); ++j) {
-        const Vec3 d = a[i].cross(a[j]);
-        if (d.norm() <= 1e-14 * a[i].norm() * a[j].norm()) continue;
-        const Vec3 u = d.normalized();
-        consider(u.dot(y) * u);
-      }
+      const std::size_t j = (i + 1) % a.size();
+      const Vec3 d = a[i].cross(a[j]);
+      if (d.norm() <= 1e-14 * a[i].norm() * a[j].norm()) continue;
+      const Vec3 u = d.normalized();
+      consider(u.dot(y) * u);
     }
     return toLoads(best);
   }
