@@ -122,6 +122,22 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     return out;
   }
 
+  // quick stick: the ellipsoidal Pi matches the exact law at the three
+  // fitting motions, q(e_i) = -Pi e_i (Eq. (37)-(39)), and the law is odd, so
+  // the convex limit set E contains the octahedron conv{+-Pi e_i}: lambda0
+  // inside L times it, |Pi^-1 lambda0|_1 <= L, sticks without the gauge test
+  // (a body at rest in a pile, the common case there)
+  {
+    const Mat3 Pinv = patch.Pi().inverse();
+    const Vec3 c = Pinv * lambda0;
+    if (c.allFinite() && c.lpNorm<1>() <= in.L) {
+      out.sticking = true;
+      out.impulse = lambda0;
+      out.slip.setZero();
+      return out;
+    }
+  }
+
   // support gap of lambda0 against L E along u (see the slip branch below);
   // h(u) < 0 for some u proves lambda0 outside L E: the block slips
   const Vec3 Kinvb = Kinv * in.b;

@@ -161,6 +161,41 @@ TEST(FrictionBlockTest, NeverAddsEnergy) {
   }
 }
 
+// The exact law's limit set contains the octahedron conv{+-Pi e_i}: the
+// law at the fitting motions equals the ellipsoid's, q(e_i) = -Pi e_i (checked
+// here against the exact law itself), so impulses L Pi c with |c|_1 <= 1 lie
+// in L E and the block sticks with lambda = -K^-1 b; just outside the
+// octahedron along a vertex (c = 1.05 e_i) it must slip (a vertex of the
+// octahedron is on the boundary of E, so the point beyond it is outside).
+TEST(FrictionBlockTest, ExactSticksInsideTheFittingOctahedron) {
+  const FrictionPatch patch = tiltedRectangle();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 q = patch.unitQ(Model::Exact, Vec3::Unit(i));
+    EXPECT_LT((q + patch.Pi().col(i)).norm(), 1e-10) << "fitting motion " << i;
+  }
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 100; ++trial) {
+    FrictionBlockInput in;
+    in.K = randomSpd(rng, 0.2, 5.0);
+    in.L = 0.7;
+    Vec3 c(u(rng), u(rng), u(rng));
+    c *= 0.999 * std::abs(u(rng)) / c.lpNorm<1>();
+    const Vec3 lambda = in.L * (patch.Pi() * c);
+    in.b = -in.K * lambda;
+    const auto res = solveFrictionBlock(patch, Model::Exact, in);
+    EXPECT_TRUE(res.sticking);
+    EXPECT_LT((res.impulse - lambda).norm(), kSolveTol * lambda.norm() + 1e-15);
+  }
+  for (int i = 0; i < 3; ++i) {
+    FrictionBlockInput in;
+    in.K = Mat3::Identity();
+    in.L = 0.7;
+    in.b = -in.K * (1.05 * in.L * patch.Pi().col(i));
+    EXPECT_FALSE(solveFrictionBlock(patch, Model::Exact, in).sticking) << "beyond vertex " << i;
+  }
+}
+
 // A coarser stopping tolerance (what the single-precision Bullet layer asks
 // for) moves the solution by at most ~cond(K) x tolerance of the slip scale:
 // compared with the default (1e-14) solve of the same block. K here has
