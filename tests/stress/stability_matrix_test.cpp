@@ -283,12 +283,24 @@ TEST(StabilityMatrix, FrictionCoefficient) {
   runGroup(title("friction coefficient"), cells);
 }
 
-// Light on heavy and equal masses: the stack holds.
+// Light on heavy: the stack holds.
 TEST(StabilityMatrix, MassRatioLightOnHeavy) {
   std::vector<Cell> cells;
-  for (double q : stressFull() ? std::vector<double>{1e-3, 1e-2, 1e-1, 1.0} : std::vector<double>{1e-3, 1.0})
+  for (double q : stressFull() ? std::vector<double>{1e-3, 1e-2, 1e-1} : std::vector<double>{1e-3})
     cells.push_back(with("mass ratio", [&](Cell& c) { c.massRatio = q; }));
   runGroup(title("mass ratio, light on heavy"), cells);
+}
+
+// Equal masses (known defect, reported): at the step where the pair comes
+// to rest (both patches stick) the upper block rocks (tilt rate 7.4e-3
+// rad/s with the exact law, 4.4e-4 ellipsoidal, double Bullet) and the
+// friction DOFs' energy rises by 5.6e-9 E0 (exact) / 9.9e-11 E0
+// (ellipsoidal) in that step: above double round-off (1e-12), hidden by the
+// float tolerance (1e-5).
+TEST(StabilityMatrix, MassRatioEqual) {
+  runGroup(title("mass ratio, equal masses"), {with("mass ratio", [](Cell& c) { c.massRatio = 1.0; })},
+           "equal-mass stack: the upper block rocks when the pair sticks (tilt rate up to 7e-3 rad/s) and the "
+           "friction DOFs' energy rises by up to 5.6e-9 E0 in that step (double)");
 }
 
 // Heavy on light (known defect, reported): the Gauss-Seidel sweep over the
