@@ -193,7 +193,7 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
   if (N < 3) fail("need at least 3 vertices, got " + std::to_string(N));
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
   if (!w.allFinite() || w.cwiseAbs().maxCoeff() == 0.0) fail("w must be finite and nonzero");
-  if (!(tolerance >= 0.0)) fail("tolerance must be >= 0");
+  if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) fail("tolerance must be finite and >= 0");
 
   // centre frame: P' = P - g, w' = S w (Eq. (1) about g)
   Vec2 g = Vec2::Zero();

@@ -127,29 +127,51 @@ MomentTable diskMomentTable(const Vec2& centre, double R) {
   const double beta = std::atan2(cy, cx);
   using V8 = Eigen::Matrix<double, 8, 1>;
   // entries: r, r x, r y, x/r, x^2/r, xy/r, y/r, y^2/r (with their s-powers)
-  auto angular = [&](double alpha, double s1, double s2) {
-    const double ca = std::cos(alpha), sa = std::sin(alpha);
-    const double d2 = (s2 * s2 - s1 * s1) / 2.0;              // k = 0
-    const double d3 = (s2 * s2 * s2 - s1 * s1 * s1) / 3.0;    // k = 1
+  // ds = s2 - s1 is passed in exact form: far from O, s1 and s2 are both ~delta
+  // and s2^n - s1^n would lose delta / R digits (noise the adaptive rule could
+  // never converge below); factored, no cancellation:
+  //   s2^n - s1^n = ds (s2^(n-1) + ... + s1^(n-1))
+  // (ca, sa) = (cos, sin) of the ray's polar angle alpha about O
+  auto angular = [&](double ca, double sa, double s1, double s2, double ds) {
     const double s22 = s2 * s2, s12 = s1 * s1;
-    const double d4 = (s22 * s22 - s12 * s12) / 4.0;          // k = 2
+    const double d2 = ds * (s2 + s1) / 2.0;                 // k = 0
+    const double d3 = ds * (s22 + s1 * s2 + s12) / 3.0;     // k = 1
+    const double d4 = ds * (s2 + s1) * (s22 + s12) / 4.0;   // k = 2
     V8 out;
     out << d3, d4 * ca, d4 * sa, d2 * ca, d3 * ca * ca, d3 * ca * sa, d2 * sa, d3 * sa * sa;
     return out;
   };
   constexpr double kRelTol = 1e-15;
   V8 sum = V8::Zero();
+  // the ray's direction from (beta, phi) by the addition theorem, not
+  // cos(beta + phi): far from O, phi is small and cos(beta + phi) may be
+  // near zero, where rounding beta + phi would leave only ~eps / phi digits
+  const double cb = std::cos(beta), sb = std::sin(beta);
   if (delta < R) {
-    // O inside: s from 0 to delta cos(phi) + S(phi), phi over the full turn;
-    // S is smallest (near-singular as delta -> R) at phi = +-pi/2: break there.
-    auto f = [&](double phi) {
-      const double sp = std::sin(phi);
-      const double S = std::sqrt(std::max(0.0, R * R - delta * delta * sp * sp));
-      return angular(beta + phi, 0.0, delta * std::cos(phi) + S);
-    };
-    const double breaks[4] = {-kPi, -kPi / 2.0, kPi / 2.0, kPi};
-    for (int i = 0; i < 3; ++i)
-      sum += internal::adaptiveGauss<8>(f, breaks[i], breaks[i + 1], kRelTol);
+    // O inside: s from 0 to delta cos(phi) + S(phi), phi over the full turn.
+    // S is smallest (near-singular as delta -> R) at phi = +-pi/2, so the turn
+    // is cut into four quarters measured from there, phi = s1 pi/2 + s2 t,
+    // t in [0, pi/2]: nodes near the cut keep full relative precision in t
+    // (in phi, their rounding, eps |phi| |f'|, is noise the adaptive rule can
+    // never converge below). With sin phi = s1 cos t, cos phi = -s1 s2 sin t,
+    //   S^2 = (R - delta cos t)(R + delta cos t),
+    //   R - delta cos t = (R - delta) + 2 delta sin^2(t/2)   (no cancellation)
+    // and behind O (cos phi < 0) s2 = (R^2 - delta^2) / (S - delta cos phi).
+    for (const double s1 : {-1.0, 1.0}) {
+      for (const double s2 : {-1.0, 1.0}) {
+        auto f = [&](double t) {
+          const double ct = std::cos(t), st = std::sin(t), ht = std::sin(0.5 * t);
+          const double sphi = s1 * ct, cphi = -s1 * s2 * st;
+          const double S =
+              std::sqrt(std::max(0.0, ((R - delta) + 2.0 * delta * ht * ht) * (R + delta * ct)));
+          const double outer = cphi >= 0.0 ? delta * cphi + S
+                                           : (R - delta) * (R + delta) / (S - delta * cphi);
+          // alpha = beta + phi
+          return angular(cb * cphi - sb * sphi, sb * cphi + cb * sphi, 0.0, outer, outer);
+        };
+        sum += internal::adaptiveGauss<8>(f, 0.0, kPi / 2.0, kRelTol);
+      }
+    }
   } else {
     // O on or outside the rim: sin(phi) = k sin(psi), k = R / delta, removes
     // the square-root end singularities; dphi = k cos(psi) / cos(phi) dpsi.
@@ -159,8 +181,8 @@ MomentTable diskMomentTable(const Vec2& centre, double R) {
       const double cphi = std::sqrt(std::max(0.0, 1.0 - sphi * sphi));
       const double S = R * std::cos(psi);
       const double jac = cphi > 0.0 ? k * std::cos(psi) / cphi : 1.0;
-      const double phi = std::asin(sphi);
-      return V8(jac * angular(beta + phi, delta * cphi - S, delta * cphi + S));
+      return V8(jac * angular(cb * cphi - sb * sphi, sb * cphi + cb * sphi, delta * cphi - S,
+                              delta * cphi + S, 2.0 * S));
     };
     sum += internal::adaptiveGauss<8>(f, -kPi / 2.0, 0.0, kRelTol);
     sum += internal::adaptiveGauss<8>(f, 0.0, kPi / 2.0, kRelTol);
@@ -307,12 +329,11 @@ const std::vector<Vec2>& PatchShape::vertices() const {
 }
 
 void PatchShape::finish() {
+  // extent first: refuse what cannot be represented before any integral
   if (kind_ == Kind::Disk) {
-    table_ = diskMomentTable(centre_, radius_);
     max_distance_ = centre_.norm() + radius_;
     diameter_ = 2.0 * radius_;
   } else {
-    table_ = polygonMomentTable(vertices_);
     max_distance_ = 0.0;
     diameter_ = 0.0;
     for (const Vec2& v : vertices_) {
@@ -320,6 +341,16 @@ void PatchShape::finish() {
       for (const Vec2& u : vertices_) diameter_ = std::max(diameter_, (u - v).norm());
     }
   }
+  // a linear pressure about O, p0 + cx x + cy y, loses (distance / size)^2
+  // digits to cancellation on the patch (Eq. (94) has that condition): far
+  // beyond kMaxOffset diameters nothing is left of Pi (found by fuzzing)
+  constexpr double kMaxOffset = 1e4;
+  if (!(max_distance_ <= kMaxOffset * diameter_)) {
+    throw Error("patch too small for its distance from O: diameter " + formatDouble(diameter_) +
+                " m, farthest point " + formatDouble(max_distance_) +
+                " m from O (at most 1e4 diameters); put O near the patch");
+  }
+  table_ = kind_ == Kind::Disk ? diskMomentTable(centre_, radius_) : polygonMomentTable(vertices_);
   const auto& m = table_.m;
   moments_.area = m(MomentTable::kOne, 0);
   moments_.first = Vec2(m(MomentTable::kOne, 1), m(MomentTable::kOne, 2));
@@ -328,6 +359,14 @@ void PatchShape::finish() {
   moments_.yy = m(MomentTable::kY, 2);
   // G is SPD for any patch of positive area (Gram matrix of 1, x, y)
   load_inverse_ = moments_.loadMatrix().inverse();
+  // the moments reach |r|^5 and the inverse 1/|r|^4: sizes beyond ~1e60 m
+  // or below ~1e-75 m over- or underflow double
+  if (!table_.m.allFinite() || !(moments_.area > 0.0) || !load_inverse_.allFinite() ||
+      !std::isfinite(max_distance_) || !std::isfinite(diameter_) || !(defaultRho() > 0.0)) {
+    throw Error("patch size out of range: its area moments over- or underflow double (diameter " +
+                formatDouble(diameter_) + " m, farthest point " + formatDouble(max_distance_) +
+                " m from O)");
+  }
 }
 
 bool PatchShape::contains(const Vec2& point, double tol) const {

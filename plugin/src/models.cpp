@@ -2,15 +2,28 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/models.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace patchspin {
 
 namespace {
 
+// A given rho may differ from Eq. (11) by at most this factor either way:
+// beyond it, max|r| / rho and its square in the exact law leave double's
+// range for patches that are themselves in range (found by fuzzing).
+constexpr double kRhoRange = 1e12;
+
 double resolveRho(const PatchShape& shape, double rho) {
   internal::requireFinite(rho, "length scale rho");
-  return rho > 0.0 ? rho : shape.defaultRho();
+  if (!(rho > 0.0)) return shape.defaultRho();
+  const double natural = shape.defaultRho();
+  if (rho < natural / kRhoRange || rho > natural * kRhoRange) {
+    throw Error("length scale rho = " + internal::formatDouble(rho) +
+                " m is out of range for this patch: Eq. (11) gives " +
+                internal::formatDouble(natural) + " m; allowed 1e-12 to 1e12 times that");
+  }
+  return rho;
 }
 
 void requireMu(double mu) {
@@ -31,6 +44,31 @@ Vec3 unitDirection(const Vec3& w) {
   return (w / m).normalized();
 }
 
+// Largest |p| of a linear pressure on the closed patch.
+double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
+  if (shape.isDisk()) return std::abs(p.at(shape.centre())) + shape.radius() * std::hypot(p.cx, p.cy);
+  double m = 0.0;
+  for (const Vec2& v : shape.vertices()) m = std::max(m, std::abs(p.at(v)));
+  return m;
+}
+
+// Both laws are bounded by mu ∫|p| dA (1 + max|r| / rho) (exact) and
+// mu Pz |Pi| (ellipsoidal); if those overflow, so would Q: refuse up front
+// (found by fuzzing: mu = 1e300 gave Q = inf).
+void requireFiniteScale(double mu, double absPressure, double Pz, const Mat3& Pi, double reach) {
+  const double exactScale = mu * absPressure * (1.0 + reach);
+  const double ellipsoidalScale = mu * Pz * Pi.cwiseAbs().maxCoeff();
+  // the unit law q = Q / (mu Pz) divides by Pz: a denormal Pz overflows it
+  if (!std::isfinite(1.0 / Pz)) {
+    throw Error("normal force out of range: Pz = " + internal::formatDouble(Pz) +
+                " N is below the smallest normal double");
+  }
+  if (!std::isfinite(exactScale) || !std::isfinite(ellipsoidalScale)) {
+    throw Error("friction out of range: mu * pressure overflows double (mu = " +
+                internal::formatDouble(mu) + ", Pz = " + internal::formatDouble(Pz) + " N)");
+  }
+}
+
 }  // namespace
 
 FrictionPatch::FrictionPatch(const PatchShape& shape, const LinearPressure& pressure, double mu,
@@ -46,18 +84,27 @@ FrictionPatch::FrictionPatch(const PatchShape& disk, const HertzPressure& pressu
   requireMu(mu);
   moments_ = piMomentsHertz(disk, pressure);
   Pi_ = ellipsoidalPi(moments_, rho_);
+  requireFiniteScale(mu_, moments_.Pz, moments_.Pz, Pi_, disk.maxDistanceFromOrigin() / rho_);
 }
 
 void FrictionPatch::setPressure(const LinearPressure& pressure) {
   internal::requireFinite(pressure.coefficients(), "pressure (p0, cx, cy)");
-  moments_ = patchspin::piMoments(shape_, pressure);  // throws if Pz <= 0
+  // both may throw: update nothing until both succeed
+  const PiMoments moments = patchspin::piMoments(shape_, pressure);  // throws if Pz <= 0
+  const Mat3 Pi = ellipsoidalPi(moments, rho_);
+  requireFiniteScale(mu_, shape_.area() * maxAbsPressure(shape_, pressure), moments.Pz, Pi,
+                     shape_.maxDistanceFromOrigin() / rho_);
+  moments_ = moments;
   pressure_ = pressure;
   hertz_ = false;
-  Pi_ = ellipsoidalPi(moments_, rho_);
+  Pi_ = Pi;
 }
 
 void FrictionPatch::setMu(double mu) {
   requireMu(mu);
+  const double absPressure =
+      hertz_ ? moments_.Pz : shape_.area() * maxAbsPressure(shape_, pressure_);
+  requireFiniteScale(mu, absPressure, moments_.Pz, Pi_, shape_.maxDistanceFromOrigin() / rho_);
   mu_ = mu;
 }
 
@@ -78,6 +125,19 @@ Vec3 FrictionPatch::unitQ(Model model, const Vec3& w, Mat3* jacobian) const {
   return -(Pi_ * unitDirection(w));
 }
 
+namespace {
+
+// dQ/dw of the degree-0 homogeneous exact law scales as 1 / |w|: for a tiny
+// (e.g. denormal) w it leaves double's range; say so instead of inf / NaN.
+void requireFiniteJacobian(const Mat3* jacobian, const Vec3& w) {
+  if (jacobian && !jacobian->allFinite()) {
+    throw Error("exact law: dQ/dw overflows at |w| = " + internal::formatDouble(safeNorm(w)) +
+                " (it scales as 1/|w|; pass a slip direction of moderate size)");
+  }
+}
+
+}  // namespace
+
 // scale * ∫ p k(w) dA: scale = -mu gives Eq. (16); -1/Pz the unit law.
 Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
                                 double tolerance) const {
@@ -89,6 +149,7 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
         internal::exactDiskHertz(shape_.centre(), shape_.radius(), rho_, u, jacobian, tolerance);
     // homogeneous of degree 0: the Jacobian at w is the one at u over |w|
     if (jacobian) *jacobian *= scale * moments_.Pz * invNorm;
+    requireFiniteJacobian(jacobian, w);
     return scale * moments_.Pz * q;
   }
   internal::ExactBasis basis;
@@ -103,8 +164,12 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
   const Vec3 c = pressure_.coefficients();
   if (jacobian) {
     *jacobian = (scale * invNorm) * (c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2]);
+    requireFiniteJacobian(jacobian, w);
   }
-  return scale * (basis.F * c);
+  // the integral first: Eigen folds scale * (F c) into (scale F) c, which
+  // underflows to 0 for a tiny mu (e.g. 1e-308) even when Q is representable
+  const Vec3 integral = basis.F * c;
+  return scale * integral;
 }
 
 std::optional<Vec3> FrictionPatch::QofSlip(Model model, const Vec3& x_o) const {

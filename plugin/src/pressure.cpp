@@ -31,6 +31,11 @@ LinearPressure LinearPressure::fromLoads(const PatchShape& shape, const PatchLoa
   requireFiniteLoads(loads);
   // Eq. (94): [Pz, Ty, -Tx] = G (p0, cx, cy)
   const Vec3 c = shape.loadMatrixInverse() * loadsToRhs(loads);
+  if (!c.allFinite()) {  // found by fuzzing: loads ~1e308 gave p = -inf
+    throw Error("loads out of range: the pressure carrying (Pz, Tx, Ty) = (" +
+                internal::formatDouble(loads.Pz) + ", " + internal::formatDouble(loads.Tx) + ", " +
+                internal::formatDouble(loads.Ty) + ") overflows double");
+  }
   return LinearPressure{c[0], c[1], c[2]};
 }
 
@@ -44,12 +49,19 @@ PatchLoads loadsOf(const PatchShape& shape, const LinearPressure& p) {
 }
 
 double minPressure(const PatchShape& shape, const LinearPressure& p) {
+  double lowest = std::numeric_limits<double>::infinity();
   if (shape.isDisk()) {
     // min over the disk of an affine function: p(C) - R |grad p|
-    return p.at(shape.centre()) - shape.radius() * std::hypot(p.cx, p.cy);
+    lowest = p.at(shape.centre()) - shape.radius() * std::hypot(p.cx, p.cy);
+  } else {
+    for (const Vec2& v : shape.vertices()) lowest = std::min(lowest, p.at(v));
   }
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const Vec2& v : shape.vertices()) lowest = std::min(lowest, p.at(v));
+  // found by fuzzing: finite coefficients whose pressure overflows gave inf
+  if (!std::isfinite(lowest)) {
+    throw Error("pressure out of range: (p0, cx, cy) = (" + internal::formatDouble(p.p0) + ", " +
+                internal::formatDouble(p.cx) + ", " + internal::formatDouble(p.cy) +
+                ") is not finite on the patch");
+  }
   return lowest;
 }
 
@@ -71,9 +83,32 @@ bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTo
 // Disks: the cone {z0 >= R |(z1, z2)|}, z = (p(C), cx, cy); the boundary is
 // the rays t (1, cos th / R, sin th / R) (in z), and the projection maximises
 // (N u . y)^2 / |N u|^2 over th (sampled, then golden-section refined).
+namespace {
+PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads, double rho);
+}  // namespace
+
 PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loads, double rho) {
   requireFiniteLoads(loads);
   internal::requirePositive(rho, "length scale rho");
+  // as for FrictionPatch: within 1e12 of Eq. (11) either way; beyond, the
+  // metric's torque terms under- or overflow (found by fuzzing: rho = 1e308)
+  const double natural = shape.defaultRho();
+  if (rho < natural * 1e-12 || rho > natural * 1e12) {
+    throw Error("length scale rho = " + internal::formatDouble(rho) +
+                " m is out of range for this patch: Eq. (11) gives " +
+                internal::formatDouble(natural) + " m; allowed 1e-12 to 1e12 times that");
+  }
+  const PatchLoads out = nearestAdmissibleLoadsImpl(shape, loads, rho);
+  // found by fuzzing: a denormal rho made the scaled torques overflow (NaN)
+  if (!out.asVector().allFinite()) {
+    throw Error("nearest admissible loads out of range: torques / rho overflow double (rho = " +
+                internal::formatDouble(rho) + " m)");
+  }
+  return out;
+}
+
+namespace {
+PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads, double rho) {
   if (!(loads.Pz > 0.0)) return PatchLoads{};  // documented: no normal force, no load
   if (isAdmissible(shape, loads, 0.0)) return loads;
   // M maps pressure coefficients to scaled loads
@@ -175,8 +210,10 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   const double t = std::max(0.0, Nu.dot(y) / Nu.squaredNorm());
   return toLoads(t * Nu);
 }
+}  // namespace
 
 PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
+  internal::requireFinite(pressure.coefficients(), "pressure (p0, cx, cy)");
   // every integral of Eq. (36) is m.row(f) (p0, cx, cy) (DESIGN item 1)
   const Eigen::Matrix<double, 6, 1> v = shape.momentTable().m * pressure.coefficients();
   PiMoments out;
@@ -184,6 +221,10 @@ PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
   if (!(out.Pz > 0.0)) {
     throw Error("pressure carries no positive normal force: Pz = " +
                 internal::formatDouble(out.Pz) + " N");
+  }
+  if (!v.allFinite()) {
+    throw Error("pressure out of range: its moments (36) overflow double (Pz = " +
+                internal::formatDouble(out.Pz) + " N)");
   }
   const double inv = 1.0 / out.Pz;
   out.pi_x = v[MomentTable::kX] * inv;
@@ -195,11 +236,18 @@ PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
 }
 
 Mat3 ellipsoidalPi(const PiMoments& m, double rho) {
+  internal::requirePositive(rho, "length scale rho");
   // Eq. (40) without the factor -mu Pz
   Mat3 Pi;
   Pi << 1.0, 0.0, -m.pi_y0,  //
       0.0, 1.0, m.pi_x0,     //
       -m.pi_y / rho, m.pi_x / rho, m.pi_xy / rho;
+  if (!Pi.allFinite()) {
+    throw Error("Pi (40) is not finite: moments (pi_x, pi_y, pi_xy, pi_x0, pi_y0) = (" +
+                internal::formatDouble(m.pi_x) + ", " + internal::formatDouble(m.pi_y) + ", " +
+                internal::formatDouble(m.pi_xy) + ", " + internal::formatDouble(m.pi_x0) + ", " +
+                internal::formatDouble(m.pi_y0) + "), rho = " + internal::formatDouble(rho));
+  }
   return Pi;
 }
 

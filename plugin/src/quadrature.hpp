@@ -49,7 +49,7 @@ template <int N, class F>
 Eigen::Matrix<double, N, 1> adaptiveGaussRecurse(F& f, double a, double b,
                                                  const Eigen::Matrix<double, N, 1>& whole,
                                                  const Eigen::Matrix<double, N, 1>& tol,
-                                                 int depth) {
+                                                 int depth, long& budget) {
   using V = Eigen::Matrix<double, N, 1>;
   const double m = 0.5 * (a + b);
   V left, right, absLeft, absRight;
@@ -60,10 +60,18 @@ Eigen::Matrix<double, N, 1> adaptiveGaussRecurse(F& f, double a, double b,
   // the local |f| (a tighter tolerance could never be met: no endless split)
   const V roundOff = (64.0 * std::numeric_limits<double>::epsilon()) * (absLeft + absRight);
   const V accept = tol.cwiseMax(roundOff);
-  if (depth >= 50 || ((sum - whole).cwiseAbs().array() <= accept.array()).all()) return sum;
+  // a non-finite integrand (overflowing input) would never converge: 2^50
+  // evaluations; stop and let the caller reject the result
+  if (!sum.allFinite()) return sum;
+  // the budget bounds the work when noise in f keeps the rule from converging
+  // (each split may otherwise double the work down to depth 50: 2^50 calls)
+  if (depth >= 50 || --budget <= 0 ||
+      ((sum - whole).cwiseAbs().array() <= accept.array()).all()) {
+    return sum;
+  }
   // halve the tolerance per half so the errors add up to at most tol
-  return adaptiveGaussRecurse<N>(f, a, m, left, 0.5 * tol, depth + 1) +
-         adaptiveGaussRecurse<N>(f, m, b, right, 0.5 * tol, depth + 1);
+  return adaptiveGaussRecurse<N>(f, a, m, left, 0.5 * tol, depth + 1, budget) +
+         adaptiveGaussRecurse<N>(f, m, b, right, 0.5 * tol, depth + 1, budget);
 }
 
 template <int N, class F>
@@ -71,10 +79,14 @@ Eigen::Matrix<double, N, 1> adaptiveGauss(F&& f, double a, double b, double relT
   using V = Eigen::Matrix<double, N, 1>;
   V whole, absWhole;
   gaussOnInterval<N>(f, a, b, whole, absWhole);
+  if (!whole.allFinite() || !absWhole.allFinite()) return whole;  // caller rejects it
   // absolute floor: relTol of the integral of |f| (a component that is zero
   // by symmetry must not demand relative accuracy of zero)
   const V tol = (relTol * absWhole.array().max(absWhole.maxCoeff() * 1e-300)).matrix();
-  return adaptiveGaussRecurse<N>(f, a, b, whole, tol, 0);
+  // at most kMaxSplits subdivisions (30 evaluations each): ~1e6 evaluations
+  constexpr long kMaxSplits = 1L << 15;
+  long budget = kMaxSplits;
+  return adaptiveGaussRecurse<N>(f, a, b, whole, tol, 0, budget);
 }
 
 }  // namespace patchspin::internal

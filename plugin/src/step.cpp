@@ -316,14 +316,23 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
   FrictionBlockResult out;
   if (input.L == 0.0) {  // no normal impulse: no friction
     out.slip = input.b;
-    out.sticking = input.b.squaredNorm() == 0.0;
+    out.sticking = input.b.isZero(0.0);  // not |b|^2 == 0: that underflows for b ~ 1e-160
     return out;
   }
-  if (input.b.squaredNorm() == 0.0) {  // already at rest: stick with zero impulse
+  if (input.b.isZero(0.0)) {  // already at rest: stick with zero impulse
     out.sticking = true;
     return out;
   }
-  if (model == Model::Ellipsoidal) return solveEllipsoidal(patch.Pi(), input);
+  if (model == Model::Ellipsoidal) {
+    // K positive definite, as documented and as the exact path checks
+    // (leading minors of its symmetric part; found by fuzzing: an
+    // indefinite K gave a NaN impulse here)
+    const Mat3 Ksym = 0.5 * (input.K + input.K.transpose());
+    const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
+    if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
+      throw Error("friction block matrix K is not positive definite");
+    return solveEllipsoidal(patch.Pi(), input);
+  }
   return solveExact(patch, input);
 }
 

@@ -1,7 +1,10 @@
 // Patch shapes in the patch frame: origin O (the reference point), x and y in
 // the contact plane, z along the contact normal into the moving body.
 // Disks and convex polygons (rectangles as a helper). O may lie anywhere,
-// inside or outside the patch. Lengths in metres.
+// inside or outside the patch, up to 1e4 patch diameters away (beyond, the
+// linear pressure about O has no digits left); every constructor throws
+// Error for a farther O, and for sizes whose moments over- or underflow
+// double (beyond ~1e60 m or below ~1e-75 m). Lengths in metres.
 #pragma once
 
 #include <patchspin/types.hpp>

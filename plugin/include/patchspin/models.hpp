@@ -28,7 +28,8 @@ struct ExactAccuracy {
 class FrictionPatch {
  public:
   // Linear pressure. rho <= 0 selects Eq. (11) about O. Throws Error for
-  // mu < 0, non-finite input, or a pressure with Pz <= 0.
+  // mu < 0, non-finite input, a pressure with Pz <= 0 or whose moments
+  // overflow, or a rho more than 1e12 times off Eq. (11) either way.
   FrictionPatch(const PatchShape& shape, const LinearPressure& pressure, double mu,
                 double rho = 0.0);
   // Hertz pressure (57) on a disk.

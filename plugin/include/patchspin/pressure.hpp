@@ -34,7 +34,8 @@ struct LinearPressure {
 PatchLoads loadsOf(const PatchShape& shape, const LinearPressure& pressure);
 
 // Smallest pressure on the closed patch (at a vertex for polygons; at
-// p(C) - R |grad p| for a disk of centre C and radius R).
+// p(C) - R |grad p| for a disk of centre C and radius R). Throws Error if
+// the pressure is not finite on the patch.
 double minPressure(const PatchShape& shape, const LinearPressure& pressure);
 
 // True if the linear pressure carrying `loads` is >= 0 everywhere on the patch
@@ -44,8 +45,10 @@ bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTo
 // The admissible load nearest to `loads` in the metric
 //   |(dPz, dTx / rho, dTy / rho)|,
 // i.e. Euclidean once torques are divided by the patch length scale rho [m]
-// (pass shape.defaultRho() when in doubt). Loads with Pz <= 0 map to zero
-// (the contact carries nothing). Admissible loads are returned unchanged.
+// (pass shape.defaultRho() when in doubt; Error for a rho more than 1e12
+// times off Eq. (11) either way, or results that overflow). Loads with
+// Pz <= 0 map to zero (the contact carries nothing). Admissible loads are
+// returned unchanged.
 PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loads, double rho);
 
 // The pressure averages of Eq. (36) for pressure p on the patch (Pz > 0):
