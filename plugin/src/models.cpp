@@ -148,7 +148,7 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
     const Vec3 q =
         internal::exactDiskHertz(shape_.centre(), shape_.radius(), rho_, u, jacobian, tolerance);
     // homogeneous of degree 0: the Jacobian at w is the one at u over |w|
-    if (jacobian) *jacobian *= scale * moments_.Pz * invNorm;
+    if (jacobian) *jacobian = (scale * moments_.Pz) * Mat3(invNorm * *jacobian);
     requireFiniteJacobian(jacobian, w);
     return scale * moments_.Pz * q;
   }
@@ -163,7 +163,10 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
   // ∫ p k dA = F (p0, cx, cy)
   const Vec3 c = pressure_.coefficients();
   if (jacobian) {
-    *jacobian = (scale * invNorm) * (c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2]);
+    // scale (-1/Pz for the unit law) times invNorm may overflow on its own
+    // while the product with the sum is finite (found by fuzzing): sum first
+    const Mat3 sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
+    *jacobian = scale * Mat3(invNorm * sum);
     requireFiniteJacobian(jacobian, w);
   }
   // the integral first: Eigen folds scale * (F c) into (scale F) c, which

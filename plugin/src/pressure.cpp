@@ -104,6 +104,14 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
     throw Error("nearest admissible loads out of range: torques / rho overflow double (rho = " +
                 internal::formatDouble(rho) + " m)");
   }
+  // found by fuzzing: torques ~1e300 times Pz rho swamp the projection's
+  // round-off test and it returned inadmissible loads; say so instead
+  constexpr double kVerifyTol = 1e-6;  // of the mean pressure; normal cases: ~1e-12
+  if (out.Pz > 0.0 && !(out.asVector() == loads.asVector()) && !isAdmissible(shape, out, kVerifyTol)) {
+    throw Error("nearest admissible loads out of range: no admissible projection to double "
+                "precision for (Pz, Tx, Ty) = (" + internal::formatDouble(loads.Pz) + ", " +
+                internal::formatDouble(loads.Tx) + ", " + internal::formatDouble(loads.Ty) + ")");
+  }
   return out;
 }
 
@@ -232,6 +240,13 @@ PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
   out.pi_xy = v[MomentTable::kR] * inv;
   out.pi_x0 = v[MomentTable::kXOverR] * inv;
   out.pi_y0 = v[MomentTable::kYOverR] * inv;
+  // found by fuzzing: a tiny Pz from cancelling large coefficients made the
+  // averages overflow
+  if (!std::isfinite(inv) || !Vec3(out.pi_x, out.pi_y, out.pi_xy).allFinite() ||
+      !std::isfinite(out.pi_x0) || !std::isfinite(out.pi_y0)) {
+    throw Error("pressure out of range: its averages (36) overflow double (Pz = " +
+                internal::formatDouble(out.Pz) + " N)");
+  }
   return out;
 }
 

@@ -277,10 +277,16 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       // of the slip scale (quadratic convergence), so take it without a new
       // evaluation of the law, with q linearised along the sphere:
       //   q(u + du) = q(u) + J du + O(|du|^2)
+      // Only while J du is itself small: with a long lever (max|r| / rho ~
+      // 1e7) J is huge and the linearised q left the limit set (found by
+      // fuzzing: |impulse_xy| = 1.28 L); then the step is taken in full below.
       const Vec3 du = (s + dir).normalized() - s.normalized();
-      q += J * du;
-      ++out.iterations;
-      break;
+      const Vec3 dq = J * du;
+      if (dq.norm() <= std::sqrt(tol) * q.norm()) {
+        q += dq;
+        ++out.iterations;
+        break;
+      }
     }
     // backtracking: sufficient decrease of D, or (at round-off level of D) of |grad D|
     double t = 1.0;
@@ -310,6 +316,16 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
 
 }  // namespace
 
+namespace {
+// Found by fuzzing: K = diag(1e300, 1e-8, 1e-8) (SPD, but its products
+// overflow) gave a NaN impulse; such blocks are out of double's range.
+FrictionBlockResult requireFiniteResult(const FrictionBlockResult& r) {
+  if (!r.impulse.allFinite() || !r.slip.allFinite())
+    throw Error("friction block out of range: the impulse overflows double (K, b or L too large)");
+  return r;
+}
+}  // namespace
+
 FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
                                        const FrictionBlockInput& input) {
   validate(input);
@@ -331,9 +347,9 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
     const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
     if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
       throw Error("friction block matrix K is not positive definite");
-    return solveEllipsoidal(patch.Pi(), input);
+    return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
   }
-  return solveExact(patch, input);
+  return requireFiniteResult(solveExact(patch, input));
 }
 
 }  // namespace patchspin
