@@ -404,10 +404,19 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       return rb && rb->getInvMass() > 0 ? im.optionsOf(o) : nullptr;
     };
     const PatchOptions* opt0 = dynamicOptions(o0);
-    const PatchOptions* opt1 = opt0 ? nullptr : dynamicOptions(o1);
+    const PatchOptions* opt1 = dynamicOptions(o1);
     if ((!opt0 && !opt1) || m->getNumContacts() == 0) {
       convertContact(m, info);
       continue;
+    }
+    // both opted in (a stack): the patch is the upper body's, the one the
+    // normal enters against its gravity (findPatchReport(upper) then finds
+    // it); without gravity, body0's. Manifold normal: from body1 to body0.
+    if (opt0 && opt1) {
+      const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
+      const btVector3 g = btRigidBody::upcast(o0)->getGravity();
+      if (nInto0.dot(g) > 0) opt0 = nullptr;  // body0 is underneath
+      else opt1 = nullptr;
     }
     const bool aIs0 = opt0 != nullptr;
     const PatchOptions& opt = aIs0 ? *opt0 : *opt1;

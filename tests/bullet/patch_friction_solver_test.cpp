@@ -318,6 +318,41 @@ TEST(PatchFrictionSolver, TippedBoxFallsBackAndThePatchReturns) {
   EXPECT_LT(box->getAngularVelocity().length(), 1e-2);
 }
 
+// Two opted-in blocks stacked: the patch between them is the upper block's
+// (findPatchReport(upper) finds it, standing on the lower block), whichever
+// order Bullet lists the pair in; the lower block's own patch is on the
+// ground.
+TEST(PatchFrictionSolver, StackedOptedInBlocksReportTheUpperPatch) {
+  for (int order = 0; order < 2; ++order) {
+    Scene scene(kG);
+    btRigidBody* ground = scene.addGroundPlane(1.0);
+    btRigidBody* lower = nullptr;
+    btRigidBody* upper = nullptr;
+    // creation order changes Bullet's body0/body1 in the pair's manifold
+    if (order == 0) {
+      lower = scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 2.0, btVector3(0, 0, 0.05f), 0.5);
+      upper = scene.addBox(btVector3(0.05f, 0.05f, 0.05f), 1.0, btVector3(0, 0, 0.15f), 0.5);
+    } else {
+      upper = scene.addBox(btVector3(0.05f, 0.05f, 0.05f), 1.0, btVector3(0, 0, 0.15f), 0.5);
+      lower = scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 2.0, btVector3(0, 0, 0.05f), 0.5);
+    }
+    scene.solver().enablePatchFriction(lower, {Model::Exact});
+    scene.solver().enablePatchFriction(upper, {Model::Exact});
+    for (int k = 0; k < 48; ++k) scene.step(kDt);
+    const PatchReport* top = scene.solver().findPatchReport(upper);
+    const PatchReport* bottom = scene.solver().findPatchReport(lower);
+    ASSERT_NE(top, nullptr) << "order " << order;
+    ASSERT_NE(bottom, nullptr) << "order " << order;
+    EXPECT_EQ(top->other, lower) << "order " << order;
+    EXPECT_EQ(bottom->other, ground) << "order " << order;
+    // the upper block's weight on the lower block, the pair's on the ground;
+    // 1e-3 relative: a stack at rest carries its weights up to the float
+    // round-off and the residual of Bullet's 10 Gauss-Seidel iterations
+    EXPECT_NEAR(top->loads.Pz, 1.0 * kG, 1e-3 * kG) << "order " << order;
+    EXPECT_NEAR(bottom->loads.Pz, 3.0 * kG, 1e-3 * 3.0 * kG) << "order " << order;
+  }
+}
+
 // ---- mixed scene ---------------------------------------------------------------------
 // Patch coins and boxes, ordinary spheres and a stack of three opted-in
 // blocks, 3 s: nothing explodes (finite, speeds below the largest initial

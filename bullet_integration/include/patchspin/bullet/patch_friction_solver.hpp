@@ -115,8 +115,11 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
 
   // Opts `body` in (or replaces its options). Throws Error for a null body,
   // mu < 0, rho <= 0 or a non-positive/non-finite flatness tolerance.
-  // Only dynamic bodies get patches; a static or kinematic body opted in is
-  // ignored (what stands on it decides). The options are kept under the
+  // Only dynamic bodies (inverse mass > 0) get patches; a static or
+  // kinematic body opted in is ignored (what stands on it decides), and so is
+  // a body with negative mass, which Bullet accepts: it keeps stock Bullet's
+  // friction. Where two opted-in bodies touch, the patch is the upper one's
+  // (the normal enters it against its gravity). The options are kept under the
   // body's address until disablePatchFriction: call it before deleting an
   // opted-in body (as for a btTypedConstraint on it), or a new body that
   // happens to get the same address inherits them. Removing a body from the
