@@ -1,0 +1,240 @@
+// Shared pieces of the fuzz targets: a tiny byte reader (no FuzzedDataProvider,
+// so gcc compiles the targets for the corpus replay), shape construction from
+// the input, a failure reporter and bounds on the pressure field.
+//
+// Contract of every target: each input either makes the core throw
+// patchspin::Error with a non-empty message, or gives finite output within the
+// bounds the law implies. Anything else (NaN, Inf, a bound broken, another
+// exception type) prints what happened and aborts.
+#pragma once
+
+#include <patchspin/geometry.hpp>
+#include <patchspin/pressure.hpp>
+#include <patchspin/types.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace patchspin::fuzz {
+
+// What the current input decoded to, printed when a check fails.
+inline std::string& context() {
+  static std::string text;
+  return text;
+}
+
+// Appends to the context (printf-style).
+inline void note(const char* format, ...) {
+  char buffer[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof buffer, format, args);
+  va_end(args);
+  context() += buffer;
+  context() += '\n';
+  static const bool verbose = std::getenv("PATCHSPIN_FUZZ_VERBOSE") != nullptr;
+  if (verbose) std::fprintf(stderr, "%s\n", buffer);
+}
+
+// Prints the broken check and aborts (libFuzzer records the input).
+[[noreturn]] inline void fail(const char* format, ...) {
+  std::fprintf(stderr, "input:\n%s", context().c_str());
+  std::fputs("patchspin fuzz check failed: ", stderr);
+  va_list args;
+  va_start(args, format);
+  std::vfprintf(stderr, format, args);
+  va_end(args);
+  std::fputc('\n', stderr);
+  std::abort();
+}
+
+inline void check(bool ok, const char* what) {
+  if (!ok) fail("%s", what);
+}
+
+inline void checkFinite(double v, const char* what) {
+  if (!std::isfinite(v)) fail("%s is not finite: %.17g", what, v);
+}
+
+template <typename Derived>
+void checkFinite(const Eigen::MatrixBase<Derived>& m, const char* what) {
+  const auto value = m.eval();
+  if (!value.allFinite()) fail("%s is not finite (first entry %.17g)", what, value(0, 0));
+}
+
+// An Error must say what is wrong.
+inline void checkErrorMessage(const Error& e) {
+  if (std::strlen(e.what()) == 0) fail("patchspin::Error with an empty message");
+}
+
+// Reads the fuzzer's bytes front to back; past the end every read gives 0.
+class ByteReader {
+ public:
+  ByteReader(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+
+  bool empty() const { return pos_ >= size_; }
+
+  uint8_t byte() { return pos_ < size_ ? data_[pos_++] : 0; }
+
+  // A double, in one of three encodings chosen by a tag byte:
+  //   tag <  64: the next 8 bytes taken raw (NaN, Inf, denormals, -0, huge);
+  //   tag < 128: a special value (zero, -0, NaN, +-Inf, extremes);
+  //   else     : a plain value m 2^e, m a 16-bit integer, e in [-44, 19],
+  //              so that ordinary magnitudes are easy to reach.
+  double number() {
+    const uint8_t tag = byte();
+    if (tag < 64) {
+      uint8_t raw[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+      for (uint8_t& b : raw) b = byte();
+      double value;
+      std::memcpy(&value, raw, sizeof value);
+      return value;
+    }
+    if (tag < 128) {
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      const double specials[16] = {0.0,
+                                   -0.0,
+                                   std::numeric_limits<double>::quiet_NaN(),
+                                   kInf,
+                                   -kInf,
+                                   std::numeric_limits<double>::denorm_min(),
+                                   std::numeric_limits<double>::min(),
+                                   std::numeric_limits<double>::max(),
+                                   -std::numeric_limits<double>::max(),
+                                   std::numeric_limits<double>::epsilon(),
+                                   1e-300,
+                                   1e300,
+                                   1.0,
+                                   -1.0,
+                                   0.5,
+                                   1e-8};
+      return specials[tag % 16];
+    }
+    const int16_t mantissa = static_cast<int16_t>(static_cast<uint16_t>(byte()) |
+                                                  static_cast<uint16_t>(byte()) << 8);
+    return std::ldexp(static_cast<double>(mantissa), (tag & 63) - 44);
+  }
+
+  Vec2 vec2() {
+    const double x = number();
+    return Vec2(x, number());
+  }
+  Vec3 vec3() {
+    const double x = number(), y = number();
+    return Vec3(x, y, number());
+  }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+  size_t pos_ = 0;
+};
+
+// Convex hull (counter-clockwise, collinear points dropped) of finite points,
+// Andrew's monotone chain; fewer than 3 points when they are collinear.
+inline std::vector<Vec2> convexHull(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  auto turn = [](const Vec2& o, const Vec2& a, const Vec2& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Vec2> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && turn(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  return hull;
+}
+
+// Largest number of polygon vertices read from one input.
+constexpr int kMaxVertices = 12;
+
+// A patch shape from the input: a disk, a rectangle, a polygon with the
+// vertices as given (often invalid: the constructor must say why), the convex
+// hull of given points (valid unless degenerate), or a regular polygon;
+// optionally moved to another frame. Throws Error for invalid shapes.
+inline PatchShape takeShape(ByteReader& in) {
+  const uint8_t kind = in.byte();
+  PatchShape shape = PatchShape::disk(1.0);
+  switch (kind % 5) {
+    case 0: {
+      const double R = in.number();
+      shape = PatchShape::disk(R, in.vec2());
+      break;
+    }
+    case 1: {
+      const double lx = in.number(), ly = in.number();
+      const Vec2 c = in.vec2();
+      shape = PatchShape::rectangle(lx, ly, c, in.number());
+      break;
+    }
+    case 2:
+    case 3: {
+      const int n = 3 + in.byte() % (kMaxVertices - 2);
+      std::vector<Vec2> v;
+      bool finite = true;
+      for (int i = 0; i < n; ++i) {
+        v.push_back(in.vec2());
+        finite = finite && v.back().allFinite();
+      }
+      if (kind % 5 == 3 && finite) {
+        const std::vector<Vec2> hull = convexHull(v);
+        if (hull.size() >= 3) v = hull;
+      }
+      shape = PatchShape::polygon(v);
+      break;
+    }
+    default: {
+      const int n = static_cast<int>(in.byte() % 40) - 2;
+      const double radius = in.number();
+      const Vec2 c = in.vec2();
+      shape = PatchShape::regularPolygon(n, radius, c, in.number());
+      break;
+    }
+  }
+  if (kind & 0x80) {
+    const Vec2 origin = in.vec2();
+    shape = shape.inFrame(origin, in.number());
+  }
+  if (shape.isDisk()) {
+    note("disk R = %.17g, centre (%.17g, %.17g)", shape.radius(), shape.centre().x(), shape.centre().y());
+  } else {
+    note("polygon with %zu vertices:", shape.vertices().size());
+    for (const Vec2& v : shape.vertices()) note("  (%.17g, %.17g)", v.x(), v.y());
+  }
+  return shape;
+}
+
+// Largest |p| of a linear pressure over the closed patch (at a vertex, or at
+// p(C) +- R |grad p| on a disk).
+inline double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
+  if (shape.isDisk()) {
+    return std::abs(p.at(shape.centre())) + shape.radius() * std::hypot(p.cx, p.cy);
+  }
+  double m = 0.0;
+  for (const Vec2& v : shape.vertices()) m = std::max(m, std::abs(p.at(v)));
+  return m;
+}
+
+// Upper bound of ∫|p| dA: Pz when p >= 0 on the patch, A max|p| otherwise.
+inline double absPressureIntegral(const PatchShape& shape, const LinearPressure& p, double Pz) {
+  return minPressure(shape, p) >= 0.0 ? Pz : shape.area() * maxAbsPressure(shape, p);
+}
+
+}  // namespace patchspin::fuzz

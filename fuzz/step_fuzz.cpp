@@ -1,0 +1,171 @@
+// Fuzz target: the implicit friction block solveFrictionBlock (step.hpp) of
+// both laws, with any patch, free slip b, matrix K, bound L and warm start.
+//
+// Contract: a patchspin::Error (non-finite input, L < 0, K not positive
+// definite), or finite impulse and slip with
+//  * slip = b + K impulse, and slip = 0 when sticking;
+//  * the impulse inside the limit set L E:
+//      ellipsoidal |impulse| <= L ||Pi||_F,
+//      exact       |impulse_xy| <= L ∫|p|/Pz, |impulse_z| <= L ∫|p| r_max / (Pz rho);
+//  * when slipping, the law itself: impulse = L q(slip / |slip|);
+//  * exact law (maximum dissipation, K SPD): the kinetic energy of the slip
+//    does not grow, s^T K^-1 s <= b^T K^-1 b.
+#include "fuzz_common.hpp"
+
+#include <patchspin/step.hpp>
+
+#include <Eigen/Dense>
+
+namespace {
+
+using namespace patchspin;
+using namespace patchspin::fuzz;
+
+// Relative slack of the set bounds and of slip = b + K impulse: round-off of
+// a few 3x3 products.
+constexpr double kBoundSlack = 1e-9;
+// impulse = L q(s^): the solver stops at 1e-14 of the slip scale, so the
+// direction of s is known to ~1e-14 scale / |s|; checked where that is below
+// kLawSlack / 100 and to kLawSlack (relative to L |q|-scale).
+constexpr double kLawSlack = 1e-6;
+// Energy: the solver's round-off (1e-14 of the scale) squared into energy.
+constexpr double kEnergySlack = 1e-9;
+
+Mat3 takeK(ByteReader& in) {
+  const uint8_t mode = in.byte();
+  Mat3 K;
+  switch (mode % 3) {
+    case 0:  // raw
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) K(i, j) = in.number();
+      return K;
+    case 1: {  // A A^T + d I: symmetric positive (semi)definite
+      Mat3 A;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) A(i, j) = in.number();
+      return A * A.transpose() + std::abs(in.number()) * Mat3::Identity();
+    }
+    default:  // diagonal
+      K.setZero();
+      K.diagonal() = in.vec3();
+      return K;
+  }
+}
+
+bool isSpd(const Mat3& K) {
+  if (!K.allFinite() || !K.isApprox(K.transpose(), 0.0)) return false;
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(K);
+  return es.eigenvalues().minCoeff() > 0.0;
+}
+
+void run(ByteReader& in) {
+  const PatchShape shape = takeShape(in);
+  const uint8_t mode = in.byte();
+  const double mu = in.number(), rho = in.number();
+  const double Pz = in.number(), Tx = in.number(), Ty = in.number();
+  PatchLoads loads{Pz, Tx, Ty};
+  if (mode & 2) loads = nearestAdmissibleLoads(shape, loads, shape.defaultRho());
+  const FrictionPatch patch(shape, LinearPressure::fromLoads(shape, loads), mu, rho);
+  const Model model = mode & 1 ? Model::Exact : Model::Ellipsoidal;
+
+  FrictionBlockInput input;
+  input.b = in.vec3();
+  input.L = in.number();
+  input.K = takeK(in);
+  if (mode & 4) input.warmSlip = in.vec3();
+  const bool finite = input.b.allFinite() && std::isfinite(input.L) && input.K.allFinite() &&
+                      input.warmSlip.allFinite();
+
+  note("mu %.17g, rho %.17g, loads (%.17g %.17g %.17g)", mu, rho, loads.Pz, loads.Tx, loads.Ty);
+  note("%s, b (%.17g %.17g %.17g), L %.17g, warm (%.17g %.17g %.17g)", toString(model), input.b.x(),
+       input.b.y(), input.b.z(), input.L, input.warmSlip.x(), input.warmSlip.y(), input.warmSlip.z());
+  for (int i = 0; i < 3; ++i) note("K (%.17g %.17g %.17g)", input.K(i, 0), input.K(i, 1), input.K(i, 2));
+  FrictionBlockResult out;
+  try {
+    out = solveFrictionBlock(patch, model, input);
+  } catch (const Error& e) {
+    checkErrorMessage(e);
+    // refusing is right for bad input, and for K not positive definite
+    // (and for magnitudes whose products overflow: kRange)
+    constexpr double kRange = 1e100;
+    const double size = input.b.stableNorm() + input.L * input.K.stableNorm() + input.warmSlip.stableNorm();
+    const bool moderate = size < kRange && input.K.stableNorm() < kRange &&
+                          input.K.inverse().stableNorm() < kRange && input.L < kRange;
+    if (finite && moderate && input.L >= 0.0 && isSpd(input.K)) {
+      fail("valid block refused (%s): %s", toString(model), e.what());
+    }
+    return;
+  }
+  if (!finite) fail("non-finite block input accepted");
+  if (input.L < 0.0) fail("L = %.17g accepted", input.L);
+  checkFinite(out.impulse, "block impulse");
+  checkFinite(out.slip, "block slip");
+  note("impulse (%.17g %.17g %.17g), slip (%.17g %.17g %.17g), sticking %d", out.impulse.x(),
+       out.impulse.y(), out.impulse.z(), out.slip.x(), out.slip.y(), out.slip.z(), int(out.sticking));
+  if (out.sticking && !out.slip.isZero(0.0)) fail("sticking with nonzero slip");
+
+  // slip = b + K impulse
+  const double slipScale = input.b.stableNorm() + input.K.stableNorm() * out.impulse.stableNorm();
+  if (Vec3(out.slip - input.b - input.K * out.impulse).stableNorm() > kBoundSlack * slipScale) {
+    fail("slip != b + K impulse");
+  }
+  if (input.L == 0.0) {
+    if (!out.impulse.isZero(0.0)) fail("impulse without normal impulse");
+    return;
+  }
+
+  // the limit set
+  const double L = input.L;
+  const double absRatio = absPressureIntegral(shape, patch.pressure(), patch.Pz()) / patch.Pz();
+  const double rmax = shape.maxDistanceFromOrigin();
+  const double unitScale = model == Model::Ellipsoidal ? patch.Pi().stableNorm()
+                                                       : absRatio * (1.0 + rmax / patch.rho());
+  if (model == Model::Ellipsoidal) {
+    if (out.impulse.stableNorm() > L * unitScale * (1.0 + kBoundSlack)) {
+      fail("ellipsoidal impulse %.17g outside L |Pi| = %.17g", out.impulse.stableNorm(), L * unitScale);
+    }
+  } else {
+    if (std::hypot(out.impulse.x(), out.impulse.y()) > L * absRatio * (1.0 + kBoundSlack) + kBoundSlack * L * unitScale) {
+      fail("exact impulse force %.17g outside L ∫|p|/Pz = %.17g",
+           std::hypot(out.impulse.x(), out.impulse.y()), L * absRatio);
+    }
+    if (std::abs(out.impulse.z()) > L * absRatio * rmax / patch.rho() * (1.0 + kBoundSlack) + kBoundSlack * L * unitScale) {
+      fail("exact impulse torque %.17g outside its bound", std::abs(out.impulse.z()));
+    }
+  }
+
+  // slipping: the impulse is the law at the slip direction
+  const double s = out.slip.stableNorm();
+  const double scale = input.b.stableNorm() + L * input.K.stableNorm() * unitScale;
+  if (!out.sticking && s > 1e4 * kLawSlack * scale && isSpd(input.K)) {
+    const Vec3 q = patch.unitQ(model, out.slip);
+    if ((out.impulse - L * q).stableNorm() > kLawSlack * L * unitScale) {
+      fail("%s slip: impulse != L q(s^), error %.3g of %.3g", toString(model),
+           (out.impulse - L * q).stableNorm(), L * unitScale);
+    }
+  }
+
+  // maximum dissipation: the slip's kinetic energy does not grow
+  if (model == Model::Exact && isSpd(input.K)) {
+    const Eigen::LLT<Mat3> llt(input.K);
+    const double e0 = input.b.dot(llt.solve(input.b)), e1 = out.slip.dot(llt.solve(out.slip));
+    if (std::isfinite(e0) && e1 > e0 * (1.0 + kEnergySlack) + kEnergySlack * scale * scale / input.K.stableNorm()) {
+      fail("exact block gains energy: %.17g -> %.17g", e0, e1);
+    }
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  ByteReader in(data, size);
+  context().clear();
+  try {
+    run(in);
+  } catch (const Error& e) {
+    checkErrorMessage(e);
+  } catch (const std::exception& e) {
+    fail("exception other than patchspin::Error: %s", e.what());
+  }
+  return 0;
+}

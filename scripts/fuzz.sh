@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# patchspin fuzzing (issue 6): configure a clang build with the libFuzzer
+# targets, build them, run each for N inputs and merge new inputs into the
+# kept corpus fuzz/corpus/<name>/ (replayed by `ctest -L fuzz` in every build).
+#
+#   bash scripts/fuzz.sh [RUNS] [TARGET...]
+#     RUNS     inputs per target (default 1000000)
+#     TARGET   friction_q pressure pi step limits (default: all)
+# Environment: FUZZ_BUILD_DIR (default ./build-fuzz), FUZZ_MAX_TIME (seconds
+# per target, a guard; default 14400), FUZZ_OUT (work dir, default
+# $FUZZ_BUILD_DIR/fuzz-out: crash-* files and logs land there).
+# Installs clang and libclang-rt-14-dev (libFuzzer) with apt-get if missing.
+set -euo pipefail
+
+runs=${1:-1000000}
+shift || true
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${FUZZ_BUILD_DIR:-$root/build-fuzz}
+max_time=${FUZZ_MAX_TIME:-14400}
+out=${FUZZ_OUT:-$build/fuzz-out}
+targets=("$@")
+if ((${#targets[@]} == 0)); then
+  targets=()
+  for f in "$root"/fuzz/*_fuzz.cpp; do
+    n=$(basename "$f" .cpp)
+    targets+=("${n%_fuzz}")
+  done
+fi
+
+# Debian packages: the compiler and libFuzzer's runtime
+packages=(clang libclang-rt-14-dev cmake make libeigen3-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "== installing missing Debian packages: ${missing[*]}"
+  SUDO=
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null 2>&1 || { echo "error: run as root or: apt-get install ${missing[*]}" >&2; exit 1; }
+    SUDO=sudo
+  fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+echo "== configuring $build (clang, PATCHSPIN_BUILD_FUZZ=ON)"
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPATCHSPIN_BUILD_FUZZ=ON \
+  -DPATCHSPIN_BUILD_BULLET=OFF -DPATCHSPIN_BUILD_RENDER=OFF -DPATCHSPIN_BUILD_TESTS=OFF \
+  -DPATCHSPIN_BUILD_TOOLS=OFF -DPATCHSPIN_BUILD_BENCH=OFF >/dev/null
+echo "== building ${targets[*]}"
+cmake --build "$build" -j"${JOBS:-2}" --target $(printf '%s_fuzz ' "${targets[@]}")
+
+mkdir -p "$out"
+status=0
+for t in "${targets[@]}"; do
+  corpus=$root/fuzz/corpus/$t
+  work=$out/$t
+  mkdir -p "$corpus" "$work"
+  echo "== $t: $runs inputs (at most ${max_time}s), corpus $corpus"
+  # fuzz in a scratch copy of the corpus, then merge only what adds coverage
+  set +e
+  "$build/fuzz/${t}_fuzz" -runs="$runs" -max_total_time="$max_time" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=512 -artifact_prefix="$out/$t-" -print_final_stats=1 "$work" "$corpus" >"$out/$t.log" 2>&1
+  rc=$?
+  set -e
+  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec" "$out/$t.log" | sed "s/^/   /"
+  if ((rc != 0)); then
+    echo "   FAILED (exit $rc): see $out/$t.log and $out/$t-crash-*" >&2
+    grep -m1 "patchspin fuzz check failed\|ERROR:" "$out/$t.log" >&2 || true
+    status=1
+  fi
+  "$build/fuzz/${t}_fuzz" -merge=1 -max_len=512 "$corpus" "$work" >"$out/$t.merge.log" 2>&1 || true
+  echo "   corpus: $(ls "$corpus" | wc -l) files"
+done
+exit $status

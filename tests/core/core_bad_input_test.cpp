@@ -1,0 +1,320 @@
+// Bad input through the core's public API (issue 6) and regression tests of
+// the bugs the fuzz targets (fuzz/) found: each bad input gives a
+// patchspin::Error whose message names the problem, or a documented
+// fallback whose value is checked; never NaN. Cases already covered by
+// geometry_test, models_test, pressure_test and step_test are not repeated.
+#include <patchspin/models.hpp>
+#include <patchspin/step.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace patchspin {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The call throws patchspin::Error and its message contains one of `words`
+// (case-insensitive).
+::testing::AssertionResult throwsNaming(const std::function<void()>& call,
+                                        const std::vector<std::string>& words) {
+  auto lower = [](std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+  };
+  try {
+    call();
+  } catch (const Error& e) {
+    const std::string msg = lower(e.what());
+    for (const std::string& w : words)
+      if (msg.find(lower(w)) != std::string::npos) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "message does not name the problem: " << e.what();
+  } catch (const std::exception& e) {
+    return ::testing::AssertionFailure() << "threw a non-Error exception: " << e.what();
+  }
+  return ::testing::AssertionFailure() << "did not throw";
+}
+
+// Gauss hypergeometric 2F1(a, b; c; z) by its series (|z| <= 1, c - a - b > 0).
+double hypergeometric(double a, double b, double c, double z) {
+  double term = 1.0, sum = 1.0;
+  for (int n = 0; n < 200000; ++n) {
+    term *= (a + n) * (b + n) / ((c + n) * (n + 1.0)) * z;
+    sum += term;
+    if (std::abs(term) < 1e-17 * std::abs(sum)) break;
+  }
+  return sum;
+}
+
+// ---- regressions: the disk moment table (found by fuzzing) --------------------------
+
+// O just inside the rim used to hang PatchShape::disk (2^50 quadrature
+// splits: rounding noise of R^2 - delta^2 sin^2 and of the node positions
+// near phi = +-pi/2 never met the tolerance). Checked against the mean
+// distance of a unit disk from a point at distance delta from its centre,
+//   ∫ |P - O| dA = (2 pi / 3) 2F1(-1/2, -3/2; 1; delta^2)   (delta <= 1),
+// a series independent of the quadrature (see exact_disk.cpp's header).
+TEST(CoreBadInput, DiskWithOriginNearTheRim) {
+  // the series' truncation at delta -> 1 (terms ~ n^-4) and the table's
+  // 1e-15 quadrature tolerance: 1e-11 relative
+  constexpr double kSeriesTol = 1e-11;
+  for (double gap : {1e-3, 1e-4, 1e-6, 1e-9, 1e-12}) {
+    for (double angle : {0.0, 1.0, kPi / 2.0}) {
+      const double delta = 1.0 - gap;
+      const PatchShape disk = PatchShape::disk(1.0, delta * Vec2(std::cos(angle), std::sin(angle)));
+      const double expected = 2.0 * kPi / 3.0 * hypergeometric(-0.5, -1.5, 1.0, delta * delta);
+      EXPECT_NEAR(disk.momentTable().m(MomentTable::kR, 0), expected, kSeriesTol * expected)
+          << "gap " << gap << " angle " << angle;
+    }
+  }
+}
+
+// A small disk far from O used to hang (s2^n - s1^n lost delta/R digits)
+// and, on the y axis, to lose digits in cos(beta + phi). Far away,
+//   ∫ r dA = A (delta + R^2 / (8 delta)),  ∫ (x, y)/r dA = A (1 - R^2 / (8 delta^2)) C/delta,
+// up to O((R / delta)^4) relative (Taylor expansion of |C + q| over the disk).
+TEST(CoreBadInput, SmallDiskFarFromOrigin) {
+  for (double ratio : {3e3, 9e3}) {
+    for (const Vec2& dir : {Vec2(1.0, 0.0), Vec2(0.0, -1.0), Vec2(0.6, 0.8)}) {
+      const double R = 1e-3, delta = ratio * R;
+      const PatchShape disk = PatchShape::disk(R, delta * dir);
+      const double A = disk.area();
+      // the expansion's next term, (R / delta)^4, plus the table's 1e-14
+      const double tol = std::pow(R / delta, 4) + 1e-13;
+      const auto& m = disk.momentTable().m;
+      EXPECT_NEAR(m(MomentTable::kR, 0) / A, delta + R * R / (8.0 * delta), tol * delta);
+      const double radial = 1.0 - R * R / (8.0 * delta * delta);
+      EXPECT_NEAR(m(MomentTable::kXOverR, 0) / A, radial * dir.x(), tol);
+      EXPECT_NEAR(m(MomentTable::kYOverR, 0) / A, radial * dir.y(), tol);
+    }
+  }
+}
+
+// Shapes whose moments leave double's range, or so far from O that the
+// pressure about O has no digits left (found by fuzzing: the former hung or
+// gave NaN, the latter Pi of the wrong sign).
+TEST(CoreBadInput, ShapesOutOfRange) {
+  EXPECT_TRUE(throwsNaming([] { PatchShape::disk(1e200); }, {"out of range"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::disk(1e-100); }, {"out of range"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::rectangle(1e100, 1e100); }, {"out of range"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::disk(1e-8, Vec2(0.5, 0.5)); }, {"distance from o"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::regularPolygon(23, 1e-8, Vec2(0.5, 0.5)); },
+                           {"distance from o"}));
+  // huge coordinates that the polygon checks see as degenerate
+  EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {1e300, 0}, {0, 1e300}}); },
+                           {"area", "out of range"}));
+  // 1e4 diameters is still fine, and finite
+  const PatchShape far = PatchShape::disk(1.0, Vec2(0.9e4 * 2.0, 0.0));
+  EXPECT_TRUE(far.momentTable().m.allFinite());
+}
+
+// ---- friction patch ----------------------------------------------------------------
+
+TEST(CoreBadInput, FrictionPatchParameters) {
+  const PatchShape disk = PatchShape::disk(0.05);
+  const LinearPressure p = LinearPressure::uniform(disk, 10.0);
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, -0.3); }, {"mu"}));
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, kNan); }, {"mu"}));
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, kInf); }, {"mu"}));
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, 0.3, kInf); }, {"rho"}));
+  // rho more than 1e12 off Eq. (11) (found by fuzzing: rho = 1e-300 gave NaN)
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, 0.3, 1e-300); }, {"rho"}));
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, 0.3, 1e20); }, {"rho"}));
+  // documented fallback: rho <= 0 selects Eq. (11)
+  EXPECT_EQ(FrictionPatch(disk, p, 0.3, -1.0).rho(), disk.defaultRho());
+  EXPECT_EQ(FrictionPatch(disk, p, 0.3, 0.0).rho(), disk.defaultRho());
+  // mu Pz overflowing (found by fuzzing: mu = 1e300 gave Q = inf)
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, p, 1e308); }, {"out of range"}));
+  FrictionPatch patch(disk, p, 0.3);
+  EXPECT_TRUE(throwsNaming([&] { patch.setMu(1e308); }, {"out of range"}));
+  EXPECT_EQ(patch.mu(), 0.3);  // a refused update changes nothing
+  // a denormal normal force (found by fuzzing: the unit law divided by it)
+  EXPECT_TRUE(throwsNaming([&] { FrictionPatch(disk, HertzPressure{5e-324}, 0.3); }, {"pz"}));
+  // non-finite or non-positive loads
+  EXPECT_TRUE(throwsNaming([&] { patch.setLoads({kInf, 0.0, 0.0}); }, {"pz"}));
+  EXPECT_TRUE(throwsNaming([&] { patch.setLoads({-1.0, 0.0, 0.0}); }, {"pz", "normal force"}));
+  EXPECT_TRUE(throwsNaming([&] { patch.setLoads({0.0, 0.0, 0.0}); }, {"pz", "normal force"}));
+  EXPECT_TRUE(throwsNaming([&] { patch.setLoads({1.0, kNan, 0.0}); }, {"tx"}));
+}
+
+TEST(CoreBadInput, SlipDirections) {
+  const PatchShape square = PatchShape::rectangle(0.1, 0.1);
+  const FrictionPatch patch(square, LinearPressure::fromLoads(square, {10.0, 0.05, -0.02}), 0.4);
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    EXPECT_TRUE(throwsNaming([&] { patch.Q(model, Vec3(kNan, 0.0, 0.0)); }, {"w"}));
+    EXPECT_TRUE(throwsNaming([&] { patch.Q(model, Vec3(0.0, kInf, 0.0)); }, {"w"}));
+    EXPECT_TRUE(throwsNaming([&] { patch.Q(model, Vec3::Zero()); }, {"w"}));
+    // zero slip: the documented fallback is "sticking", std::nullopt
+    EXPECT_FALSE(patch.QofSlip(model, Vec3::Zero()).has_value());
+    EXPECT_FALSE(patch.QofSlip(model, -Vec3::Zero()).has_value());
+  }
+  // a denormal w: Q depends on the direction only, so it is that of w / |w|;
+  // its Jacobian (~1/|w|) does not fit a double: Error, not inf / NaN
+  const Vec3 tiny(5e-324, 0.0, 0.0);
+  EXPECT_EQ(patch.exactQ(tiny), patch.exactQ(Vec3::UnitX()));
+  EXPECT_EQ(patch.ellipsoidalQ(tiny), patch.ellipsoidalQ(Vec3::UnitX()));
+  Mat3 J;
+  EXPECT_TRUE(throwsNaming([&] { patch.exactQ(tiny, &J); }, {"dq/dw"}));
+  // an infinite accuracy tolerance (the polygon path accepted it)
+  EXPECT_TRUE(throwsNaming([&] { patch.exactQ(Vec3::UnitX(), nullptr, ExactAccuracy{kInf}); },
+                           {"tolerance"}));
+  EXPECT_TRUE(throwsNaming([&] { patch.exactQ(Vec3::UnitX(), nullptr, ExactAccuracy{-1.0}); },
+                           {"tolerance"}));
+}
+
+// A tiny mu: Q = mu * (Q at mu = 1) must hold while Q is a normal double.
+// (found by fuzzing: Eigen folded -mu (F c) into (-mu F) c, which underflowed
+// to a denormal or 0 first).
+TEST(CoreBadInput, TinyMuDoesNotUnderflowEarly) {
+  const PatchShape square = PatchShape::rectangle(1e-5, 1e-5, Vec2(2e-6, 1e-6));
+  const LinearPressure p = LinearPressure::fromLoads(square, {1.0, 1e-6, -2e-6});
+  const double mu = 1e-305;
+  const FrictionPatch tiny(square, p, mu), unit(square, p, 1.0);
+  // both sides are normal doubles computed from the same basis: round-off
+  constexpr double kRoundOff = 1e-14;
+  for (const Vec3& w : {Vec3(0.3, -0.4, 0.8), Vec3(1.0, 0.0, 0.0), Vec3(0.0, 0.0, 1.0)}) {
+    const Vec3 expected = unit.exactQ(w);
+    const Vec3 got = tiny.exactQ(w) / mu;
+    EXPECT_LT((got - expected).norm(), kRoundOff * expected.norm()) << w.transpose();
+  }
+}
+
+// ---- pressure ------------------------------------------------------------------------
+
+TEST(CoreBadInput, PressureOutOfRange) {
+  const PatchShape square = PatchShape::rectangle(1e-3, 1e-3);
+  // loads whose pressure overflows (found by fuzzing: p = -inf)
+  EXPECT_TRUE(throwsNaming([&] { LinearPressure::fromLoads(square, {1e308, 1e308, 0.0}); },
+                           {"out of range"}));
+  // a pressure that is not finite on the patch (minPressure gave inf)
+  constexpr double kMax = std::numeric_limits<double>::max();
+  EXPECT_TRUE(throwsNaming([&] { minPressure(square, LinearPressure{-kMax, -kMax, 0.0}); },
+                           {"out of range"}));
+  // rho for the projection metric: positive, and within 1e12 of Eq. (11)
+  const PatchLoads loads{1.0, 0.01, 0.0};
+  EXPECT_TRUE(throwsNaming([&] { nearestAdmissibleLoads(square, loads, 0.0); }, {"rho"}));
+  EXPECT_TRUE(throwsNaming([&] { nearestAdmissibleLoads(square, loads, 6e-322); }, {"rho"}));
+  EXPECT_TRUE(throwsNaming([&] { nearestAdmissibleLoads(square, loads, 1e308); }, {"rho"}));
+  // documented fallback: Pz <= 0 maps to zero load
+  const PatchLoads none = nearestAdmissibleLoads(square, {-2.0, 0.3, 0.1}, square.defaultRho());
+  EXPECT_EQ(none.asVector(), Vec3::Zero());
+  // Pi: rho must be positive and finite; moments finite
+  const PiMoments pm = piMoments(square, LinearPressure::uniform(square, 1.0));
+  EXPECT_TRUE(throwsNaming([&] { ellipsoidalPi(pm, 0.0); }, {"rho"}));
+  EXPECT_TRUE(throwsNaming([&] { ellipsoidalPi(pm, -1.0); }, {"rho"}));
+  EXPECT_TRUE(throwsNaming([&] { ellipsoidalPi(pm, kNan); }, {"rho"}));
+  EXPECT_TRUE(throwsNaming([&] { piMoments(square, LinearPressure{kInf, 0.0, 0.0}); }, {"pressure"}));
+  EXPECT_TRUE(throwsNaming([&] { piMoments(square, LinearPressure{1.0, kNan, 0.0}); }, {"pressure"}));
+}
+
+// ---- friction block --------------------------------------------------------------------
+
+TEST(CoreBadInput, FrictionBlock) {
+  const PatchShape disk = PatchShape::disk(0.05);
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {10.0, 0.05, 0.0}), 0.5);
+  FrictionBlockInput in;
+  in.b = Vec3(1.0, 1.0, 1.0);
+  in.L = 1.0;
+  // an indefinite K: the ellipsoidal path gave a NaN impulse (found by fuzzing)
+  in.K = Vec3(-1.0, 0.0, 0.0).asDiagonal();
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"positive definite"}));
+  }
+  in.K = Mat3::Identity();
+  in.warmSlip = Vec3(kNan, 0.0, 0.0);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"warm"}));
+  in.warmSlip.setZero();
+  in.L = kInf;
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"bound l"}));
+  // documented fallbacks: no normal impulse, no friction (slip = b, sticking
+  // only if b = 0, also for a denormal b whose |b|^2 underflows)
+  in.L = 0.0;
+  in.b = Vec3(1.6e-319, 0.0, 0.0);
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, in);
+    EXPECT_FALSE(r.sticking);
+    EXPECT_EQ(r.slip, in.b);
+    EXPECT_EQ(r.impulse, Vec3::Zero());
+  }
+  // at rest: stick with zero impulse
+  in.L = 1.0;
+  in.b.setZero();
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, in);
+    EXPECT_TRUE(r.sticking);
+    EXPECT_EQ(r.impulse, Vec3::Zero());
+  }
+}
+
+// The exact block with a long lever (max|r| / rho = 5e7): its last Newton
+// step used to linearise q with a huge Jacobian, and the impulse left the
+// limit set (found by fuzzing: |impulse_xy| = 1.28 L). The impulse must be
+// L q(s^) of the law itself, whose force part is at most L (p >= 0).
+TEST(CoreBadInput, ExactBlockWithLongLever) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const PatchLoads loads{2.271553102614555e-08, 2.0077880525071972e-09, 2.0077884542030355e-09};
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, loads), 1e-8, 1e-8);
+  ASSERT_GE(minPressure(disk, patch.pressure()), 0.0);
+  FrictionBlockInput in;
+  in.b = Vec3(0.5, -524288.0, 1e-8);
+  in.L = 1e-8;
+  in.K = Vec3(1e-8, 1e-8, 0.5).asDiagonal();
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  ASSERT_FALSE(r.sticking);
+  // round-off of L q: a few ulps
+  constexpr double kRoundOff = 1e-12;
+  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * (1.0 + kRoundOff));
+  // the law at the returned slip, to the solver's convergence (the slip's
+  // direction is known to 1e-14 of the scale |b| over |s| ~ |b|): 1e-6 of L
+  constexpr double kLawTol = 1e-6;
+  const Vec3 q = patch.unitQ(Model::Exact, r.slip);
+  EXPECT_LT((r.impulse - in.L * q).norm(), kLawTol * in.L);
+}
+
+// More fuzz findings: each was NaN / inf or a wrong answer before.
+TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
+  // an SPD K whose products overflow: Error, not a NaN impulse
+  const PatchShape small = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(small, LinearPressure::fromLoads(small, {1.3e7, -0.12, 0.16}), 1e-8, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 0.5);
+  in.L = 0.5;
+  in.K = Vec3(1e300, 1e-8, 1e-8).asDiagonal();
+  in.warmSlip = Vec3(0.5, 0.5, 0.5);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"out of range"}));
+
+  // torques 1e300 times Pz rho: the projection used to return inadmissible
+  // loads (min pressure -7e300); now an Error, or admissible loads
+  const PatchShape quad = PatchShape::polygon({{-1.0, -1.0}, {0.5, -1.0}, {0.5, 0.5}, {-1.0, 0.5}});
+  try {
+    const PatchLoads near = nearestAdmissibleLoads(quad, {0.5, 1e300, 0.0}, 0.64625715426275077);
+    EXPECT_TRUE(isAdmissible(quad, near, 1e-6));
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
+
+  // a tiny disk with a tiny pressure: the unit law's Jacobian is finite
+  // (-1/Pz times 1/|w| overflowed on its own before the product)
+  const double e = 2.2204460492503131e-16;
+  const PatchShape speck = PatchShape::disk(e, Vec2(e, e));
+  const FrictionPatch tiny(speck, LinearPressure{8.3e-275, 8.3e-275, 8.3e-275}, e, e);
+  Mat3 J;
+  const Vec3 q = tiny.unitQ(Model::Exact, Vec3(e, 0.0, 0.0), &J);
+  EXPECT_TRUE(q.allFinite());
+  EXPECT_TRUE(J.allFinite());
+  // the unit law's force part is at most ∫|p| / Pz = 1 here (p > 0 on the disk)
+  ASSERT_GT(minPressure(speck, tiny.pressure()), 0.0);
+  EXPECT_LE(std::hypot(q.x(), q.y()), 1.0 + 1e-12);
+}
+
+}  // namespace
+}  // namespace patchspin
