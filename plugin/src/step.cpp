@@ -80,10 +80,13 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     double df = 0.0;
     const double fr = f(r, df, N);
     if (fr < 0.0) lo = r; else hi = r;
-    if (std::abs(fr) <= tol || hi - lo <= tol * scale) break;
+    // f is relative (p / |N| - 1); the root r itself sets the scale of the
+    // bracket and of the step (relative to |b| + |A| a long lever, |A| >> r,
+    // stopped far from the root: found by fuzzing)
+    if (std::abs(fr) <= tol || hi - lo <= tol * hi) break;
     double next = df > 0.0 ? r - fr / df : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // safeguard: bisect
-    if (std::abs(next - r) <= tol * scale) {
+    if (std::abs(next - r) <= tol * next) {
       r = next;
       f(r, df, N);
       break;
