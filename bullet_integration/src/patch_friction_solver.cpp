@@ -620,7 +620,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     const Vec3 s = c.tail<3>() + pc.Knf.transpose() * d.head<3>();
     const double L = pc.mu * pc.lamN[0];
     Vec3 lamF = Vec3::Zero();
-    bool refreshedAny = false;
+    bool refreshed = false;  // the pressure of the friction law changed in this visit
     if (L > 0.0) {
       const Mat3& K = pc.interior ? pc.Ks : pc.Kff;
       FrictionBlockInput in;
@@ -632,10 +632,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // friction pressure: the linear pressure of Eq. (94) carrying the loads,
       // or, when that would be negative somewhere (centre of pressure outside
       // the kern), the nearest admissible linear one (DESIGN item 2);
-      // refreshed only when its centre of pressure moves (kPressureCopRelTol)
+      // refreshed only when its centre of pressure moves (see below)
       const PatchLoads raw = toLoads(pc.lamN);
       const Vec2 cop(raw.Ty / raw.Pz, -raw.Tx / raw.Pz);
-      bool refreshed = false;
       // The friction law for unit mu Pz (Pi of Eq. (40), the exact law's
       // integrals) depends on the linear pressure only through its shape,
       // i.e. the centre of pressure (Ty, -Tx) / Pz: refreshed when that point
@@ -654,7 +653,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         if (!admissible) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
         friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
         pc.state->pressureCop = cop;
-        refreshed = refreshedAny = true;
+        refreshed = true;
       }
       const bool reuse = pc.haveLast && !refreshed && !pc.last.sticking &&
                          (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
@@ -681,7 +680,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     }
     applyImpulse(pc, m_tmpSolverBodyPool, d);
     worst = std::max(worst, d.squaredNorm());
-    if (settings.skipSettledPatches && d.isZero(0.0) && !refreshedAny) {
+    if (settings.skipSettledPatches && d.isZero(0.0) && !refreshed) {
       pc.settled = true;
       snapshotOf(pc, pc.snapshot);
     }
