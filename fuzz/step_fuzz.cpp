@@ -90,7 +90,7 @@ void run(ByteReader& in) {
     constexpr double kRange = 1e100;
     const double size = input.b.stableNorm() + input.L * input.K.stableNorm() + input.warmSlip.stableNorm();
     const bool moderate = size < kRange && input.K.stableNorm() < kRange &&
-                          input.K.inverse().stableNorm() < kRange && input.L < kRange;
+                          Mat3(input.K.inverse()).stableNorm() < kRange && input.L < kRange;
     if (finite && moderate && input.L >= 0.0 && isSpd(input.K)) {
       fail("valid block refused (%s): %s", toString(model), e.what());
     }
