@@ -14,12 +14,14 @@
 #include <sstream>
 #include <string>
 
+#include "demo_test_util.hpp"
 #include "run_tool.hpp"
 
 namespace patchspin::render {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace demo_test;
 
 constexpr int kWidth = 160;
 constexpr int kHeight = 120;
@@ -55,40 +57,8 @@ std::string tempDir(const std::string& name) {
   return dir.string();
 }
 
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 // <build>/demos/coin next to <build>/tools/patchspin; empty without the tool.
-std::string demoPath() {
-#ifdef PATCHSPIN_TOOL
-  return (fs::path(PATCHSPIN_TOOL).parent_path().parent_path() / "demos" / "coin").string();
-#else
-  return "";
-#endif
-}
-
-std::string toolPath() {
-#ifdef PATCHSPIN_TOOL
-  return PATCHSPIN_TOOL;
-#else
-  return "";
-#endif
-}
-
-int countDifferentPixels(const Image& a, const Image& b, int threshold) {
-  int n = 0;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
-      int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
-      if (d > threshold) ++n;
-    }
-  }
-  return n;
-}
+std::string demoPath() { return buildPath("demos/coin"); }
 
 class CoinDemo : public ::testing::Test {
  protected:

@@ -17,12 +17,14 @@
 #include <sstream>
 #include <string>
 
+#include "demo_test_util.hpp"
 #include "run_tool.hpp"
 
 namespace patchspin::render {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace demo_test;
 
 constexpr int kWidth = 160;
 constexpr int kHeight = 120;
@@ -46,49 +48,6 @@ constexpr double kAgreementTol = 1e-12;
 // flags: a few ulps of double arithmetic.
 constexpr double kParameterTol = 1e-12;
 constexpr double kG = 9.81;
-
-std::string buildPath(const std::string& sub) {
-#ifdef PATCHSPIN_TOOL
-  return (fs::path(PATCHSPIN_TOOL).parent_path().parent_path() / sub).string();
-#else
-  (void)sub;
-  return "";
-#endif
-}
-
-std::string toolPath() {
-#ifdef PATCHSPIN_TOOL
-  return PATCHSPIN_TOOL;
-#else
-  return "";
-#endif
-}
-
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-int countDifferentPixels(const Image& a, const Image& b, int threshold) {
-  int n = 0;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
-      int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
-      if (d > threshold) ++n;
-    }
-  }
-  return n;
-}
-
-std::string g17(double v) {
-  char s[40];
-  std::snprintf(s, sizeof s, "%.17g", v);
-  return s;
-}
-
-bool near(double a, double b, double tol) { return std::abs(a - b) <= tol * std::max(1.0, std::abs(b)); }
 
 // Runs one demo, checks frames and summary; returns the summary (null on a
 // skip or failure).
