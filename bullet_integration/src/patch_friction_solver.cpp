@@ -28,8 +28,6 @@
 namespace patchspin::bullet {
 namespace {
 
-using Mat36 = Eigen::Matrix<double, 3, 6>;
-using Mat63 = Eigen::Matrix<double, 6, 3>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
 // Distance of the centre of pressure beyond the patch, relative to the
