@@ -106,6 +106,7 @@ struct PatchConstraint {
   bool interior = true;  // centre of pressure on the patch: normal block bilateral
   bool tipping = false;
   bool sticking = false;
+  int refreshes = 0;  // pressure refreshes in this step
   // converged: the last visit changed nothing, and while neither body's
   // velocity has changed since (snapshot), a visit would change nothing again
   bool settled = false;
@@ -350,6 +351,9 @@ void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
   if (settings.pressureRefreshTolerance < 0.0)
     throw Error("PatchSolverSettings::pressureRefreshTolerance must be >= 0: got " +
                 patchspin::internal::formatDouble(settings.pressureRefreshTolerance));
+  if (settings.maxPressureRefreshesPerStep < 0)
+    throw Error("PatchSolverSettings::maxPressureRefreshesPerStep must be >= 0: got " +
+                std::to_string(settings.maxPressureRefreshesPerStep));
   impl_->settings = settings;
 }
 const PatchSolverSettings& PatchFrictionSolver::settings() const { return impl_->settings; }
@@ -640,8 +644,10 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
       // while a body at rest or sliding steadily never pays for a refresh
       // and a centred symmetric patch keeps Pi = I.
-      if ((cop - pc.state->pressureCop).norm() > settings.pressureRefreshTolerance * shape.diameter()) {
+      if (pc.refreshes < settings.maxPressureRefreshesPerStep &&
+          (cop - pc.state->pressureCop).norm() > settings.pressureRefreshTolerance * shape.diameter()) {
         ++stats.pressureRefreshes;
+        ++pc.refreshes;
         PatchLoads loads = raw;
         // a disk's linear pressure is >= 0 iff the centre of pressure lies in
         // its kern, |cop - C| <= I / (A R) = R / 4; polygons: isAdmissible
@@ -763,6 +769,9 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     r.slip = c.tail<3>();
     r.r = r.slip.norm();
     r.sticking = pc.sticking;
+    if (l.Pz > 0.0 && pc.mu > 0.0)
+      im.stats.maxPressureLag = std::max(
+          im.stats.maxPressureLag, (Vec2(l.Ty / l.Pz, -l.Tx / l.Pz) - st.pressureCop).norm() / shape.diameter());
     r.w = pc.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
   }
   im.flushBodies.clear();

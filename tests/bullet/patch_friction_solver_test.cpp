@@ -164,7 +164,7 @@ TEST(PatchFrictionSolver, FlatCoinCarriesNoSubnormalCrumbs) {
 TEST(PatchFrictionSolver, WorkSavingRulesDoNotChangeTheMotion) {
   auto run = [](bool savings, double* stopTime, PatchSolverStats* stats) {
     Coin coin(true, Model::Exact);
-    if (!savings) coin.scene.solver().setSettings(PatchSolverSettings{0.0, false});
+    if (!savings) coin.scene.solver().setSettings(PatchSolverSettings{0.0, false, std::numeric_limits<int>::max()});
     coin.body->setLinearVelocity(btVector3(0.5, 0.1, 0));
     coin.body->setAngularVelocity(btVector3(0, 0, 12));
     *stopTime = -1;
@@ -188,6 +188,7 @@ TEST(PatchFrictionSolver, WorkSavingRulesDoNotChangeTheMotion) {
   EXPECT_EQ(sOn.patches, 1);
   EXPECT_LT(sOn.blockSolves, sOff.blockSolves) << "the rules should save block solves";
   EXPECT_THROW(Coin(true).scene.solver().setSettings(PatchSolverSettings{-1e-6, true}), Error);
+  EXPECT_THROW(Coin(true).scene.solver().setSettings(PatchSolverSettings{1e-6, true, -1}), Error);
 }
 
 // ---- patches from shapes: overlap geometry ---------------------------------------
