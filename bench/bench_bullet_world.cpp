@@ -112,6 +112,7 @@ void addSolverCounters(benchmark::State& state, const PatchFrictionSolver& solve
   state.counters["refreshes/patch"] = double(s.pressureRefreshes) / p;
   state.counters["visits/patch"] = double(s.visits) / p;
   state.counters["skipped/patch"] = double(s.skippedVisits) / p;
+  state.counters["max_pressure_lag"] = s.maxPressureLag;
 }
 
 void BM_BulletWorldStep(benchmark::State& state) {
@@ -137,12 +138,15 @@ BENCHMARK(BM_BulletWorldStep)
 // ---- skip what a scene doesn't need (issue 6) ---------------------------------------
 // 1000 sliding, spinning coins, ellipsoidal, with the solver's work-saving
 // rules switched off one at a time: 0 default, 1 no skipping of settled
-// patches, 2 Pi refreshed on every change of the centre of pressure, 3 both.
+// patches, 2 Pi refreshed on every change of the centre of pressure, 3 both,
+// 4 one refresh tolerance for every visit (no larger tolerance for a
+// second refresh in the same step).
 void BM_SkipRules(benchmark::State& state) {
   SceneOptions opt;
   const int rules = int(state.range(0));
   opt.settings.skipSettledPatches = !(rules & 1);
-  if (rules & 2) opt.settings.pressureRefreshTolerance = 0.0;
+  if (rules & 2) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
+  if (rules == 4) opt.settings.pressureLagTolerance = opt.settings.pressureRefreshTolerance;
   World w(1000, kEllipsoidal, opt);
   long k = 0;
   for (auto _ : state) {
@@ -151,9 +155,10 @@ void BM_SkipRules(benchmark::State& state) {
   }
   addSolverCounters(state, *w.patchSolver());
   state.SetLabel(rules == 0 ? "default" : rules == 1 ? "no settled-patch skipping"
-                 : rules == 2 ? "Pi refreshed on every change" : "neither");
+                 : rules == 2 ? "Pi refreshed on every change" : rules == 3 ? "neither"
+                 : "no second tolerance per step");
 }
-BENCHMARK(BM_SkipRules)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SkipRules)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 
 // 1000 coins at rest on the plane (uniform pressure: Pi = I, never
 // refreshed), awake: patch ellipsoidal / exact against stock; and the same
@@ -162,7 +167,7 @@ void BM_RestingCoins(benchmark::State& state) {
   SceneOptions opt;
   opt.moving = false;
   const int variant = int(state.range(0));
-  if (variant == 4) opt.settings.pressureRefreshTolerance = 0.0;
+  if (variant == 4) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
   World w(1000, variant == 4 ? kEllipsoidal : Variant(variant), opt);
   for (int k = 0; k < 24; ++k) w.world->stepSimulation(btScalar(kDt), 0);  // settle
   for (auto _ : state) w.world->stepSimulation(btScalar(kDt), 0);

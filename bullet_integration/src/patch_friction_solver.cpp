@@ -351,9 +351,10 @@ void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
   if (settings.pressureRefreshTolerance < 0.0)
     throw Error("PatchSolverSettings::pressureRefreshTolerance must be >= 0: got " +
                 patchspin::internal::formatDouble(settings.pressureRefreshTolerance));
-  if (settings.maxPressureRefreshesPerStep < 0)
-    throw Error("PatchSolverSettings::maxPressureRefreshesPerStep must be >= 0: got " +
-                std::to_string(settings.maxPressureRefreshesPerStep));
+  patchspin::internal::requireFinite(settings.pressureLagTolerance, "PatchSolverSettings::pressureLagTolerance");
+  if (settings.pressureLagTolerance < 0.0)
+    throw Error("PatchSolverSettings::pressureLagTolerance must be >= 0: got " +
+                patchspin::internal::formatDouble(settings.pressureLagTolerance));
   impl_->settings = settings;
 }
 const PatchSolverSettings& PatchFrictionSolver::settings() const { return impl_->settings; }
@@ -644,8 +645,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
       // while a body at rest or sliding steadily never pays for a refresh
       // and a centred symmetric patch keeps Pi = I.
-      if (pc.refreshes < settings.maxPressureRefreshesPerStep &&
-          (cop - pc.state->pressureCop).norm() > settings.pressureRefreshTolerance * shape.diameter()) {
+      const double moved = (cop - pc.state->pressureCop).norm() / shape.diameter();
+      if (moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance : settings.pressureLagTolerance)) {
         ++stats.pressureRefreshes;
         ++pc.refreshes;
         PatchLoads loads = raw;
