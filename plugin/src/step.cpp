@@ -31,7 +31,7 @@ void validate(const FrictionBlockInput& in) {
 // Ellipsoidal law q(w) = -Pi w. With A = L K Pi the slip s = b - A w must
 // equal r w: w = (r I + A)^-1 b with |w| = 1, a scalar root in r > 0.
 // No matrix is factorised: by Cayley-Hamilton, for the 3x3 A with
-//   t = tr A,  m = (t^2 - tr A^2) / 2,  d = det A,  adj A = A^2 - t A + m I,
+//   t = tr A,  m = (t^2 - tr A^2) / 2 = tr adj A,  d = det A,  adj A = A^2 - t A + m I,
 //   (r I + A)^-1 = (r^2 I + r (t I - A) + adj A) / p(r),
 //   p(r) = r^3 + t r^2 + m r + d,
 // so w(r) = N(r) / p(r) with N(r) = r^2 b + r (t b - A b) + adj(A) b: three
@@ -48,13 +48,38 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   const double tol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
   const Mat3 A = in.L * (in.K * Pi);
   const double t = A.trace();
-  const Mat3 A2 = A * A;
-  const double m = 0.5 * (t * t - A2.trace());
-  const double d = A.determinant();
-  const Vec3 Ab = A * in.b;
+  // adj A by cofactors, m = tr adj A (sum of the principal 2x2 minors) and
+  // t I - A with its diagonal summed from the other two: each entry a
+  // difference of at most two products. The forms above, (t^2 - tr A^2) / 2
+  // and A^2 b - t A b, cancel to the scale of |A|^2: with an ill-scaled block
+  // (eigenvalues 1e-16 to 1e7: a long lever, fuzz finding) they lost every
+  // digit of m and adj(A) b, and the root was far off
+  Mat3 adj;
+  adj(0, 0) = A(1, 1) * A(2, 2) - A(1, 2) * A(2, 1);
+  adj(0, 1) = A(0, 2) * A(2, 1) - A(0, 1) * A(2, 2);
+  adj(0, 2) = A(0, 1) * A(1, 2) - A(0, 2) * A(1, 1);
+  adj(1, 0) = A(1, 2) * A(2, 0) - A(1, 0) * A(2, 2);
+  adj(1, 1) = A(0, 0) * A(2, 2) - A(0, 2) * A(2, 0);
+  adj(1, 2) = A(0, 2) * A(1, 0) - A(0, 0) * A(1, 2);
+  adj(2, 0) = A(1, 0) * A(2, 1) - A(1, 1) * A(2, 0);
+  adj(2, 1) = A(0, 1) * A(2, 0) - A(0, 0) * A(2, 1);
+  adj(2, 2) = A(0, 0) * A(1, 1) - A(0, 1) * A(1, 0);
+  const double m = adj.trace();
+  const double d = A.row(0).dot(adj.col(0));
+  Mat3 tMinusA = -A;
+  tMinusA(0, 0) = A(1, 1) + A(2, 2);
+  tMinusA(1, 1) = A(0, 0) + A(2, 2);
+  tMinusA(2, 2) = A(0, 0) + A(1, 1);
   const Vec3 n2 = in.b;
-  const Vec3 n1 = t * in.b - Ab;
-  const Vec3 n0 = A * Ab - t * Ab + m * in.b;  // adj(A) b
+  const Vec3 n1 = tMinusA * in.b;
+  const Vec3 n0 = adj * in.b;
+  const double scale = in.b.norm() + A.norm();
+  // |A|^2 beyond double's range (the old form squared A and overflowed to a
+  // NaN impulse, refused): refuse it here, before the iteration runs on inf
+  if (!std::isfinite(scale) || !std::isfinite(m) || !std::isfinite(d) || !n0.allFinite() ||
+      !n1.allFinite()) {
+    throw Error("friction block out of range: L K Pi overflows double (K, b or L too large)");
+  }
   if (d > 0.0 && n0.norm() <= d) {  // stick: lambda = -L Pi A^-1 b = -K^-1 b
     out.sticking = true;
     out.impulse = -in.L * (Pi * (n0 / d));
@@ -70,7 +95,6 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     df = (dp * nN - p * N.dot(dN) / nN) / (nN * nN);
     return p / nN - 1.0;
   };
-  const double scale = in.b.norm() + A.norm();
   double lo = 0.0, hi = scale;
   double r = std::max(0.0, in.b.norm() - t / 3.0);  // isotropic estimate
   if (in.warmSlip.norm() > 0.0 && in.warmSlip.norm() < hi) r = in.warmSlip.norm();

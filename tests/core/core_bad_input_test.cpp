@@ -280,6 +280,39 @@ TEST(CoreBadInput, ExactBlockWithLongLever) {
   EXPECT_LT((r.impulse - in.L * q).norm(), kLawTol * in.L);
 }
 
+// Ellipsoidal block with a long lever (rho = 1e-8 on a 0.5 m disk), a
+// pressure with a negative part (Pi indefinite) and an ill-scaled K
+// (cond 3e15): the Cayley-Hamilton coefficients m = (t^2 - tr A^2) / 2 and
+// adj(A) b = A^2 b - t A b of A = L K Pi cancelled at the scale |A|^2 ~ 1e14
+// and lost every digit; the root was far off (|s| = 9.6e6, true ~1e-7) and
+// the impulse was not the law at its own slip (0.67 of L |Pi|; the fuzz
+// finding fuzz/known_failures/step_ellipsoidal_long_lever.bin, now in the
+// step corpus). Checked against the law q = -Pi s^ itself, to what double
+// can resolve here: the slip b + K impulse is a difference of terms of size
+// |b| + L |K| |Pi| (4e7 here), so its direction, and the law at it, are
+// known to eps (|b| + L |K| |Pi|) / |s| relative to L |Pi|.
+TEST(CoreBadInput, EllipsoidalBlockWithLongLever) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {0.5, 0.5, 0.5}), 1e-8, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, -1.0);
+  in.L = 1e-8;
+  in.K = Vec3(1e-8, 0.5, 28835840.0).asDiagonal();
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+  ASSERT_FALSE(r.sticking);
+  const double s = r.slip.norm();
+  ASSERT_GT(s, 0.0);
+  // a few roundings of the slip's largest terms
+  constexpr double kConditionUlps = 4.0;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double lawScale = in.L * patch.Pi().norm();
+  const double resolvable =
+      kConditionUlps * eps * (in.b.norm() + in.L * in.K.norm() * patch.Pi().norm()) / s;
+  const Vec3 q = patch.unitQ(Model::Ellipsoidal, r.slip);
+  EXPECT_LT((r.impulse - in.L * q).norm(), resolvable * lawScale);
+  EXPECT_LT(resolvable, 1.0);  // the check above says something
+}
+
 // More fuzz findings: each was NaN / inf or a wrong answer before.
 TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
   // an SPD K whose products overflow: Error, not a NaN impulse
