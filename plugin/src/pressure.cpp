@@ -105,9 +105,12 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
                 internal::formatDouble(rho) + " m)");
   }
   // found by fuzzing: torques ~1e300 times Pz rho swamp the projection's
-  // round-off test and it returned inadmissible loads; say so instead
+  // round-off test and it returned inadmissible loads; say so instead (also
+  // for a result with Pz < 0: torques 1e154 times Pz rho gave Pz = -4.9e138,
+  // round-off of the 1e154-sized scaled torque)
   constexpr double kVerifyTol = 1e-6;  // of the mean pressure; normal cases: ~1e-12
-  if (out.Pz > 0.0 && !(out.asVector() == loads.asVector()) && !isAdmissible(shape, out, kVerifyTol)) {
+  if (!out.asVector().isZero(0.0) && !(out.asVector() == loads.asVector()) &&
+      !isAdmissible(shape, out, kVerifyTol)) {
     throw Error("nearest admissible loads out of range: no admissible projection to double "
                 "precision for (Pz, Tx, Ty) = (" + internal::formatDouble(loads.Pz) + ", " +
                 internal::formatDouble(loads.Tx) + ", " + internal::formatDouble(loads.Ty) + ")");

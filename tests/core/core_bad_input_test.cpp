@@ -335,6 +335,23 @@ TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
     EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
   }
 
+  // torques 1e154 times Pz rho on a 2e-8 m pentagon: the projection returned
+  // Pz = -4.9e138 (round-off of the scaled torque) and the admissibility
+  // check skipped it for Pz <= 0; now an Error, or admissible loads
+  const PatchShape pentagon = PatchShape::polygon({{2e-08, 2.2204460492503131e-16},
+                                                   {1.3090169943749475e-08, 9.5105653849961402e-09},
+                                                   {1.9098300562505273e-09, 5.8778527449693373e-09},
+                                                   {1.9098300562505239e-09, -5.8778523008801258e-09},
+                                                   {1.3090169943749473e-08, -9.510564940906932e-09}});
+  try {
+    const PatchLoads near =
+        nearestAdmissibleLoads(pentagon, {0.5, 3.7921287488073376e+146, 0.5}, 1.1015169678871499e-08);
+    EXPECT_GE(near.Pz, 0.0);
+    EXPECT_TRUE(isAdmissible(pentagon, near, 1e-6));
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
+
   // a tiny disk with a tiny pressure: the unit law's Jacobian is finite
   // (-1/Pz times 1/|w| overflowed on its own before the product)
   const double e = 2.2204460492503131e-16;
