@@ -29,28 +29,48 @@ Vec2 toPlane(const btVector3& p, const btVector3& origin, const btVector3& ex, c
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Sorts the points of a convex set counter-clockwise about their mean and
-// merges near-duplicates.
+// Puts the points of a convex set in counter-clockwise order and merges
+// near-duplicates. Faces and clipped overlaps arrive in cyclic order
+// (box faces, hull faces, Sutherland-Hodgman output): then a reversal, if
+// any, suffices (checked in O(n), no trigonometry). Otherwise they are
+// sorted by their angle about the mean, each angle computed once.
 std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
   if (pts.size() < 3) return pts;
   Vec2 mean = Vec2::Zero();
   for (const Vec2& p : pts) mean += p;
   mean /= double(pts.size());
-  std::sort(pts.begin(), pts.end(), [&](const Vec2& a, const Vec2& b) {
-    return std::atan2(a.y() - mean.y(), a.x() - mean.x()) <
-           std::atan2(b.y() - mean.y(), b.x() - mean.x());
-  });
   double size = 0.0;
   for (const Vec2& p : pts) size = std::max(size, (p - mean).norm());
   const double merge = kMergeFraction * size;
+  const size_t n = pts.size();
+  double area2 = 0.0;
+  for (size_t i = 0; i < n; ++i) area2 += cross2(pts[i] - mean, pts[(i + 1) % n] - mean);
+  if (area2 < 0.0) std::reverse(pts.begin(), pts.end());
+  // already in angular order about the mean iff every step turns
+  // counter-clockwise about it (by less than pi) and the steps pass the
+  // angle 0 (from y < 0 to y >= 0) exactly once: they wind once around
+  bool ordered = true;
+  int windings = 0;
+  for (size_t i = 0; i < n && ordered; ++i) {
+    const Vec2 a = pts[i] - mean, b = pts[(i + 1) % n] - mean;
+    ordered = cross2(a, b) > 0.0;
+    windings += a.y() < 0.0 && b.y() >= 0.0;
+  }
+  if (!ordered || windings != 1) {
+    std::vector<std::pair<double, Vec2>> byAngle;
+    byAngle.reserve(n);
+    for (const Vec2& p : pts) byAngle.emplace_back(std::atan2(p.y() - mean.y(), p.x() - mean.x()), p);
+    std::sort(byAngle.begin(), byAngle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t i = 0; i < n; ++i) pts[i] = byAngle[i].second;
+  }
   std::vector<Vec2> out;
+  out.reserve(n);
   for (const Vec2& p : pts) {
     if (out.empty() || (p - out.back()).norm() > merge) out.push_back(p);
   }
   while (out.size() > 1 && (out.front() - out.back()).norm() <= merge) out.pop_back();
   return out;
 }
-
 std::vector<Vec2> diskPolygon(const Vec2& centre, double radius) {
   std::vector<Vec2> pts;
   pts.reserve(kDiskSides);
@@ -69,6 +89,7 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
     const Vec2& c2 = clip[(i + 1) % clip.size()];
     const Vec2 edge = c2 - c1;
     std::vector<Vec2> out;
+    out.reserve(subject.size() + 1);
     for (size_t j = 0; j < subject.size(); ++j) {
       const Vec2& p = subject[j];
       const Vec2& q = subject[(j + 1) % subject.size()];
@@ -107,6 +128,7 @@ Face boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDi
   c[axis] = btScalar(sign) * h[axis];
   face.centre = tr * c;
   const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  face.vertices.reserve(4);
   for (int k = 0; k < 4; ++k) {
     btVector3 p = c;
     p[u] = btScalar(su[k]) * h[u];
@@ -238,6 +260,7 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   auto polygonOf = [&](const Face& f) {
     std::vector<Vec2> pts;
     if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius);
+    pts.reserve(f.vertices.size());
     for (const btVector3& p : f.vertices) pts.push_back(toPlane(p, base, ex, ey));
     return counterClockwise(std::move(pts));
   };
