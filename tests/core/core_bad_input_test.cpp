@@ -352,6 +352,25 @@ TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
     EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
   }
 
+  // a sliver triangle 1e8 m long: every face and edge candidate of the
+  // projection failed its round-off test and the answer fell back to the zero
+  // load; now no farther than the uniform pressure with the same Pz (the
+  // distance of the metric: (Pz, Tx / rho, Ty / rho))
+  const PatchShape sliver = PatchShape::polygon({{-0.54133991607464249, -0.84080474295608298},
+                                                 {0.84147099322260643, -0.54030231127116257},
+                                                 {72192825.424791902, 112433663.98123373}});
+  const PatchLoads skewed{0.0012331008911132812, -0.0194091796875, -0.0094013214111328125};
+  const double rhoSliver = sliver.defaultRho();
+  const PatchLoads nearSliver = nearestAdmissibleLoads(sliver, skewed, rhoSliver);
+  auto distance = [&](const PatchLoads& l) {
+    return Vec3(l.Pz - skewed.Pz, (l.Tx - skewed.Tx) / rhoSliver, (l.Ty - skewed.Ty) / rhoSliver).norm();
+  };
+  const PatchLoads uniformLoads = loadsOf(sliver, LinearPressure::uniform(sliver, skewed.Pz));
+  // round-off of the distances themselves: a few ulps of |y| ~ 1e-3
+  constexpr double kDistanceRoundOff = 1e-12;
+  EXPECT_LE(distance(nearSliver), distance(uniformLoads) * (1.0 + kDistanceRoundOff));
+  EXPECT_GT(nearSliver.Pz, 0.0);
+
   // a tiny disk with a tiny pressure: the unit law's Jacobian is finite
   // (-1/Pz times 1/|w| overflowed on its own before the product)
   const double e = 2.2204460492503131e-16;
