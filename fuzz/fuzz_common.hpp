@@ -221,6 +221,22 @@ inline PatchShape takeShape(ByteReader& in) {
   return shape;
 }
 
+// p0 + cx x + cy y in long double (x87: 64-bit mantissa, range to 1e4932):
+// the harness's reference value, without the intermediate overflow of
+// LinearPressure::at (p0 ~ cy ~ 1e308 at y = -2 overflowed to -inf while the
+// pressure itself, -1.2e308, is finite; found by fuzzing)
+inline long double pressureAt(const LinearPressure& p, const Vec2& point) {
+  return static_cast<long double>(p.p0) + static_cast<long double>(p.cx) * point.x() +
+         static_cast<long double>(p.cy) * point.y();
+}
+
+// |p0| + |cx x| + |cy y|: the size of the terms whose double sum (the core's
+// own evaluation) rounds to ~eps times it
+inline long double pressureTerms(const LinearPressure& p, const Vec2& point) {
+  return std::abs(static_cast<long double>(p.p0)) + std::abs(static_cast<long double>(p.cx) * point.x()) +
+         std::abs(static_cast<long double>(p.cy) * point.y());
+}
+
 // Largest |p| of a linear pressure over the closed patch (at a vertex, or at
 // p(C) +- R |grad p| on a disk).
 inline double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {

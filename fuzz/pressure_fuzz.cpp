@@ -74,19 +74,28 @@ void run(ByteReader& in) {
     const double scale = maxAbsPressure(shape, p);
     // (plus an absolute floor: denormal pressures are exact to ~1e-323 only)
     const double slack = kPressureSlack * scale + kSolveSlack * cond * std::abs(Pz) / A + 1e-300;
-    const double mean = p.at(shape.centroid());
-    if (pmin > mean + slack) fail("minPressure %.17g above the mean pressure %.17g", pmin, mean);
+    // the reference values are long double; the core sums p0 + cx x + cy y in
+    // double, ~eps of the terms each (kEvalUlps: a few roundings; a sliver
+    // with p0 ~ 8e16 and vertex values ~ -3e9 differed by 8.5 = 0.5 eps p0)
+    constexpr long double kEvalUlps = 8.0L * std::numeric_limits<double>::epsilon();
+    auto above = [&](const Vec2& point) {
+      return pmin > pressureAt(p, point) + slack + kEvalUlps * pressureTerms(p, point);
+    };
+    const long double mean = pressureAt(p, shape.centroid());
+    if (above(shape.centroid())) fail("minPressure %.17g above the mean pressure %.17Lg", pmin, mean);
     if (shape.isDisk()) {
       for (int k = 0; k < 16; ++k) {
         const double a = 2.0 * kPi * k / 16.0;
         const Vec2 rim = shape.centre() + shape.radius() * Vec2(std::cos(a), std::sin(a));
-        if (pmin > p.at(rim) + slack) {
-          fail("minPressure %.17g above the pressure on the rim %.17g (slack %.3g)", pmin, p.at(rim), slack);
+        if (above(rim)) {
+          fail("minPressure %.17g above the pressure on the rim %.17Lg (slack %.3g)", pmin, pressureAt(p, rim), slack);
         }
       }
     } else {
       for (const Vec2& v : shape.vertices()) {
-        if (pmin > p.at(v) + slack) fail("minPressure above the pressure at a vertex");
+        if (above(v)) {
+          fail("minPressure %.17g above the pressure at a vertex %.17Lg (slack %.3g)", pmin, pressureAt(p, v), slack);
+        }
       }
     }
     // isAdmissible: consistent with minPressure
