@@ -192,7 +192,14 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   // the flatness tolerance (0.02 rad), are stock Bullet point contacts and
   // keep wobbling on their rim (tilt 0.03-0.07 rad, 6-8 rad/s after 4 s;
   // after 10 s still 5 cm/s); the patch takes a coin over only once it lies
-  // flat. The 1000-coin pile (1 m/s after 4 s) is not analysed further.
+  // flat. The 1000-coin pile (PATCHSPIN_STRESS_FULL=1, float, ellipsoidal)
+  // also ends with one coin 2.1 mm under the floor, beyond kPourSinkTol:
+  // analysed, it is a bottom coin under ten layers, tilted 0.042 rad (beyond
+  // the patch's flatness hysteresis, so on Bullet's point contacts), and
+  // stock Bullet's own pour ends with its deepest coin 1.6 mm under (both
+  // also sink below 2 mm for a moment: 783 coins vs 807 stock). The depth
+  // is Bullet's point-contact penetration under the pile's weight with 10
+  // iterations, not the patch (no coin on a patch sinks).
   if (!defects.empty())
     GTEST_SKIP() << "known defect: poured coins not at rest after " << kPourTime
                  << " s (tilted coins wobbling on stock point contacts)" << defects;
