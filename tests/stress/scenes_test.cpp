@@ -199,7 +199,10 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   // stock Bullet's own pour ends with its deepest coin 1.6 mm under (both
   // also sink below 2 mm for a moment: 783 coins vs 807 stock). The depth
   // is Bullet's point-contact penetration under the pile's weight with 10
-  // iterations, not the patch (no coin on a patch sinks).
+  // iterations, not the patch: the deepest coins at the end are all point
+  // contacts, and the three coins that crossed 2 mm while they still
+  // reported a floor patch were being knocked over by falling coins (tilted
+  // 0.12-0.17 rad within that step; the next step hands them to Bullet).
   if (!defects.empty())
     GTEST_SKIP() << "known defect: poured coins not at rest after " << kPourTime
                  << " s (tilted coins wobbling on stock point contacts)" << defects;
