@@ -6,6 +6,8 @@
 #include <patchspin/models.hpp>
 #include <patchspin/step.hpp>
 
+#include "oracle.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -311,6 +313,37 @@ TEST(CoreBadInput, EllipsoidalBlockWithLongLever) {
   const Vec3 q = patch.unitQ(Model::Ellipsoidal, r.slip);
   EXPECT_LT((r.impulse - in.L * q).norm(), resolvable * lawScale);
   EXPECT_LT(resolvable, 1.0);  // the check above says something
+}
+
+// The polygon table's edge integrals far from their edge: on a sliver
+// 1.8e9 m long and 1 m wide passing 0.5 m from O, the 1 m end edges are
+// 9e8 m from O, and rb - ra (1e-8) and (tau r - d^2 asinh(tau/d)) / 2 were
+// differences of 9e8-sized numbers: ∫ xy/r came out 3.6e10 (true 8.4e9),
+// ∫ y^2/r = -36 (true 129, and it cannot be negative), so pi_x0 was 19.7
+// where |pi_x0| <= ∫|p| / Pz = 4.6. Checked against brute-force quadrature.
+TEST(CoreBadInput, PolygonTableOfALongSliver) {
+  const std::vector<Vec2> v{{-913801215.0, -8.6380121600000006},
+                            {913801217.0, 9.6380121600000006},
+                            {913801217.0, 10.638012160000001},
+                            {-913801215.0, -7.6380121600000006}};
+  const PatchShape sliver = PatchShape::polygon(v);
+  const auto& m = sliver.momentTable().m;
+  // the oracle's relative accuracy (of ∫|f|), and the table's: the fan of
+  // triangles from O cancels ~max|r|^2 / A = 5e8 times eps = 1e-7
+  constexpr double kOracleTol = 1e-10;
+  constexpr double kTableTol = 1e-6;
+  auto absIntegral = [&](const std::function<double(const Vec2&)>& f) {
+    return testing::bruteForceIntegral(sliver, [&](const Vec2& p) { return std::abs(f(p)); }, kOracleTol);
+  };
+  const std::function<double(const Vec2&)> xyOverR = [](const Vec2& p) { return p.x() * p.y() / p.norm(); };
+  const std::function<double(const Vec2&)> yyOverR = [](const Vec2& p) { return p.y() * p.y() / p.norm(); };
+  const std::function<double(const Vec2&)> xxOverR = [](const Vec2& p) { return p.x() * p.x() / p.norm(); };
+  EXPECT_NEAR(m(MomentTable::kXOverR, 2), testing::bruteForceIntegral(sliver, xyOverR, kOracleTol),
+              kTableTol * absIntegral(xyOverR));
+  EXPECT_NEAR(m(MomentTable::kYOverR, 2), testing::bruteForceIntegral(sliver, yyOverR, kOracleTol),
+              kTableTol * absIntegral(yyOverR));
+  EXPECT_NEAR(m(MomentTable::kXOverR, 1), testing::bruteForceIntegral(sliver, xxOverR, kOracleTol),
+              kTableTol * absIntegral(xxOverR));
 }
 
 // More fuzz findings: each was NaN / inf or a wrong answer before.
