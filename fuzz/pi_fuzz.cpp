@@ -22,10 +22,24 @@ using namespace patchspin::fuzz;
 // 1e-15), the averages add three products.
 constexpr double kSlack = 1e-10;
 
-// Plus the polygon table's cancellation: its triangles fan out from O, so it
-// loses (max|r| / diameter)^2 digits for a patch far from O (measured 2e-9 at
-// 7500 diameters, where eps (7500)^2 = 1.2e-8).
+// Plus the polygon table's cancellation: its triangles fan out from O, their
+// cross products are ~max|r|^2 and add up to ~the area, so it loses
+// max|r|^2 / A digits: (max|r| / diameter)^2 for a patch far from O
+// (measured 2e-9 at 7500 diameters, where eps (7500)^2 = 1.2e-8), and
+// diameter^2 / A for a sliver (measured 1.9e-9 on a 9.5e7 m x 0.7 m triangle,
+// where eps max|r|^2 / A = 6e-8; the area itself is rounded that much).
 double offsetSlack = 0.0;
+
+// OPEN core finding (fuzz/README.md): the polygon table's second-order rows
+// with 1/r (x^2/r, xy/r, y^2/r) lose ~offset^3 digits, not offset^2, far
+// from O (measured on a 1 m heptagon, ∫xy/r against its far-field value, in
+// units of A max|y|: 2.6e-8 at 1000 diameters, 7.9e-7 at 3000, 3.9e-6 at
+// 6754, where eps offset^3 = 2.2e-7, 5.9e-6, 6.8e-5). The averages
+// pi_x0, pi_y0 see that error times
+// |grad p| diameter A / Pz; this allowance, eps offset^3 of that, covers
+// exactly that open error and nothing else (0 for a uniform pressure, and
+// for disks, whose table is a quadrature).
+double farRowsSlack = 0.0;
 
 bool within(double value, double bound, double scale) {
   return std::abs(value) <= bound + (kSlack + offsetSlack) * scale;
@@ -70,7 +84,7 @@ void checkMoments(const PiMoments& pm, double absRatio, double rmax, const char*
   checkFinite(Vec2(pm.pi_x0, pm.pi_y0), what);
   if (!(pm.Pz > 0.0)) fail("%s: Pz = %.17g accepted", what, pm.Pz);
   // absRatio = ∫|p| / Pz (1 for p >= 0)
-  if (!within(std::hypot(pm.pi_x0, pm.pi_y0), absRatio, absRatio)) {
+  if (!within(std::hypot(pm.pi_x0, pm.pi_y0), absRatio + farRowsSlack, absRatio)) {
     fail("%s: |(pi_x0, pi_y0)| = %.17g > %.17g", what, std::hypot(pm.pi_x0, pm.pi_y0), absRatio);
   }
   if (!within(pm.pi_xy, absRatio * rmax, absRatio * rmax)) fail("%s: |pi_xy| > r_max", what);
@@ -103,7 +117,9 @@ void checkPi(const PiMoments& pm, double rho) {
 void run(ByteReader& in) {
   const PatchShape shape = takeShape(in);
   const double offset = shape.maxDistanceFromOrigin() / shape.diameter();
-  offsetSlack = 4.0 * std::numeric_limits<double>::epsilon() * offset * offset;
+  const double sliver = shape.maxDistanceFromOrigin() / shape.area() * shape.maxDistanceFromOrigin();
+  offsetSlack = 4.0 * std::numeric_limits<double>::epsilon() * std::max(offset * offset, sliver);
+  farRowsSlack = 0.0;
   checkTable(shape);
   const double rmax = shape.maxDistanceFromOrigin();
   const uint8_t mode = in.byte();
@@ -119,6 +135,7 @@ void run(ByteReader& in) {
   }
   const double p0 = in.number(), cx = in.number(), cy = in.number();
   const LinearPressure p{p0, cx, cy};
+  note("pressure (%.17g, %.17g, %.17g), rho %.17g", p0, cx, cy, rho);
   PiMoments pm;
   try {
     pm = piMoments(shape, p);
@@ -128,13 +145,23 @@ void run(ByteReader& in) {
     const double Pz = shape.momentTable().m.row(MomentTable::kOne).dot(p.coefficients());
     // (or averages that overflow: a Pz much smaller than the coefficients' terms)
     const double terms = shape.area() * maxAbsPressure(shape, p) * (1.0 + shape.maxDistanceFromOrigin());
-    if (p.coefficients().allFinite() && Pz > 0.0 && std::isfinite(Pz) && std::isfinite(1.0 / Pz) &&
+    // (or a Pz within the round-off of its three terms, whose sign is then
+    // noise: found, Pz = 1.6e-82 from terms of 3e-32 that cancel)
+    const double rmaxIn = shape.maxDistanceFromOrigin();
+    const double noise = 4.0 * std::numeric_limits<double>::epsilon() * shape.area() *
+                         (std::abs(p0) + (std::abs(cx) + std::abs(cy)) * rmaxIn);
+    if (p.coefficients().allFinite() && Pz > noise && std::isfinite(Pz) && std::isfinite(1.0 / Pz) &&
         terms / Pz < 1e300) {
       fail("piMoments refused a pressure with Pz = %.17g: %s", Pz, e.what());
     }
     return;
   }
   if (!p.coefficients().allFinite()) fail("piMoments accepted non-finite coefficients");
+  if (!shape.isDisk()) {
+    const double far = rmax / shape.diameter();
+    farRowsSlack = std::numeric_limits<double>::epsilon() * far * far * far *
+                   std::hypot(cx, cy) * shape.diameter() * shape.area() / pm.Pz;
+  }
   const double absRatio = absPressureIntegral(shape, p, pm.Pz) / pm.Pz;
   if (std::isfinite(absRatio)) checkMoments(pm, std::max(1.0, absRatio), rmax, "pi moments");
   checkPi(pm, rho);
