@@ -113,6 +113,7 @@ void addSolverCounters(benchmark::State& state, const PatchFrictionSolver& solve
   state.counters["visits/patch"] = double(s.visits) / p;
   state.counters["skipped/patch"] = double(s.skippedVisits) / p;
   state.counters["max_pressure_lag"] = s.maxPressureLag;
+  state.counters["quick_sticks/patch"] = double(s.quickSticks) / p;
 }
 
 void BM_BulletWorldStep(benchmark::State& state) {
@@ -140,13 +141,14 @@ BENCHMARK(BM_BulletWorldStep)
 // rules switched off one at a time: 0 default, 1 no skipping of settled
 // patches, 2 Pi refreshed on every change of the centre of pressure, 3 both,
 // 4 one refresh tolerance for every visit (no larger tolerance for a
-// second refresh in the same step).
+// second refresh in the same step), 5 no quick stick test.
 void BM_SkipRules(benchmark::State& state) {
   SceneOptions opt;
   const int rules = int(state.range(0));
   opt.settings.skipSettledPatches = !(rules & 1);
   if (rules & 2) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
   if (rules == 4) opt.settings.pressureLagTolerance = opt.settings.pressureRefreshTolerance;
+  if (rules == 5) opt.settings.quickStick = false;
   World w(1000, kEllipsoidal, opt);
   long k = 0;
   for (auto _ : state) {
@@ -156,9 +158,9 @@ void BM_SkipRules(benchmark::State& state) {
   addSolverCounters(state, *w.patchSolver());
   state.SetLabel(rules == 0 ? "default" : rules == 1 ? "no settled-patch skipping"
                  : rules == 2 ? "Pi refreshed on every change" : rules == 3 ? "neither"
-                 : "no second tolerance per step");
+                 : rules == 4 ? "no second tolerance per step" : "no quick stick test");
 }
-BENCHMARK(BM_SkipRules)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SkipRules)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
 
 // 1000 coins at rest on the plane (uniform pressure: Pi = I, never
 // refreshed), awake: patch ellipsoidal / exact against stock; and the same

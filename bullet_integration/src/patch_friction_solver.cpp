@@ -100,6 +100,7 @@ struct PatchConstraint {
   double mu = 0.0, rho = 0.0, dt = 0.0;
   // effective masses: K6 = [[W, Knf], [Knf^T, Kff]], Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf
   Mat3 Winv, Kff, Knf, Ks, G;
+  Mat3 KsInv, KffInv;  // for the quick stick test
   Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
   Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
   Vec3 warmSlip = Vec3::Zero();
@@ -129,6 +130,9 @@ struct PatchState {
   bool flat = false;
   // centre of pressure of the pressure `friction` was last refreshed with
   Vec2 pressureCop = Vec2::Zero();
+  // Pi^-1 of `friction` (quick stick test), valid until the next refresh
+  Mat3 piInv = Mat3::Identity();
+  bool piInvValid = false;
   std::optional<internal::PatchOutline> outline;  // shape of `friction`
   std::optional<FrictionPatch> friction;
   internal::DetectedPatch geometry;               // this step's patch
@@ -481,6 +485,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu, opt.rho ? *opt.rho : 0.0);
         st.outline = outline;
         st.pressureCop = shape.centroid();  // uniform pressure
+        st.piInvValid = false;
         st.shapeId = ++im.shapeCount;
       } catch (const Error&) {
         st.flat = false;  // degenerate overlap: leave it to Bullet
@@ -530,6 +535,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     pc.G = pc.Winv * pc.Knf;
     pc.Ks = pc.Kff - pc.Knf.transpose() * pc.G;
     pc.Ks = 0.5 * (pc.Ks + pc.Ks.transpose());
+    pc.KsInv = pc.Ks.inverse();
+    pc.KffInv = pc.Kff.inverse();
 
     // position error: gap at O (< 0 penetrating) and tilt of the face
     //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
@@ -660,9 +667,38 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         pc.state->pressureCop = cop;
         refreshed = true;
       }
-      const bool reuse = pc.haveLast && !refreshed && !pc.last.sticking &&
-                         (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
-                         std::abs(L - pc.lastL) <= kReuseRelTol * L;
+      // quick stick: the impulse that stops the slip, lambda0 = -K^-1 b,
+      // inside L times the ellipsoid Pi B (the ellipsoidal law's limit set:
+      // there the test is exactly the block's own, |Pi^-1 lambda0| <= L) or,
+      // for the exact law, inside L times the octahedron conv{+-Pi e_i},
+      // which its limit set contains (q(e_i) = -Pi e_i; |Pi^-1 lambda0|_1 <=
+      // L). Resting bodies, most of a pile, then cost two 3x3 products
+      // instead of a block solve.
+      bool quick = false;
+      if (settings.quickStick) {
+        PatchState& st = *pc.state;
+        if (refreshed || !st.piInvValid) {
+          st.piInv = friction.Pi().inverse();
+          st.piInvValid = true;
+        }
+        const Vec3 lambda0 = -((pc.interior ? pc.KsInv : pc.KffInv) * in.b);
+        const Vec3 unitLoad = st.piInv * lambda0;
+        const double size = pc.model == Model::Ellipsoidal ? unitLoad.norm() : unitLoad.lpNorm<1>();
+        if (lambda0.allFinite() && unitLoad.allFinite() && size <= L) {
+          quick = true;
+          ++stats.quickSticks;
+          pc.last.impulse = lambda0;
+          pc.last.slip.setZero();
+          pc.last.sticking = true;
+          pc.last.iterations = 0;
+          pc.haveLast = true;
+          pc.lastB = in.b;
+          pc.lastL = L;
+        }
+      }
+      const bool reuse = quick || (pc.haveLast && !refreshed && !pc.last.sticking &&
+                                   (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
+                                   std::abs(L - pc.lastL) <= kReuseRelTol * L);
       if (!reuse) {
         ++stats.blockSolves;
         pc.last = solveFrictionBlock(friction, pc.model, in);

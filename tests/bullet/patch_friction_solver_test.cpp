@@ -165,7 +165,7 @@ TEST(PatchFrictionSolver, WorkSavingRulesDoNotChangeTheMotion) {
   double maxLag = 0.0;  // over every step of the run with the rules on
   auto run = [&maxLag](bool savings, double* stopTime, PatchSolverStats* stats) {
     Coin coin(true, Model::Exact);
-    if (!savings) coin.scene.solver().setSettings(PatchSolverSettings{0.0, false, 0.0});
+    if (!savings) coin.scene.solver().setSettings(PatchSolverSettings{0.0, false, 0.0, false});
     coin.body->setLinearVelocity(btVector3(0.5, 0.1, 0));
     coin.body->setAngularVelocity(btVector3(0, 0, 12));
     *stopTime = -1;
@@ -193,6 +193,26 @@ TEST(PatchFrictionSolver, WorkSavingRulesDoNotChangeTheMotion) {
   // a move beyond the second tolerance refreshes again in the same step
   // (the stop), so the friction law never lags by more than it
   EXPECT_LE(maxLag, PatchSolverSettings().pressureLagTolerance);
+  // a coin at rest sticks by the quick test alone (no block solve) for both
+  // laws; without the test the solver does the work
+  for (Model model : {Model::Ellipsoidal, Model::Exact})
+    for (bool quick : {true, false}) {
+      Coin rest(true, model);
+      PatchSolverSettings settings;
+      settings.quickStick = quick;
+      rest.scene.solver().setSettings(settings);
+      for (int k = 0; k < 10; ++k) rest.scene.step(kDt);
+      const PatchSolverStats& s = rest.scene.solver().stats();
+      EXPECT_EQ(s.patches, 1);
+      if (quick) {
+        EXPECT_GE(s.quickSticks, 1) << int(model);
+        EXPECT_EQ(s.blockSolves, 0) << int(model);
+      } else {
+        EXPECT_EQ(s.quickSticks, 0) << int(model);
+        EXPECT_GE(s.blockSolves, 1) << int(model);
+      }
+      EXPECT_LT(double(rest.body->getLinearVelocity().length()), 1e-6) << int(model);
+    }
   EXPECT_THROW(Coin(true).scene.solver().setSettings(PatchSolverSettings{-1e-6, true}), Error);
   EXPECT_THROW(Coin(true).scene.solver().setSettings(PatchSolverSettings{1e-6, true, -1e-3}), Error);
 }

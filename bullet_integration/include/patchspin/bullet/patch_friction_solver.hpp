@@ -109,6 +109,12 @@ struct PatchSolverSettings {
   // reference dynamics do not grow (bench_bullet_simulation). Set it to
   // pressureRefreshTolerance for the single-tolerance rule.
   double pressureLagTolerance = 1e-3;
+  // A friction block whose sticking impulse -K^-1 b lies inside a known
+  // part of the limit set sticks without a block solve: the ellipsoid
+  // L Pi B for the ellipsoidal law (its exact stick test), the octahedron
+  // L conv{+-Pi e_i} for the exact law (a sufficient test; the rest go to
+  // the solver).
+  bool quickStick = true;
 };
 
 // What the solver did in the last step (all islands), for profiling.
@@ -118,6 +124,7 @@ struct PatchSolverStats {
   long skippedVisits = 0;    // visits skipped (settled patch, bodies untouched)
   long blockSolves = 0;      // friction block solves (others reused the last solution)
   long pressureRefreshes = 0;  // Pi / exact-law pressure refreshes
+  long quickSticks = 0;        // friction visits that stuck by the quick test (no block solve)
   // largest distance, relative to the patch diameter, between a patch's
   // centre of pressure at the end of the step and the one its friction law
   // was last refreshed with [-]
