@@ -9,6 +9,7 @@
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace patchspin::bullet::internal {
@@ -71,24 +72,55 @@ std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
   while (out.size() > 1 && (out.front() - out.back()).norm() <= merge) out.pop_back();
   return out;
 }
+// Unit circle at kDiskSides points (computed once).
+const std::array<Vec2, kDiskSides>& unitCircle() {
+  static const std::array<Vec2, kDiskSides> table = [] {
+    std::array<Vec2, kDiskSides> t;
+    for (int i = 0; i < kDiskSides; ++i) {
+      const double a = 2.0 * M_PI * i / kDiskSides;
+      t[std::size_t(i)] = Vec2(std::cos(a), std::sin(a));
+    }
+    return t;
+  }();
+  return table;
+}
+
 std::vector<Vec2> diskPolygon(const Vec2& centre, double radius) {
   std::vector<Vec2> pts;
-  pts.reserve(kDiskSides);
-  for (int i = 0; i < kDiskSides; ++i) {
-    const double t = 2.0 * M_PI * i / kDiskSides;
-    pts.emplace_back(centre + radius * Vec2(std::cos(t), std::sin(t)));
-  }
+  pts.reserve(kDiskSides + 4);  // room for the clip's new points
+  for (const Vec2& u : unitCircle()) pts.emplace_back(centre + radius * u);
   return pts;
 }
 
 // Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
 // (both counter-clockwise).
 std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
+  if (subject.empty()) return subject;
+  // a circle (centre m, radius rMax) around the subject; it also holds every
+  // clipped subject (a part of the subject's convex hull)
+  Vec2 m = Vec2::Zero();
+  for (const Vec2& p : subject) m += p;
+  m /= double(subject.size());
+  double rMax = 0.0;
+  for (const Vec2& p : subject) rMax = std::max(rMax, (p - m).norm());
+  std::vector<Vec2> out;
   for (size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
     const Vec2& c1 = clip[i];
     const Vec2& c2 = clip[(i + 1) % clip.size()];
     const Vec2 edge = c2 - c1;
-    std::vector<Vec2> out;
+    // an edge farther from the circle's centre than its radius cuts nothing
+    // (margin: far above the round-off of the cross products below)
+    const double edgeLength = edge.norm();
+    if (cross2(edge, m - c1) > edgeLength * (rMax + 1e-9 * ((m - c1).norm() + rMax))) continue;
+    // an edge with every point on its inner side cuts nothing
+    bool allInside = true;
+    for (const Vec2& p : subject)
+      if (cross2(edge, p - c1) < 0.0) {
+        allInside = false;
+        break;
+      }
+    if (allInside) continue;
+    out.clear();
     out.reserve(subject.size() + 1);
     for (size_t j = 0; j < subject.size(); ++j) {
       const Vec2& p = subject[j];
@@ -264,6 +296,16 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     for (const btVector3& p : f.vertices) pts.push_back(toPlane(p, base, ex, ey));
     return counterClockwise(std::move(pts));
   };
+  // each face's polygon, built at most once
+  std::optional<std::vector<Vec2>> polyA, polyB;
+  auto polygonA = [&]() -> const std::vector<Vec2>& {
+    if (!polyA) polyA = polygonOf(a);
+    return *polyA;
+  };
+  auto polygonB = [&]() -> const std::vector<Vec2>& {
+    if (!polyB) polyB = polygonOf(b);
+    return *polyB;
+  };
 
   // the overlap, as a disk (centre, radius) or a counter-clockwise polygon
   bool disk = false;
@@ -276,10 +318,10 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     if (a.kind == Face::Kind::Disk) {
       disk = true, radius = a.radius, centre = ca;
     } else {
-      poly = polygonOf(a);
+      poly = polygonA();
     }
   } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Polygon &&
-             diskInsidePolygon(ca, a.radius, polygonOf(b))) {
+             diskInsidePolygon(ca, a.radius, polygonB())) {
     disk = true, radius = a.radius, centre = ca;
   } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Disk &&
              (ca - toPlane(b.centre, base, ex, ey)).norm() + a.radius <= b.radius) {
@@ -288,10 +330,10 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
              (ca - toPlane(b.centre, base, ex, ey)).norm() + b.radius <= a.radius) {
     disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
   } else if (a.kind == Face::Kind::Polygon && b.kind == Face::Kind::Disk &&
-             diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonOf(a))) {
+             diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonA())) {
     disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
   } else {
-    poly = counterClockwise(clipConvex(polygonOf(a), polygonOf(b)));
+    poly = counterClockwise(clipConvex(polygonA(), polygonB()));
   }
   if (!disk) {
     // area centroid of the polygon (shoelace)
