@@ -668,12 +668,13 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         refreshed = true;
       }
       // quick stick: the impulse that stops the slip, lambda0 = -K^-1 b,
-      // inside L times the ellipsoid Pi B (the ellipsoidal law's limit set:
-      // there the test is exactly the block's own, |Pi^-1 lambda0| <= L) or,
-      // for the exact law, inside L times the octahedron conv{+-Pi e_i},
-      // which its limit set contains (q(e_i) = -Pi e_i; |Pi^-1 lambda0|_1 <=
-      // L). Resting bodies, most of a pile, then cost two 3x3 products
-      // instead of a block solve.
+      // with z = Pi^-1 lambda0, inside L times the ellipsoid Pi B (the
+      // ellipsoidal law's limit set: |z| <= L, exactly the block's own test)
+      // or, for the exact law, inside L times the bicone |(z1, z2)| + |z3|
+      // <= 1 that its limit set contains (every pure translation u gives
+      // q = -Pi (u, 0), and q(e3) = -Pi e3; tests/core/step_test.cpp checks
+      // it against the law's support function). Resting bodies, most of a
+      // pile, then cost two 3x3 products instead of a block solve.
       bool quick = false;
       if (settings.quickStick) {
         PatchState& st = *pc.state;
@@ -683,7 +684,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         }
         const Vec3 lambda0 = -((pc.interior ? pc.KsInv : pc.KffInv) * in.b);
         const Vec3 unitLoad = st.piInv * lambda0;
-        const double size = pc.model == Model::Ellipsoidal ? unitLoad.norm() : unitLoad.lpNorm<1>();
+        const double size = pc.model == Model::Ellipsoidal
+                                ? unitLoad.norm()
+                                : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
         if (lambda0.allFinite() && unitLoad.allFinite() && size <= L) {
           quick = true;
           ++stats.quickSticks;

@@ -196,6 +196,53 @@ TEST(FrictionBlockTest, ExactSticksInsideTheFittingOctahedron) {
   }
 }
 
+// The exact law's limit set E also contains the bicone over the
+// translation ellipse: a pure translation u (|u| = 1) gives the uniform
+// force -u and the torque of that force at the centre of pressure, linear in
+// u, so q((u, 0)) = -Pi (u, 0) for every u (the fitting motions e1, e2 are
+// two of them); with +-q(e3) = -+Pi e3 and E convex,
+//   Pi z in E for |(z1, z2)| + |z3| <= 1
+// (the PatchFrictionSolver's quick stick test). Checked independently of
+// that argument by the support inequality of E: lambda in E iff
+// w . lambda >= w . q(w) for every unit w (q(w) minimises q . w over E),
+// over 2000 random w and points on the bicone's boundary; kSupportTol is the
+// exact law's own accuracy (1e-10 of mu Pz, unit here) with a margin.
+TEST(FrictionBlockTest, ExactLimitSetContainsTheTranslationBicone) {
+  constexpr double kSupportTol = 1e-9;
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const PatchShape disk = PatchShape::disk(0.05);
+  const FrictionPatch patches[] = {
+      tiltedRectangle(), FrictionPatch(disk, LinearPressure::fromLoads(disk, {10.0, -0.05, 0.08}), 0.5)};
+  for (const FrictionPatch& patch : patches) {
+    for (int k = 0; k < 16; ++k) {  // translations: the ellipse itself
+      const double a = 2.0 * M_PI * k / 16;
+      const Vec3 w(std::cos(a), std::sin(a), 0.0);
+      EXPECT_LT((patch.unitQ(Model::Exact, w) + patch.Pi() * w).norm(), 1e-10) << k;
+    }
+    std::vector<Vec3> ws, qs;
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 w = randomUnit(rng);
+      ws.push_back(w);
+      qs.push_back(patch.unitQ(Model::Exact, w));
+    }
+    double worst = -1e300;
+    for (int trial = 0; trial < 200; ++trial) {
+      const double t = std::abs(u(rng)), phi = M_PI * u(rng);
+      const double sign = u(rng) < 0 ? -1.0 : 1.0;
+      const Vec3 z((1.0 - t) * std::cos(phi), (1.0 - t) * std::sin(phi), sign * t);  // on the boundary
+      const Vec3 lambda = patch.Pi() * z;
+      for (size_t i = 0; i < ws.size(); ++i) worst = std::max(worst, ws[i].dot(qs[i]) - ws[i].dot(lambda));
+    }
+    EXPECT_LE(worst, kSupportTol);
+    // and the bicone is not all of E: beyond its vertex Pi e3 the point is out
+    const Vec3 beyond = 1.05 * patch.Pi().col(2);
+    double gap = -1e300;
+    for (size_t i = 0; i < ws.size(); ++i) gap = std::max(gap, ws[i].dot(qs[i]) - ws[i].dot(beyond));
+    EXPECT_GT(gap, 0.0);
+  }
+}
+
 // A coarser stopping tolerance (what the single-precision Bullet layer asks
 // for) moves the solution by at most ~cond(K) x tolerance of the slip scale:
 // compared with the default (1e-14) solve of the same block. K here has

@@ -111,9 +111,9 @@ struct PatchSolverSettings {
   double pressureLagTolerance = 1e-3;
   // A friction block whose sticking impulse -K^-1 b lies inside a known
   // part of the limit set sticks without a block solve: the ellipsoid
-  // L Pi B for the ellipsoidal law (its exact stick test), the octahedron
-  // L conv{+-Pi e_i} for the exact law (a sufficient test; the rest go to
-  // the solver).
+  // L Pi B for the ellipsoidal law (its exact stick test), the bicone over
+  // the translation ellipse, L Pi {|(z1, z2)| + |z3| <= 1}, for the exact
+  // law (a sufficient test; the rest go to the solver).
   bool quickStick = true;
 };
 
