@@ -37,15 +37,17 @@ struct Bounds {
   double force = 0.0;   // bound of |(Px, Py)| [N]
   double torque = 0.0;  // bound of |Tz / rho| [N]
   double scale = 0.0;   // force + torque
+  // the round-off of Q's sum over the pressure's terms (force, torque)
+  double roundOffForce = 0.0, roundOffTorque = 0.0;
 };
 
 void checkExact(const Vec3& Q, const Bounds& b, const char* what) {
   checkFinite(Q, what);
   const double f = std::hypot(Q.x(), Q.y());
-  if (f > b.force * (1.0 + kBoundSlack) + kBoundSlack * b.scale + kTiny) {
+  if (f > b.force * (1.0 + kBoundSlack) + kBoundSlack * b.scale + b.roundOffForce + kTiny) {
     fail("%s: |(Px, Py)| = %.17g exceeds mu ∫|p| = %.17g", what, f, b.force);
   }
-  if (std::abs(Q.z()) > b.torque * (1.0 + kBoundSlack) + kBoundSlack * b.scale + kTiny) {
+  if (std::abs(Q.z()) > b.torque * (1.0 + kBoundSlack) + kBoundSlack * b.scale + b.roundOffTorque + kTiny) {
     fail("%s: |Tz/rho| = %.17g exceeds mu ∫|p| max|r| / rho = %.17g", what, std::abs(Q.z()),
          b.torque);
   }
@@ -53,9 +55,13 @@ void checkExact(const Vec3& Q, const Bounds& b, const char* what) {
 
 // lever: max|r| / rho, by which the kernel's w3 terms (x v_y - y v_x) / rho
 // outweigh the others, and the round-off of dQ/dw w with them
-void checkHomogeneous(const Mat3& J, const Vec3& w, double lever, const char* what) {
+// `terms`: mu A (|p0| + (|cx| + |cy|) max|r|), the size of the terms
+// c_k dF_k/dw |w| the Jacobian is summed from; each term is homogeneous on its
+// own, so |dQ/dw w| is their round-off, which a pressure that nearly cancels
+// (|J| << terms) does not shrink (found: Pz/A = 1e-19 from terms 7e-3)
+void checkHomogeneous(const Mat3& J, const Vec3& w, double lever, double terms, const char* what) {
   checkFinite(J, what);
-  const double lhs = Vec3(J * w).stableNorm(), rhs = J.stableNorm() * w.stableNorm();
+  const double lhs = Vec3(J * w).stableNorm(), rhs = std::max(J.stableNorm() * w.stableNorm(), terms);
   if (lhs > kHomogeneitySlack * (1.0 + lever) * rhs + kTiny) {
     fail("%s: |dQ/dw w| = %.17g, not 0 (|dQ/dw| |w| = %.17g)", what, lhs, rhs);
   }
@@ -120,12 +126,32 @@ void run(ByteReader& in) {
   if (!std::isfinite(bounds.scale)) {
     bounds.force = bounds.torque = bounds.scale = std::numeric_limits<double>::infinity();
   }
+  // Q sums c_k F_k over the pressure's coefficients about O, each term up
+  // to mu A |c_k| max|r|^k (times the lever for the torque), and a sliver's
+  // kernel integrals cancel by diameter^2 / A: Q is known to kTermsUlps eps
+  // times both. Negligible (~eps mu Pz) unless the pressure about O cancels
+  // (found: Pz = 1.2e-5 from terms 2.5e5 on a triangle with diameter^2 / A =
+  // 4e10, |(Px, Py)| = 0.51 against mu ∫|p| = 5.9e-6: no digit of Q is known
+  // there; the core accepts such patches, an open finding in fuzz/README.md)
+  constexpr double kTermsUlps = 16.0;
+  double termsRoundOff = 0.0;  // without mu
+  {
+    const LinearPressure& pc = patch.pressure();
+    const double rmax = shape.maxDistanceFromOrigin();
+    const double termsA = hertz ? Pz : shape.area() * (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax);
+    const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
+    termsRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA;
+    bounds.roundOffForce = mu * termsRoundOff;
+    bounds.roundOffTorque = mu * termsRoundOff * rmax / patch.rho();
+  }
   const double ellipsoidalBound = mu * Pz * patch.Pi().stableNorm();
   // the unit law: mu Pz = 1
   Bounds unit;
   unit.force = absP / Pz;
   unit.torque = absP / Pz * shape.maxDistanceFromOrigin() / patch.rho();
   unit.scale = unit.force + unit.torque;
+  unit.roundOffForce = termsRoundOff / Pz;
+  unit.roundOffTorque = termsRoundOff / Pz * shape.maxDistanceFromOrigin() / patch.rho();
 
   // the identities between the laws and of the Jacobian are compared only
   // for magnitudes inside kModerate, away from the ends of double's range,
@@ -166,12 +192,21 @@ void run(ByteReader& in) {
       checkFinite(J, "exact dQ/dw");
       // (at full accuracy: the accuracy knob truncates series, Jacobian included)
       if (moderateInput && moderate(w.cwiseAbs().maxCoeff()) && accuracy.tolerance == 0.0) {
-        checkHomogeneous(J, w, lever, "exact dQ/dw");
+        const LinearPressure& pc = patch.pressure();
+        const double terms = mu * shape.area() *
+                             (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * shape.maxDistanceFromOrigin());
+        checkHomogeneous(J, w, lever, terms, "exact dQ/dw");
       }
       // without the Jacobian: the same value
       const Vec3 Qx2 = patch.exactQ(w, nullptr, accuracy);
       // (the accuracy knob may pick different series orders for the two)
-      const double same = std::max(kBoundSlack, 10.0 * accuracy.tolerance);
+      // (and a sliver's cancellation, eps diameter^2 / A, rounds the two
+      // paths differently: found 6e-7 apart on a triangle with diameter^2 / A
+      // = 2e9, eps times that = 4.4e-7; kSliverUlps covers the order)
+      constexpr double kSliverUlps = 16.0;
+      const double sliverRoundOff = kSliverUlps * std::numeric_limits<double>::epsilon() *
+                                    shape.diameter() / shape.area() * shape.diameter();
+      const double same = std::max({kBoundSlack, 10.0 * accuracy.tolerance, sliverRoundOff});
       if (!(Qx2 == Qx) && (Qx2 - Qx).stableNorm() > same * bounds.scale + kTiny) {
         fail("exact Q differs with and without the Jacobian: (%.17g %.17g %.17g) vs (%.17g %.17g %.17g)",
              Qx.x(), Qx.y(), Qx.z(), Qx2.x(), Qx2.y(), Qx2.z());
@@ -192,9 +227,16 @@ void run(ByteReader& in) {
       // (the Jacobian sums c_k dF_k: its terms scale with the coefficients)
       const LinearPressure& pc = patch.pressure();
       const double rmax = shape.maxDistanceFromOrigin();
-      const double terms = mu * shape.area() * (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax) *
-                           (1.0 + rmax / patch.rho()) + bounds.scale + ellipsoidalBound;
-      const bool tiny = usable && (wMax < 1e-100 || terms / wMax > 1e100) &&
+      // (the unit law unitQ divides by Pz instead of multiplying by mu: its
+      // terms are ∫|p| / Pz; found: a 2e-16 m disk with |p| ~ 2.6e31 and
+      // Pz = 2e-308, whose unit Jacobian is ~1e313 at |w| = 4.5e-5)
+      const double pressureTerms = shape.area() * (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax) *
+                                   (1.0 + rmax / patch.rho());
+      const double terms = mu * pressureTerms + pressureTerms / std::abs(patch.Pz()) + bounds.scale +
+                           ellipsoidalBound;
+      // (or the unscaled sum c_k dF_k itself, before mu or 1/Pz: found,
+      // p0 = DBL_MAX on a 4e-16 m patch at |w| = 8e-33, terms 1e310)
+      const bool tiny = usable && (wMax < 1e-100 || terms / wMax > 1e100 || pressureTerms / wMax > 1e300) &&
                         std::strstr(e.what(), "dQ/dw overflows") != nullptr;
       if (usable && toleranceValid && !tiny) {
         fail("valid w = (%.17g %.17g %.17g) refused: %s", w.x(), w.y(), w.z(), e.what());
