@@ -172,7 +172,15 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
   // the integral first: Eigen folds scale * (F c) into (scale F) c, which
   // underflows to 0 for a tiny mu (e.g. 1e-308) even when Q is representable
   const Vec3 integral = basis.F * c;
-  return scale * integral;
+  const Vec3 Q = scale * integral;
+  // the up-front check bounds |Q| by mu ∫|p| (1 + max|r| / rho) < DBL_MAX,
+  // but the sum's own terms may exceed that bound by a few times (found by
+  // fuzzing: a 3.5e9 m disk with that bound 4.7e307 gave Tz/rho = inf)
+  if (!Q.allFinite()) {
+    throw Error("exact law: Q overflows double (mu = " + internal::formatDouble(mu_) +
+                ", Pz = " + internal::formatDouble(moments_.Pz) + " N); reduce the pressure or the lever max|r| / rho");
+  }
+  return Q;
 }
 
 std::optional<Vec3> FrictionPatch::QofSlip(Model model, const Vec3& x_o) const {

@@ -404,6 +404,19 @@ TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
   EXPECT_LE(distance(nearSliver), distance(uniformLoads) * (1.0 + kDistanceRoundOff));
   EXPECT_GT(nearSliver.Pz, 0.0);
 
+  // exact Q whose bound mu ∫|p| (1 + max|r| / rho) = 4.7e307 passes the
+  // up-front range check but whose sum overflowed: Tz/rho was inf, now an
+  // Error (or a finite Q)
+  const PatchShape huge = PatchShape::disk(3536977920.0, Vec2(1e-08, 11597774848.0));
+  const FrictionPatch steep(huge, LinearPressure{2.5967856829092717e-312, 2.0722615146145237e-315, 3.0266876757588627e+267},
+                            0.088134765625, 0.051469802856445312);
+  const double big = std::numeric_limits<double>::max();
+  try {
+    EXPECT_TRUE(steep.exactQ(Vec3(big, big, big)).allFinite());
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("overflows"), std::string::npos) << e.what();
+  }
+
   // a tiny disk with a tiny pressure: the unit law's Jacobian is finite
   // (-1/Pz times 1/|w| overflowed on its own before the product)
   const double e = 2.2204460492503131e-16;
