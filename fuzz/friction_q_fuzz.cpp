@@ -67,8 +67,10 @@ void checkHomogeneous(const Mat3& J, const Vec3& w, double lever, double terms, 
   }
 }
 
-void checkAgree(const Vec3& a, const Vec3& b, double scale, const char* what) {
-  if ((a - b).stableNorm() > kAgreeSlack * scale + kTiny) {
+// `conditioning`: the relative round-off the two laws' different sums carry
+// beyond kAgreeSlack (see the caller)
+void checkAgree(const Vec3& a, const Vec3& b, double scale, double conditioning, const char* what) {
+  if ((a - b).stableNorm() > (kAgreeSlack + conditioning) * scale + kTiny) {
     fail("%s: exact (%.17g %.17g %.17g) != ellipsoidal (%.17g %.17g %.17g), scale %.3g", what,
          a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), scale);
   }
@@ -119,7 +121,10 @@ void run(ByteReader& in) {
   const double absP = hertz ? Pz : absPressureIntegral(shape, patch.pressure(), Pz);
   Bounds bounds;
   bounds.force = mu * absP;
-  bounds.torque = mu * absP * shape.maxDistanceFromOrigin() / patch.rho();
+  // (the lever max|r| / rho first: mu absP max|r| underflowed for a 3e-28 m
+  // disk with mu = 1e-302, where the bound itself is 6e-303)
+  const double lever = shape.maxDistanceFromOrigin() / patch.rho();
+  bounds.torque = mu * absP * lever;
   bounds.scale = bounds.force + bounds.torque;
   // (the API refuses patches whose mu A max|p| (1 + max|r| / rho) overflows;
   // the bound's own sum may still overflow by a factor 2: then only finiteness)
@@ -133,7 +138,9 @@ void run(ByteReader& in) {
   // (found: Pz = 1.2e-5 from terms 2.5e5 on a triangle with diameter^2 / A =
   // 4e10, |(Px, Py)| = 0.51 against mu ∫|p| = 5.9e-6: no digit of Q is known
   // there; the core accepts such patches, an open finding in fuzz/README.md)
-  constexpr double kTermsUlps = 16.0;
+  // (kTermsUlps: measured up to 26 on a 1e10 m x 0.5 m triangle with p
+  // vanishing along it, torque 1.8e10 against mu ∫|p| max|r| / rho = 1.2e7)
+  constexpr double kTermsUlps = 64.0;
   double termsRoundOff = 0.0;  // without mu
   {
     const LinearPressure& pc = patch.pressure();
@@ -142,16 +149,16 @@ void run(ByteReader& in) {
     const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
     termsRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA;
     bounds.roundOffForce = mu * termsRoundOff;
-    bounds.roundOffTorque = mu * termsRoundOff * rmax / patch.rho();
+    bounds.roundOffTorque = mu * termsRoundOff * lever;
   }
   const double ellipsoidalBound = mu * Pz * patch.Pi().stableNorm();
   // the unit law: mu Pz = 1
   Bounds unit;
   unit.force = absP / Pz;
-  unit.torque = absP / Pz * shape.maxDistanceFromOrigin() / patch.rho();
+  unit.torque = absP / Pz * lever;
   unit.scale = unit.force + unit.torque;
   unit.roundOffForce = termsRoundOff / Pz;
-  unit.roundOffTorque = termsRoundOff / Pz * shape.maxDistanceFromOrigin() / patch.rho();
+  unit.roundOffTorque = termsRoundOff / Pz * lever;
 
   // the identities between the laws and of the Jacobian are compared only
   // for magnitudes inside kModerate, away from the ends of double's range,
@@ -160,7 +167,7 @@ void run(ByteReader& in) {
   auto moderate = [&](double v) { return v < kModerate && v > 1.0 / kModerate; };
   // (and on reasonably shaped patches: slivers and long levers max|r| / rho
   // lose digits to cancellation in both laws, differently)
-  const double d = shape.diameter(), lever = shape.maxDistanceFromOrigin() / patch.rho();
+  const double d = shape.diameter();
   const bool moderateInput =
       shape.area() >= 1e-3 * d * d && lever <= 1e3 && moderate(mu * Pz) && moderate(patch.Pi().cwiseAbs().maxCoeff()) &&
       moderate(bounds.scale + ellipsoidalBound) &&
@@ -234,11 +241,22 @@ void run(ByteReader& in) {
                                    (1.0 + rmax / patch.rho());
       const double terms = mu * pressureTerms + pressureTerms / std::abs(patch.Pz()) + bounds.scale +
                            ellipsoidalBound;
-      // (or the unscaled sum c_k dF_k itself, before mu or 1/Pz: found,
-      // p0 = DBL_MAX on a 4e-16 m patch at |w| = 8e-33, terms 1e310)
-      const bool tiny = usable && (wMax < 1e-100 || terms / wMax > 1e100 || pressureTerms / wMax > 1e300) &&
+      // (or the unscaled sum c_k dF_k itself, before mu or 1/Pz and 1/|w|:
+      // found, p0 = DBL_MAX on a 4e-16 m patch at |w| = 8e-33, terms 1e310;
+      // and coefficients 2.9e300 on a 0.5 m disk, terms 2.3e300 at any w.
+      // Within kOverflowMargin of overflow the kernel's derivative, large
+      // near its singular points, may carry the sum over)
+      constexpr double kOverflowMargin = 1e8;
+      const double unscaled = std::max(pressureTerms, pressureTerms / wMax);
+      const bool tiny = usable && (wMax < 1e-100 || terms / wMax > 1e100 ||
+                                   unscaled > std::numeric_limits<double>::max() / kOverflowMargin) &&
                         std::strstr(e.what(), "dQ/dw overflows") != nullptr;
-      if (usable && toleranceValid && !tiny) {
+      // Q itself overflowing where its bound mu ∫|p| (1 + lever) is within
+      // kOverflowMargin of double's range (found: bound 4.7e307, Tz/rho inf)
+      const bool huge = std::strstr(e.what(), "Q overflows") != nullptr &&
+                        !(bounds.scale < std::numeric_limits<double>::max() / kOverflowMargin &&
+                          unscaled < std::numeric_limits<double>::max() / kOverflowMargin);
+      if (usable && toleranceValid && !tiny && !huge) {
         fail("valid w = (%.17g %.17g %.17g) refused: %s", w.x(), w.y(), w.z(), e.what());
       }
     }
@@ -253,8 +271,17 @@ void run(ByteReader& in) {
   if (!moderateInput) return;
   std::vector<Vec3> special = {Vec3(0.0, 0.0, 1.0), Vec3(0.0, 0.0, -1.0)};
   if (firstW.head<2>().cwiseAbs().maxCoeff() > 0.0) special.emplace_back(firstW.x(), firstW.y(), 0.0);
+  // the exact law's kernel integrals about O and the table's moments round
+  // differently: eps (max|r| / diameter)^2 for a patch far from O, times the
+  // cancellation of the pressure's terms about O, times a sliver's (found:
+  // a 1.7e-3 m 26-gon 850 diameters from O, terms / ∫|p| = 3e3: 2e-8 apart,
+  // where eps 850^2 3e3 = 4.8e-7)
+  const double farOffset = shape.maxDistanceFromOrigin() / shape.diameter();
+  const double conditioning = kTermsUlps * std::numeric_limits<double>::epsilon() *
+                              std::max(1.0, farOffset * farOffset) *
+                              std::max(1.0, termsRoundOff / (kTermsUlps * std::numeric_limits<double>::epsilon()) / absP);
   for (const Vec3& w : special) {
-    checkAgree(patch.exactQ(w), patch.ellipsoidalQ(w), agreeScale,
+    checkAgree(patch.exactQ(w), patch.ellipsoidalQ(w), agreeScale, conditioning,
                w.z() == 0.0 ? "pure translation" : "pure spin about O");
   }
 }
