@@ -210,10 +210,14 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   }
   Vec3 q;
   Mat3 J;
+  bool gaugeFound = false;
   for (int it = 0; it < kMaxIterations && !slipProven; ++it) {
     q = patch.unitQ(Model::Exact, w, &J);
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
-    if (res.norm() <= tol * q.norm() && q.dot(l) > 0.0) break;
+    if (res.norm() <= tol * q.norm() && q.dot(l) > 0.0) {
+      gaugeFound = true;
+      break;
+    }
     // tangent basis at w and the 2x2 Newton system
     const Vec3 t1 = w.unitOrthogonal(), t2 = w.cross(t1);
     Eigen::Matrix2d Jr;
@@ -226,7 +230,11 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     w = (w + step[0] * t1 + step[1] * t2).normalized();
     out.iterations = it + 1;
   }
-  if (!slipProven && q.dot(l) > 0.0 && lambda0Norm <= in.L * q.norm()) {
+  // (only where the iteration found q(w) along lambda0: found by fuzzing, a
+  // long lever (max|r| / rho = 5e7) kept it from converging, and the last
+  // q(w), mostly torque, made a force 2.8 L look inside L E; otherwise the
+  // slip branch below decides, with its own stick fallback)
+  if (!slipProven && gaugeFound && lambda0Norm <= in.L * q.norm()) {
     out.sticking = true;
     out.impulse = lambda0;
     out.slip.setZero();
@@ -245,6 +253,11 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   if (!slipProven) {
     scoreCandidate(in.b.normalized(), false);
     scoreCandidate(w, false);
+    // -lambda0 = K^-1 b: its gap is L h_E(l) - |lambda0|, the plain gauge
+    // test along lambda0 (found by fuzzing: with a long lever the support of
+    // E is ~1e8 in every direction with a torque part, so b and the sphere
+    // samples all had positive gaps while a force of 2.8 L was outside)
+    scoreCandidate(-l, false);
   }
   if (!(bestScore < 0.0)) {
     // golden-angle (Fibonacci) sphere, deterministic
@@ -335,6 +348,22 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       }
     }
     if (!accepted) break;  // no further progress possible in double precision
+  }
+  // consistency with the returned slip: where the map s -> b + K L q(s^)
+  // contracts (|K| L |dq/ds| < 1/2: the slip hardly depends on the impulse),
+  // fixed-point steps make the impulse the law at the returned slip's
+  // direction (found by fuzzing: |b| = 8e230 met the convergence test,
+  // relative to |b|, at once, with q still at the warm start's direction)
+  // (J: the law's Jacobian on the unit sphere at the last iterate, so
+  // |dq/ds| = |J| / |s|)
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 sOut = in.b + in.K * (in.L * q);
+    if (!(sOut.norm() > 0.0) || !sOut.allFinite()) break;
+    if (!(in.K.norm() * in.L * J.norm() < 0.5 * sOut.norm())) break;
+    const Vec3 qOut = patch.unitQ(Model::Exact, sOut);
+    const bool settled = (qOut - q).norm() <= tol * q.norm();
+    q = qOut;
+    if (settled) break;
   }
   out.impulse = in.L * q;
   out.slip = in.b + in.K * out.impulse;

@@ -315,6 +315,59 @@ TEST(CoreBadInput, EllipsoidalBlockWithLongLever) {
   EXPECT_LT(resolvable, 1.0);  // the check above says something
 }
 
+// Exact block with a long lever (max|r| / rho = 1e8, O on the rim): the
+// limit set E reaches ~4.5e7 in every direction with a torque part, so the
+// gauge iteration along lambda0 = -K^-1 b (force 2.8 L, torque ~0) did not
+// converge, its last q(w) (mostly torque) was long enough to call it a stick,
+// and every slip candidate tried had a torque part. The block stuck with an
+// impulse 2.8 times the largest friction force L ∫|p| / Pz. Checked against
+// the limit set's force bound and the law at the returned slip.
+TEST(CoreBadInput, ExactBlockWithLongLeverDoesNotStickOutsideTheSet) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(0.5, 1e-8));
+  const FrictionPatch patch(disk,
+                            LinearPressure::fromLoads(disk, {0.34742866443796361, -9.2650840233638689e-10,
+                                                             0.13028574916423646}),
+                            1e-8, 1e-8);
+  ASSERT_GE(minPressure(disk, patch.pressure()), 0.0);  // so ∫|p| = Pz
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 1e-8);
+  in.L = 1e-8;
+  in.K = Vec3(0.5, 0.5, 9701425152.0).asDiagonal();
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  // |impulse_xy| <= L ∫|p| / Pz = L, to round-off of L q
+  constexpr double kRoundOff = 1e-12;
+  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * (1.0 + kRoundOff));
+  // -K^-1 b has force 2.8 L: it is outside L E, the block must slip
+  EXPECT_FALSE(r.sticking);
+  // (the law at the returned slip is not checked: the slip's spin part is
+  // b_z + K_zz impulse_z with K_zz = 1e10 and impulse_z a difference of
+  // 4.5e7-sized torques, so double cannot resolve it; open, fuzz/README.md)
+}
+
+// Exact block with |b| = 8e230: the slip's convergence test, relative to
+// |b|, passed at once with q at the warm start's direction, so the impulse
+// was not the law at the returned slip (torque -1.7e7 where the law gives
+// -6.2e6). Where the slip hardly depends on the impulse, the solver now
+// makes them consistent. Checked against the law at the returned slip.
+TEST(CoreBadInput, ExactBlockWithHugeFreeSlipIsTheLawAtItsSlip) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(
+      disk, LinearPressure::fromLoads(disk, {9.860043733131926e+299, -3.0247296913024801e+297, 1.2321343576385495e+299}),
+      0.5, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-08, 8.0428159874152501e+230, 0.5);
+  in.L = 0.5;
+  in.K = Vec3(1e-8, 1e-8, 1e-8).asDiagonal();
+  in.warmSlip = Vec3(0.5, 0.5, 0.5);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  ASSERT_FALSE(r.sticking);
+  // the slip's direction is b's to ~1e-238, so the law at it is known to
+  // round-off of q: 1e-12 of L times the set's size (1 + max|r| / rho)
+  constexpr double kLawTol = 1e-12;
+  const double setSize = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
+  EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * setSize);
+}
+
 // The polygon table's edge integrals far from their edge: on a sliver
 // 1.8e9 m long and 1 m wide passing 0.5 m from O, the 1 m end edges are
 // 9e8 m from O, and rb - ra (1e-8) and (tau r - d^2 asinh(tau/d)) / 2 were
