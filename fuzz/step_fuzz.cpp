@@ -145,8 +145,11 @@ void run(ByteReader& in) {
     }
   }
 
-  // maximum dissipation: the slip's kinetic energy does not grow
-  if (model == Model::Exact && isSpd(input.K)) {
+  // maximum dissipation: the slip's kinetic energy does not grow (for a
+  // pressure >= 0 on the patch: with negative parts the exact law is not a
+  // maximum-dissipation law and friction may feed energy in; found, a 1e-8 m
+  // disk with min p = -1.3e16 and Pz = 1e-8)
+  if (model == Model::Exact && isSpd(input.K) && minPressure(shape, patch.pressure()) >= 0.0) {
     const Eigen::LLT<Mat3> llt(input.K);
     const double e0 = input.b.dot(llt.solve(input.b)), e1 = out.slip.dot(llt.solve(out.slip));
     if (std::isfinite(e0) && e1 > e0 * (1.0 + kEnergySlack) + kEnergySlack * scale * scale / input.K.stableNorm()) {

@@ -355,15 +355,22 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // direction (found by fuzzing: |b| = 8e230 met the convergence test,
   // relative to |b|, at once, with q still at the warm start's direction)
   // (J: the law's Jacobian on the unit sphere at the last iterate, so
-  // |dq/ds| = |J| / |s|)
+  // |dq/ds| = |J| / |s|.) The result is kept only if it does not raise the
+  // potential D (found by fuzzing: with a pressure far from admissible, J
+  // misjudged the contraction and the steps gained energy)
+  Vec3 qPolished = q;
   for (int k = 0; k < 8; ++k) {
-    const Vec3 sOut = in.b + in.K * (in.L * q);
+    const Vec3 sOut = in.b + in.K * (in.L * qPolished);
     if (!(sOut.norm() > 0.0) || !sOut.allFinite()) break;
     if (!(in.K.norm() * in.L * J.norm() < 0.5 * sOut.norm())) break;
     const Vec3 qOut = patch.unitQ(Model::Exact, sOut);
-    const bool settled = (qOut - q).norm() <= tol * q.norm();
-    q = qOut;
+    const bool settled = (qOut - qPolished).norm() <= tol * qPolished.norm();
+    qPolished = qOut;
     if (settled) break;
+  }
+  if (!(qPolished == q)) {
+    const Vec3 sPolished = in.b + in.K * (in.L * qPolished);
+    if (potential(sPolished, qPolished) <= D + roundOffD) q = qPolished;
   }
   out.impulse = in.L * q;
   out.slip = in.b + in.K * out.impulse;
