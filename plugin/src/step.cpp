@@ -258,6 +258,14 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     // E is ~1e8 in every direction with a torque part, so b and the sphere
     // samples all had positive gaps while a force of 2.8 L was outside)
     scoreCandidate(-l, false);
+    // and its force and its torque part alone: E's extent along torque and
+    // along force differ by the lever max|r| / rho, so with a long (short)
+    // lever a direction with any torque (force) part has a huge support and
+    // the separating directions lie in the force plane (on the torque axis)
+    // (found by fuzzing: lever 5e7, lambda0 = (-1, -1, -1) stuck at L = 0.5)
+    const Vec3 forcePart(-l.x(), -l.y(), 0.0), torquePart(0.0, 0.0, -l.z());
+    if (forcePart.norm() > 0.0) scoreCandidate(forcePart.normalized(), false);
+    if (torquePart.norm() > 0.0) scoreCandidate(torquePart.normalized(), false);
   }
   if (!(bestScore < 0.0)) {
     // golden-angle (Fibonacci) sphere, deterministic

@@ -344,6 +344,31 @@ TEST(CoreBadInput, ExactBlockWithLongLeverDoesNotStickOutsideTheSet) {
   // 4.5e7-sized torques, so double cannot resolve it; open, fuzz/README.md)
 }
 
+// A second false stick with a long lever (5e7): lambda0 = -K^-1 b =
+// (-1, -1, -1) against L = 0.5, force 1.4 > L. Every separating direction
+// lies in the force plane (any torque part meets E's 2.5e7 torque extent),
+// and no candidate tried was there.
+TEST(CoreBadInput, ExactBlockWithLongLeverSlipsInTheForcePlane) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(
+      disk, LinearPressure::fromLoads(disk, {2.271553102614555e-08, 2.0077880525071972e-09, 2.0077884542030355e-09}),
+      0.5, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 1e-8);
+  in.L = 0.5;
+  in.K = Vec3(1e-8, 1e-8, 1e-8).asDiagonal();
+  in.warmSlip = Vec3(0.5, 0.5, 0.5);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  // the force part of L E is at most L ∫|p| / Pz (round-off of L q: 1e-12)
+  constexpr double kRoundOff = 1e-12;
+  const double absRatio = minPressure(disk, patch.pressure()) >= 0.0
+                              ? 1.0
+                              : std::numeric_limits<double>::infinity();
+  ASSERT_EQ(absRatio, 1.0);
+  EXPECT_FALSE(r.sticking);
+  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * absRatio * (1.0 + kRoundOff));
+}
+
 // Exact block with |b| = 8e230: the slip's convergence test, relative to
 // |b|, passed at once with q at the warm start's direction, so the impulse
 // was not the law at the returned slip (torque -1.7e7 where the law gives
