@@ -80,9 +80,16 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
       !n1.allFinite()) {
     throw Error("friction block out of range: L K Pi overflows double (K, b or L too large)");
   }
-  if (d > 0.0 && n0.norm() <= d) {  // stick: lambda = -L Pi A^-1 b = -K^-1 b
+  // stick iff lambda0 = -K^-1 b = -L Pi w0 has |w0| <= 1, by pivoted solves
+  // with K and Pi themselves (backward stable): adj(A) b / d decided wrongly
+  // and left b + K lambda at 1e6 times round-off for an ill-conditioned K
+  // (entries 0.5 to 9e19; found by fuzzing)
+  const Vec3 lambda0 = -in.K.partialPivLu().solve(in.b);
+  const Vec3 w0 = -Pi.partialPivLu().solve(lambda0) / in.L;
+  const bool stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0.norm() <= d;
+  if (stick) {
     out.sticking = true;
-    out.impulse = -in.L * (Pi * (n0 / d));
+    out.impulse = lambda0;
     out.slip.setZero();
     return out;
   }

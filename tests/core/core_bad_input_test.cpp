@@ -369,6 +369,37 @@ TEST(CoreBadInput, ExactBlockWithLongLeverSlipsInTheForcePlane) {
   EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * absRatio * (1.0 + kRoundOff));
 }
 
+// Ellipsoidal block with an ill-conditioned K (entries 0.5 to 9.5e19): the
+// stick test |adj(A) b| <= det A and the impulse -L Pi adj(A) b / det A lost
+// their digits; it stuck with an impulse whose b + K lambda was 6.6e9, not 0,
+// where -K^-1 b = (-2, 0, ~0) is outside L E (|lambda| = 2 > L |Pi| = 1.27).
+// Checked against the limit set's bound and slip = b + K impulse.
+TEST(CoreBadInput, EllipsoidalBlockWithIllConditionedK) {
+  const PatchShape dodecagon = PatchShape::polygon(
+      {{0.93879128094518638, 0.7397127693021015}, {0.7601480116065954, 0.92699298829973165},
+       {0.51179829264545484, 0.99986078090869679}, {0.2602872306978985, 0.93879128094518638},
+       {0.073007011700268465, 0.7601480116065954}, {0.00013921909130315546, 0.51179829264545473},
+       {0.061208719054813621, 0.26028723069789855}, {0.23985198839340438, 0.073007011700268576},
+       {0.48820170735454504, 0.00013921909130315546}, {0.73971276930210139, 0.061208719054813621},
+       {0.92699298829973165, 0.23985198839340471}, {0.99986078090869679, 0.48820170735454499}});
+  const FrictionPatch patch(
+      dodecagon, LinearPressure::fromLoads(dodecagon, {0.36071503384922143, -0.1370213875319439, 0.1908799795625202}),
+      0.5, 0.5);
+  FrictionBlockInput in;
+  in.b = Vec3(0.5, 0.5, 0.5);
+  in.L = 0.5;
+  in.K << 0.5, 0.5, 4860674048.0, 0.5, 0.75, 4860674048.0, 4860674048.0, 4860674048.0, 9.4504608803602825e+19;
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+  // the ellipsoidal set: |lambda| <= L |Pi|_F, to round-off (1e-12)
+  constexpr double kRoundOff = 1e-12;
+  EXPECT_LE(r.impulse.norm(), in.L * patch.Pi().norm() * (1.0 + kRoundOff));
+  // slip = b + K impulse to round-off of the products (1e-9 of the scale,
+  // the fuzz target's kBoundSlack: a backward-stable solve meets it)
+  constexpr double kSlipSlack = 1e-9;
+  EXPECT_LE((r.slip - in.b - in.K * r.impulse).norm(),
+            kSlipSlack * (in.b.norm() + in.K.norm() * r.impulse.norm()));
+}
+
 // Exact block with |b| = 8e230: the slip's convergence test, relative to
 // |b|, passed at once with q at the warm start's direction, so the impulse
 // was not the law at the returned slip (torque -1.7e7 where the law gives
