@@ -29,6 +29,7 @@ namespace patchspin::bullet {
 namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 // Distance of the centre of pressure beyond the patch, relative to the
 // patch diameter, at the end of a step beyond which the body counts as
@@ -66,10 +67,10 @@ Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), dou
 // to zero: subnormal operands slow every float operation on them down by
 // ~100x, and the velocity changes of a patch that holds a body flat carry
 // such crumbs (tilt rates of ~1e-40 in single precision).
-btScalar flushed(double x) {
+[[gnu::always_inline]] inline btScalar flushed(double x) {
   return std::abs(x) < double(std::numeric_limits<btScalar>::min()) ? btScalar(0) : btScalar(x);
 }
-btVector3 toBt(const Vec3& v) { return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z())); }
+[[gnu::always_inline]] inline btVector3 toBt(const Vec3& v) { return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z())); }
 
 // Normal impulses (Lambda_z, couple about x, couple about y) on the moving
 // body <-> loads of Eq. (94): the pressure's couple on the body is
@@ -90,6 +91,39 @@ struct BodyTerms {
   Mat3 invI = Mat3::Zero();  // world inverse inertia with the angular factor [1/(kg m^2)]
 };
 
+// A stacked patch's blocks with its support held (the blocks of
+// K6 - K_PS K_S^-1 K_SP over the held DOFs) and the support's response
+// dlambda_S = gain d.
+// The blocks of a patch's 6x6 effective mass K6 = [[W, Knf], [Knf^T, Kff]]
+// the iterations use: Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf, and the
+// inverses for the quick stick test.
+struct Blocks {
+  Mat3 Winv, Kff, Knf, Ks, G, KsInv, KffInv;
+};
+struct HeldBlocks : Blocks {
+  bool valid = false;
+  Mat6 gain = Mat6::Zero();
+};
+struct StackHold {
+  HeldBlocks all, normal;  // support sticking: all six DOFs held; slipping: its normal block
+};
+
+// The blocks of K6 (false if its normal block W is not positive definite,
+// by Sylvester's criterion: e.g. a body with locked rotation).
+bool makeBlocks(const Mat6& K6, Blocks& b) {
+  const Mat3 W = K6.topLeftCorner<3, 3>();
+  if (!(W(0, 0) > 0.0 && W.topLeftCorner<2, 2>().determinant() > 0.0 && W.determinant() > 0.0)) return false;
+  b.Winv = W.inverse();  // 3x3 SPD: cofactors
+  b.Knf = K6.topRightCorner<3, 3>();
+  b.Kff = K6.bottomRightCorner<3, 3>();
+  b.G = b.Winv * b.Knf;
+  b.Ks = b.Kff - b.Knf.transpose() * b.G;
+  b.Ks = 0.5 * (b.Ks + b.Ks.transpose());
+  b.KsInv = b.Ks.inverse();
+  b.KffInv = b.Kff.inverse();
+  return true;
+}
+
 // One flat patch of one manifold, for one island solve.
 struct PatchState;
 struct PatchConstraint {
@@ -98,9 +132,10 @@ struct PatchConstraint {
   Mat3 F = Mat3::Identity();  // columns ex, ey, n (world)
   Model model = Model::Ellipsoidal;
   double mu = 0.0, rho = 0.0, dt = 0.0;
-  // effective masses: K6 = [[W, Knf], [Knf^T, Kff]], Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf
-  Mat3 Winv, Kff, Knf, Ks, G;
-  Mat3 KsInv, KffInv;  // for the quick stick test
+  Blocks k;  // effective-mass blocks
+  // supporting patch (the lower body's own patch: index in the island's
+  // patches, or -1) and the blocks with it held (index in Impl::holds)
+  int support = -1, hold = -1;
   Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
   Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
   Vec3 warmSlip = Vec3::Zero();
@@ -114,6 +149,7 @@ struct PatchConstraint {
   btVector3 snapshot[4];  // delta linear / angular velocity of a, then b
   // last friction solve of this step, reused while its input stays put
   bool haveLast = false;
+  int lastHeld = 0;
   double lastL = 0.0;
   Vec3 lastB = Vec3::Zero();
   FrictionBlockResult last;
@@ -147,6 +183,8 @@ struct PatchFrictionSolver::Impl {
   std::unordered_map<const btCollisionObject*, PatchOptions> options;
   std::unordered_map<const btPersistentManifold*, PatchState> states;
   std::vector<PatchConstraint> patches;  // current island
+  std::vector<StackHold> holds;          // stacked patches of the current island
+  PatchConstraint retry;                 // a stacked patch's state before its visit
   std::vector<PatchReport> reports;      // whole step (the first reportCount)
   size_t reportCount = 0;
   PatchSolverSettings settings;
@@ -290,6 +328,25 @@ Eigen::Matrix<double, 6, 6> effectiveMass(const BodyTerms& t, const Mat3& F, dou
   return K;
 }
 
+// The patch DOFs' rows for one body (A's side; B enters with a minus):
+// c = J [v; omega], J = [[S F^T, S F^T [r]x^T]] with the DOF order of
+// patchVelocity (u_z, w_x, w_y, u_x, u_y, rho w_z), u = v + omega x r.
+Eigen::Matrix<double, 6, 6> bodyRows(const BodyTerms& t, const Mat3& F, double rho) {
+  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
+  Mat3 rx;  // [r]x, rx w = r x w
+  rx << 0.0, -t.r.z(), t.r.y(), t.r.z(), 0.0, -t.r.x(), -t.r.y(), t.r.x(), 0.0;
+  const Mat3 lin = F.transpose(), ang = F.transpose() * rx.transpose();
+  constexpr int kLinRow[3] = {3, 4, 0};  // u'_x, u'_y, u'_z
+  for (int k = 0; k < 3; ++k) {
+    J.block<1, 3>(kLinRow[k], 0) = lin.row(k);
+    J.block<1, 3>(kLinRow[k], 3) = ang.row(k);
+  }
+  J.block<1, 3>(1, 3) = F.col(0).transpose();
+  J.block<1, 3>(2, 3) = F.col(1).transpose();
+  J.block<1, 3>(5, 3) = rho * F.col(2).transpose();
+  return J;
+}
+
 // A patch holds its body flat: the tilt rates it leaves are round-off crumbs
 // (~1e-18 rad/s beside a spin of rad/s), and the orientation's tilt
 // components shrink to ~1e-21. Their products are subnormal in single
@@ -323,6 +380,78 @@ void flushCrumbs(btRigidBody& body) {
   if (changed) {
     body.setWorldTransform(tr);
     body.setInterpolationWorldTransform(tr);
+  }
+}
+
+// Whether the support of a stacked patch keeps its friction impulse inside
+// its limit set after taking the share ds (the quick stick test's sets:
+// L Pi B, or the exact law's bicone); kept out of line, off the hot path.
+[[gnu::noinline]] bool supportCanTake(PatchConstraint& sup, const Vec6& ds) {
+  const Vec3 lamS = sup.lamF + ds.tail<3>();
+  const double Ls = sup.mu * (sup.lamN[0] + ds[0]);
+  PatchState& ss = *sup.state;
+  if (!ss.piInvValid) {
+    ss.piInv = ss.friction->Pi().inverse();
+    ss.piInvValid = true;
+  }
+  const Vec3 z = ss.piInv * lamS;
+  const double size = sup.model == Model::Ellipsoidal ? z.norm() : std::hypot(z.x(), z.y()) + std::abs(z.z());
+  return size <= Ls;
+}
+
+[[gnu::noinline]] void linkStackedPatches(std::vector<PatchConstraint>& patches, std::vector<StackHold>& holds) {
+  // supported patches (a stack): the lower body B of patch P stands on a
+  // patch S of its own. Gauss-Seidel over P and S converges like the mass
+  // ratio (a heavy body on a light one never gets its weight to the
+  // ground in 10 iterations), so P is solved with S held: K_P - K_PS
+  // K_S^-1 K_SP, and S takes the impulse that keeps its DOFs where they
+  // were, dlambda_S = -K_S^-1 K_SP d. Used while S is interior and sticks.
+  if (std::any_of(patches.begin(), patches.end(), [](const PatchConstraint& pc) { return pc.b.dynamic; })) {
+    std::unordered_map<const btCollisionObject*, int> own;  // body -> its single patch
+    for (int i = 0; i < int(patches.size()); ++i) {
+      auto [it, added] = own.emplace(patches[i].state->body, i);
+      if (!added) it->second = -1;  // several patches below one body: none
+    }
+    std::unordered_map<const btCollisionObject*, int> above;  // body -> patches standing on it
+    for (const PatchConstraint& pc : patches)
+      if (pc.b.dynamic) ++above[pc.state->other];
+    for (PatchConstraint& pc : patches) {
+      // a simple stack only: the upper body stands on this patch alone, and
+      // the lower body carries nothing else and stands on one patch
+      if (!pc.b.dynamic || above[pc.state->other] != 1 || own[pc.state->body] < 0) continue;
+      const auto it = own.find(pc.state->other);
+      if (it == own.end() || it->second < 0) continue;
+      const PatchConstraint& sp = patches[std::size_t(it->second)];
+      if (&sp == &pc || sp.a.id != pc.b.id) continue;
+      // K_PS = -J_{P,b} M_L^-1 J_{S,a}^T (the lower body L is P's b, S's a)
+      const Mat6 JPb = bodyRows(pc.b, pc.F, pc.rho), JSa = bodyRows(sp.a, sp.F, sp.rho);
+      Mat6 MinvJSaT;
+      MinvJSaT.topRows<3>() = pc.b.invM.asDiagonal() * JSa.leftCols<3>().transpose();
+      MinvJSaT.bottomRows<3>() = pc.b.invI * JSa.rightCols<3>().transpose();
+      const Mat6 Kps = -JPb * MinvJSaT;
+      // fold the held DOFs (the support's first n) into P's blocks
+      const Mat6 K6p = effectiveMass(pc.a, pc.F, pc.rho) + effectiveMass(pc.b, pc.F, pc.rho);
+      const Mat6 K6s = effectiveMass(sp.a, sp.F, sp.rho) + effectiveMass(sp.b, sp.F, sp.rho);
+      StackHold sh;
+      auto fold = [&](int n, HeldBlocks& h) {
+        const Eigen::MatrixXd Kss = K6s.topLeftCorner(n, n);
+        const Eigen::MatrixXd Ksp = Kps.leftCols(n).transpose();
+        const Eigen::LDLT<Eigen::MatrixXd> ldlt(Kss);
+        if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
+        const Eigen::MatrixXd KsInvKsp = ldlt.solve(Ksp);
+        Mat6 K = K6p - Kps.leftCols(n) * KsInvKsp;
+        if (!makeBlocks(0.5 * (K + K.transpose()), h)) return;
+        h.gain.setZero();
+        h.gain.topRows(n) = -KsInvKsp;
+        h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.KffInv.allFinite() && h.gain.allFinite();
+      };
+      fold(6, sh.all);
+      fold(3, sh.normal);
+      if (!sh.all.valid && !sh.normal.valid) continue;
+      pc.support = it->second;
+      pc.hold = int(holds.size());
+      holds.push_back(sh);
+    }
   }
 }
 
@@ -394,6 +523,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
                                           const btContactSolverInfo& info) {
   Impl& im = *impl_;
   im.patches.clear();
+  im.holds.clear();
   // no opted-in body: stock Bullet, stock cost
   if (im.options.empty()) {
     btSequentialImpulseConstraintSolver::convertContacts(manifolds, numManifolds, info);
@@ -518,25 +648,13 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
 
     // effective masses of the 6 DOFs and the friction block's Schur
-    // complement (normal block held bilateral):
-    //   Ks = Kff - Knf^T W^-1 Knf,   G = W^-1 Knf
-    const Eigen::Matrix<double, 6, 6> K6 = effectiveMass(pc.a, pc.F, pc.rho) + effectiveMass(pc.b, pc.F, pc.rho);
-    const Mat3 W = K6.topLeftCorner<3, 3>();
-    pc.Knf = K6.topRightCorner<3, 3>();
-    pc.Kff = K6.bottomRightCorner<3, 3>();
-    const Eigen::LLT<Mat3> llt(W);
-    if (llt.info() != Eigen::Success || !(W.determinant() > 0.0)) {
+    // complement (normal block held bilateral): Blocks
+    if (!makeBlocks(effectiveMass(pc.a, pc.F, pc.rho) + effectiveMass(pc.b, pc.F, pc.rho), pc.k)) {
       im.patches.pop_back();
       st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
       convertContact(m, info);
       continue;
     }
-    pc.Winv = W.inverse();  // 3x3 SPD: cofactors
-    pc.G = pc.Winv * pc.Knf;
-    pc.Ks = pc.Kff - pc.Knf.transpose() * pc.G;
-    pc.Ks = 0.5 * (pc.Ks + pc.Ks.transpose());
-    pc.KsInv = pc.Ks.inverse();
-    pc.KffInv = pc.Kff.inverse();
 
     // position error: gap at O (< 0 penetrating) and tilt of the face
     //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
@@ -564,6 +682,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       applyImpulse(pc, m_tmpSolverBodyPool, lam);
     }
   }
+
+  if (im.settings.supportedStacks) linkStackedPatches(im.patches, im.holds);
 }
 
 btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
@@ -598,12 +718,25 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     }
     FrictionPatch& friction = *pc.state->friction;
     const PatchShape& shape = friction.shape();
+    // a patch on a body that stands on a patch of its own (a simple stack) is
+    // solved with that support held (see convertContacts): all six DOFs
+    // while the support sticks and can take the share without slipping,
+    // else its normal block only
+    PatchConstraint* sup = pc.support >= 0 ? &impl_->patches[std::size_t(pc.support)] : nullptr;
+    const StackHold* stackHold = pc.hold >= 0 ? &impl_->holds[std::size_t(pc.hold)] : nullptr;
+    // one visit with the given support hold (0 none, 1 normal, 2 all);
+    // false: the support cannot take its share, the visit is to be redone
+    auto visit = [&](const HeldBlocks* hold, int held) -> bool {
+    const Blocks& k = hold ? static_cast<const Blocks&>(*hold) : pc.k;
+    const Mat3& Winv = k.Winv;
+    const Mat3& Knf = k.Knf;
+    const Mat3& G = k.G;
     // normal block: y = lamN - W^-1 (c_n - target), held exactly while its
     // centre of pressure lies on the patch (a rigid contact can carry any
     // p >= 0, not only a linear one); otherwise the centre of pressure is
     // clamped to the patch and the body is tipping (back to Bullet next step)
     Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
-    const Vec3 y = pc.lamN - pc.Winv * (c.head<3>() - pc.targetN);
+    const Vec3 y = pc.lamN - Winv * (c.head<3>() - pc.targetN);
     Vec3 lamN = Vec3::Zero();
     pc.interior = false;
     pc.tipping = false;
@@ -627,12 +760,12 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
 
     // friction block on the slip x_o, with the normal block held (Schur
     // complement Ks) while it is inside the admissible set
-    const Vec3 s = c.tail<3>() + pc.Knf.transpose() * d.head<3>();
+    const Vec3 s = c.tail<3>() + Knf.transpose() * d.head<3>();
     const double L = pc.mu * pc.lamN[0];
     Vec3 lamF = Vec3::Zero();
     bool refreshed = false;  // the pressure of the friction law changed in this visit
     if (L > 0.0) {
-      const Mat3& K = pc.interior ? pc.Ks : pc.Kff;
+      const Mat3& K = pc.interior ? k.Ks : k.Kff;
       FrictionBlockInput in;
       in.b = s - K * pc.lamF;
       in.K = K;
@@ -682,7 +815,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           st.piInv = friction.Pi().inverse();
           st.piInvValid = true;
         }
-        const Vec3 lambda0 = -((pc.interior ? pc.KsInv : pc.KffInv) * in.b);
+        const Vec3 lambda0 =
+            -((pc.interior ? k.KsInv : k.KffInv) * in.b);
         const Vec3 unitLoad = st.piInv * lambda0;
         const double size = pc.model == Model::Ellipsoidal
                                 ? unitLoad.norm()
@@ -695,17 +829,19 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           pc.last.sticking = true;
           pc.last.iterations = 0;
           pc.haveLast = true;
+          pc.lastHeld = held;
           pc.lastB = in.b;
           pc.lastL = L;
         }
       }
-      const bool reuse = quick || (pc.haveLast && !refreshed && !pc.last.sticking &&
+      const bool reuse = quick || (pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
                                    (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
                                    std::abs(L - pc.lastL) <= kReuseRelTol * L);
       if (!reuse) {
         ++stats.blockSolves;
         pc.last = solveFrictionBlock(friction, pc.model, in);
         pc.haveLast = true;
+        pc.lastHeld = held;
         pc.lastB = in.b;
         pc.lastL = L;
       }
@@ -718,15 +854,40 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     pc.lamF = lamF;
     if (pc.interior) {
       // the normal block follows the friction impulse: W dN = -Knf dF
-      const Vec3 dn = -pc.G * d.tail<3>();
+      const Vec3 dn = -G * d.tail<3>();
       d.head<3>() += dn;
       pc.lamN += dn;
     }
+    if (held == 2 && !supportCanTake(*sup, hold->gain * d)) return false;
     applyImpulse(pc, m_tmpSolverBodyPool, d);
     worst = std::max(worst, d.squaredNorm());
+    if (hold && !d.isZero(0.0)) {
+      // the support takes what keeps its held DOFs where they were
+      const Vec6 ds = hold->gain * d;
+      sup->lamN += ds.head<3>();
+      sup->lamF += ds.tail<3>();
+      sup->settled = false;
+      sup->haveLast = false;
+      applyImpulse(*sup, m_tmpSolverBodyPool, ds);
+      worst = std::max(worst, ds.squaredNorm());
+    }
     if (settings.skipSettledPatches && d.isZero(0.0) && !refreshed) {
       pc.settled = true;
       snapshotOf(pc, pc.snapshot);
+    }
+    return true;
+    };
+    if (!stackHold || !sup->interior) {
+      visit(nullptr, 0);
+    } else if (sup->sticking && stackHold->all.valid) {
+      PatchConstraint& before = impl_->retry;
+      before = pc;
+      if (!visit(&stackHold->all, 2)) {
+        pc = before;
+        visit(stackHold->normal.valid ? &stackHold->normal : nullptr, stackHold->normal.valid ? 1 : 0);
+      }
+    } else {
+      visit(stackHold->normal.valid ? &stackHold->normal : nullptr, stackHold->normal.valid ? 1 : 0);
     }
   }
   return std::max(residual, btScalar(worst));
@@ -749,7 +910,7 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
                        v = toEigen(pool[id].m_pushVelocity);
                        w = toEigen(pool[id].m_turnVelocity);
                      }).head<3>();
-      Vec3 lam = pc.lamPush - pc.Winv * (c - pc.targetPush);
+      Vec3 lam = pc.lamPush - pc.k.Winv * (c - pc.targetPush);
       if (lam[0] < 0.0) lam.setZero();  // pushes only apart
       Vec6 d = Vec6::Zero();
       d.head<3>() = lam - pc.lamPush;

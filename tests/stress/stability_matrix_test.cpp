@@ -291,44 +291,46 @@ TEST(StabilityMatrix, MassRatioLightOnHeavy) {
   runGroup(title("mass ratio, light on heavy"), cells);
 }
 
-// Equal masses (known defect, reported): at the step where the pair comes
-// to rest (both patches stick) the upper block rocks (tilt rate 7.4e-3
-// rad/s with the exact law, 4.4e-4 ellipsoidal, double Bullet) and the
-// friction DOFs' energy rises by 5.6e-9 E0 (exact) / 9.9e-11 E0
-// (ellipsoidal) in that step: above double round-off (1e-12), hidden by the
-// float tolerance (1e-5). Analysed: it is the Gauss-Seidel residual over
-// the two patches in the stop step (the upper patch reports stick with a
-// leftover slip of 3.5e-4 m/s, because the lower patch's later visit moved
-// the lower block); with the stack alone and the exact law the rise is
-// 3.9e-8 E0 at 10 iterations, 2.0e-10 at 20, 4e-16 (round-off) at 50, and
-// the tilt rate 8.6e-3, 8.5e-4, 1.3e-6 rad/s. Sweeping the patches in
-// alternate order (symmetric Gauss-Seidel) made it worse (5.9e-7 E0).
+// Equal masses: until the solver held the support of a stacked patch
+// (PatchSolverSettings::supportedStacks), the upper block rocked at the step
+// where the pair comes to rest (tilt rate 7.4e-3 rad/s exact, 4.4e-4
+// ellipsoidal, double Bullet) and the friction DOFs' energy rose by 5.6e-9 /
+// 9.9e-11 E0 in that step: the Gauss-Seidel residual over the two patches
+// (3.9e-8 E0 at 10 iterations, 2.0e-10 at 20, round-off at 50). Now a plain
+// test, at the double round-off tolerance.
 TEST(StabilityMatrix, MassRatioEqual) {
-  runGroup(title("mass ratio, equal masses"), {with("mass ratio", [](Cell& c) { c.massRatio = 1.0; })},
-           "equal-mass stack: the upper block rocks when the pair sticks (tilt rate up to 7e-3 rad/s) and the "
-           "friction DOFs' energy rises by up to 5.6e-9 E0 in that step (double)");
+  runGroup(title("mass ratio, equal masses"), {with("mass ratio", [](Cell& c) { c.massRatio = 1.0; })});
 }
 
-// Heavy on light (known defect, reported): the Gauss-Seidel sweep over the
-// two patches converges like the mass ratio, so the normal impulses stay
-// short. With the solver of commit ebe872d (warm start 0.85) m2/m1 = 10
-// kept a residual sinking velocity and never came to rest; with a full warm
-// start it rests, but the friction DOFs' energy still rises by ~1.6e-5 E0 in
-// a step (float; the tilted normals of the sinking block leak gravity's
-// work). From m2/m1 = 100 the heavy block sinks through the light one
-// (5 cm) and squeezes it out. Stock Bullet fails these cells too.
+// Heavy on light, 10:1: plain Gauss-Seidel over the two patches converged
+// like the mass ratio (normal impulses short, the friction DOFs' energy
+// rising by ~1.6e-5 E0 in a step); with the support held the cell passes in
+// both precisions (energy rise at round-off).
 TEST(StabilityMatrix, MassRatioHeavyOnLight) {
+  runGroup(title("mass ratio, heavy on light"), {with("mass ratio", [](Cell& c) { c.massRatio = 10.0; })});
+}
+
+// 100:1 and 1000:1 (known defects, reported). At 100:1 the exact law's
+// friction DOFs still gain 8.7e-6 E0 in one step (under the float tolerance
+// 1e-5, far over double's 1e-12; ellipsoidal passes). At 1000:1, while the
+// pair slides the support cannot be held in full (its friction is at its
+// limit), only its normal block, and the friction transfer through the
+// light block converges like the mass ratio: the heavy block sinks 5-6 cm
+// into the light one and the pair rests late (before the support was held,
+// from 100:1 the heavy block sank through). Stock Bullet fails these cells
+// too.
+TEST(StabilityMatrix, MassRatioHeavyOnLightExtreme) {
   std::vector<Cell> cells;
-  for (double q : stressFull() ? std::vector<double>{1e1, 1e2, 1e3} : std::vector<double>{1e3})
+  for (double q : stressFull() ? std::vector<double>{1e2, 1e3} : std::vector<double>{1e3})
     cells.push_back(with("mass ratio", [&](Cell& c) { c.massRatio = q; }));
   if (stressFull()) {
     cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 30; c.massRatio = 1e3; c.iterations = 4; }));
     cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 1000; c.massRatio = 1e3; c.mu = 1.5; c.iterations = 50; }));
   }
-  runGroup(title("mass ratio, heavy on light"), cells,
-           "heavy-on-light stacks (m2/m1 >= 10): normal impulses short (Gauss-Seidel over the two patches "
-           "converges like m2/m1), energy of the friction DOFs rises; from m2/m1 = 100 the heavy block sinks "
-           "through the light one");
+  runGroup(title("mass ratio 100-1000, heavy on light"), cells,
+           "heavy-on-light stacks at 100:1 (exact law: energy rise 8.7e-6 E0 in a step) and 1000:1 (the "
+           "friction transfer through the light block converges like the mass ratio while the pair slides; the "
+           "heavy block sinks into the light one)");
 }
 
 TEST(StabilityMatrix, Spin) {

@@ -115,6 +115,12 @@ struct PatchSolverSettings {
   // the translation ellipse, L Pi {|(z1, z2)| + |z3| <= 1}, for the exact
   // law (a sufficient test; the rest go to the solver).
   bool quickStick = true;
+  // A patch whose lower body stands on a sticking patch of its own (a
+  // stack) is solved with that support held (the support's effective mass
+  // folded in, and the support given the impulse that keeps it in place),
+  // instead of plain Gauss-Seidel over the two, which converges like the
+  // mass ratio.
+  bool supportedStacks = true;
 };
 
 // What the solver did in the last step (all islands), for profiling.
