@@ -56,11 +56,16 @@ LimitType typeOf(double rdot, const Eigen::Vector2cd& lambda, double scale) {
 }
 
 Eigen::Vector2cd eigenvalues2(const Mat2& J) {
-  const double tr = J.trace(), det = J.determinant();
+  // of J / c, times c: tr^2 and det square the entries, which overflowed
+  // for a field scale ~1e154 (found by fuzzing: inf eigenvalues)
+  const double c = J.cwiseAbs().maxCoeff();
+  if (!(c > 0.0) || !std::isfinite(c)) return Eigen::Vector2cd(J(0, 0), J(1, 1));
+  const Mat2 Js = J / c;
+  const double tr = Js.trace(), det = Js.determinant();
   const std::complex<double> disc = std::sqrt(std::complex<double>(tr * tr / 4.0 - det, 0.0));
   Eigen::Vector2cd out;
-  out[0] = tr / 2.0 - disc;
-  out[1] = tr / 2.0 + disc;
+  out[0] = c * (tr / 2.0 - disc);
+  out[1] = c * (tr / 2.0 + disc);
   if (out[0].real() > out[1].real()) std::swap(out[0], out[1]);
   return out;
 }

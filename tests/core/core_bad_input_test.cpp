@@ -3,6 +3,7 @@
 // patchspin::Error whose message names the problem, or a documented
 // fallback whose value is checked; never NaN. Cases already covered by
 // geometry_test, models_test, pressure_test and step_test are not repeated.
+#include <patchspin/analysis.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/step.hpp>
 
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <complex>
 #include <functional>
 #include <limits>
 #include <string>
@@ -453,6 +455,41 @@ TEST(CoreBadInput, PolygonTableOfALongSliver) {
               kTableTol * absIntegral(yyOverR));
   EXPECT_NEAR(m(MomentTable::kXOverR, 1), testing::bruteForceIntegral(sliver, xxOverR, kOracleTol),
               kTableTol * absIntegral(xxOverR));
+}
+
+// Limit directions of a field of scale ~1e154 (mu = 2e6, g = 1.3e148): the
+// 2x2 eigenvalues squared the Jacobian's entries (tr^2, det) and came out
+// inf. They are homogeneous of degree 1 in the field, so checked against the
+// same body at g = 1.3e8 (every load scaled by 1e-140), times 1e140.
+TEST(CoreBadInput, LimitEigenvaluesOfAHugeField) {
+  FlatBody body;
+  body.shape = PatchShape::disk(1.0, Vec2(1.0, -1.0));
+  body.mass = 1.0;
+  body.Jz = 1.0;
+  body.Jxz = 1.0;
+  body.Jyz = 1.0;
+  body.com = Vec3(1.0, 1.0, 1.0);
+  body.mu = 2039552.0;
+  body.g = 1.3078516774228077e+148;
+  FlatBody scaled = body;
+  scaled.g = body.g * 1e-140;
+  LimitOptions options;
+  options.seeds = 20;
+  const LimitAnalysis huge = findLimitDirections(FlatBodyModel(body, Model::Exact), options);
+  const LimitAnalysis reference = findLimitDirections(FlatBodyModel(scaled, Model::Exact), options);
+  ASSERT_FALSE(huge.directions.empty());
+  ASSERT_EQ(huge.directions.size(), reference.directions.size());
+  // the solver's own tolerances are relative to the field scale, so the two
+  // runs agree to its polish (1e-11 of the scale): checked to 1e-8
+  constexpr double kScaleTol = 1e-8;
+  for (std::size_t i = 0; i < huge.directions.size(); ++i) {
+    const LimitDirection& d = huge.directions[i];
+    EXPECT_TRUE(d.eigenvalues.allFinite());
+    for (int k = 0; k < 2; ++k) {
+      const std::complex<double> expected = reference.directions[i].eigenvalues[k] * 1e140;
+      EXPECT_LE(std::abs(d.eigenvalues[k] - expected), kScaleTol * (std::abs(expected) + std::abs(d.rdot)));
+    }
+  }
 }
 
 // More fuzz findings: each was NaN / inf or a wrong answer before.
