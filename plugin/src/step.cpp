@@ -83,10 +83,23 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   // stick iff lambda0 = -K^-1 b = -L Pi w0 has |w0| <= 1, by pivoted solves
   // with K and Pi themselves (backward stable): adj(A) b / d decided wrongly
   // and left b + K lambda at 1e6 times round-off for an ill-conditioned K
-  // (entries 0.5 to 9e19; found by fuzzing)
-  const Vec3 lambda0 = -in.K.partialPivLu().solve(in.b);
-  const Vec3 w0 = -Pi.partialPivLu().solve(lambda0) / in.L;
-  const bool stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0.norm() <= d;
+  // (entries 0.5 to 9e19; found by fuzzing). A well-conditioned A,
+  // |A| |A^-1| = |A| |adj A| / d below kAdjugateCondition, keeps the
+  // adjugate test (two 3x3 LU solves cost as much as the rest of a slipping
+  // solve): its error is ~cond(A) eps relative, far inside the Newton
+  // tolerance.
+  constexpr double kAdjugateCondition = 1e8;
+  const bool wellConditioned = d > 0.0 && A.norm() * adj.norm() < kAdjugateCondition * d;
+  bool stick = false;
+  Vec3 lambda0;
+  if (wellConditioned) {
+    stick = n0.norm() <= d;
+    if (stick) lambda0 = -in.L * (Pi * (n0 / d));
+  } else {
+    lambda0 = -in.K.partialPivLu().solve(in.b);
+    const Vec3 w0 = -Pi.partialPivLu().solve(lambda0) / in.L;
+    stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0.norm() <= d;
+  }
   if (stick) {
     out.sticking = true;
     out.impulse = lambda0;
