@@ -98,7 +98,7 @@ struct BodyTerms {
 // the iterations use: Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf, and the
 // inverses for the quick stick test.
 struct Blocks {
-  Mat3 Winv, Kff, Knf, Ks, G, KsInv, KffInv;
+  Mat3 Winv, Kff, Knf, Ks, G, KsInv;  // Kff^-1 (a patch off its interior, rare) on demand
 };
 struct HeldBlocks : Blocks {
   bool valid = false;
@@ -120,7 +120,6 @@ bool makeBlocks(const Mat6& K6, Blocks& b) {
   b.Ks = b.Kff - b.Knf.transpose() * b.G;
   b.Ks = 0.5 * (b.Ks + b.Ks.transpose());
   b.KsInv = b.Ks.inverse();
-  b.KffInv = b.Kff.inverse();
   return true;
 }
 
@@ -303,7 +302,10 @@ Eigen::Matrix<double, 6, 6> effectiveMass(const BodyTerms& t, const Mat3& F, dou
   Eigen::Matrix<double, 6, 6> K = Eigen::Matrix<double, 6, 6>::Zero();
   if (!t.dynamic) return K;
   const Vec3 r = F.transpose() * t.r;
-  const Mat3 invM = F.transpose() * t.invM.asDiagonal() * F;
+  // F^T diag(invM) F: (1/m) I for the usual isotropic linear factor
+  const Mat3 invM = t.invM.x() == t.invM.y() && t.invM.y() == t.invM.z()
+                        ? Mat3(t.invM.x() * Mat3::Identity())
+                        : Mat3(F.transpose() * t.invM.asDiagonal() * F);
   const Mat3 invI = F.transpose() * t.invI * F;
   // linear part: rows 0, 3, 4 select u'_z, u'_x, u'_y
   constexpr int kSel[3] = {0, 3, 4}, kComp[3] = {2, 0, 1};
@@ -443,7 +445,7 @@ void flushCrumbs(btRigidBody& body) {
         if (!makeBlocks(0.5 * (K + K.transpose()), h)) return;
         h.gain.setZero();
         h.gain.topRows(n) = -KsInvKsp;
-        h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.KffInv.allFinite() && h.gain.allFinite();
+        h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.gain.allFinite();
       };
       fold(6, sh.all);
       fold(3, sh.normal);
@@ -816,7 +818,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           st.piInvValid = true;
         }
         const Vec3 lambda0 =
-            -((pc.interior ? k.KsInv : k.KffInv) * in.b);
+            -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
         const Vec3 unitLoad = st.piInv * lambda0;
         const double size = pc.model == Model::Ellipsoidal
                                 ? unitLoad.norm()
