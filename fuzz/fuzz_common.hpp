@@ -253,4 +253,20 @@ inline double absPressureIntegral(const PatchShape& shape, const LinearPressure&
   return minPressure(shape, p) >= 0.0 ? Pz : shape.area() * maxAbsPressure(shape, p);
 }
 
+// One fuzz input through a target's run(): either the core throws
+// patchspin::Error with a message, or run()'s checks pass; any other
+// exception fails. Every target's LLVMFuzzerTestOneInput calls this.
+inline int runInput(const uint8_t* data, size_t size, void (*run)(ByteReader&)) {
+  ByteReader in(data, size);
+  context().clear();
+  try {
+    run(in);
+  } catch (const Error& e) {
+    checkErrorMessage(e);
+  } catch (const std::exception& e) {
+    fail("exception other than patchspin::Error: %s", e.what());
+  }
+  return 0;
+}
+
 }  // namespace patchspin::fuzz

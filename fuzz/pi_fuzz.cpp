@@ -169,15 +169,4 @@ void run(ByteReader& in) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  ByteReader in(data, size);
-  context().clear();
-  try {
-    run(in);
-  } catch (const Error& e) {
-    checkErrorMessage(e);
-  } catch (const std::exception& e) {
-    fail("exception other than patchspin::Error: %s", e.what());
-  }
-  return 0;
-}
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return runInput(data, size, run); }
