@@ -67,10 +67,10 @@ Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), dou
 // to zero: subnormal operands slow every float operation on them down by
 // ~100x, and the velocity changes of a patch that holds a body flat carry
 // such crumbs (tilt rates of ~1e-40 in single precision).
-[[gnu::always_inline]] inline btScalar flushed(double x) {
+btScalar flushed(double x) {
   return std::abs(x) < double(std::numeric_limits<btScalar>::min()) ? btScalar(0) : btScalar(x);
 }
-[[gnu::always_inline]] inline btVector3 toBt(const Vec3& v) { return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z())); }
+btVector3 toBt(const Vec3& v) { return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z())); }
 
 // Normal impulses (Lambda_z, couple about x, couple about y) on the moving
 // body <-> loads of Eq. (94): the pressure's couple on the body is
@@ -91,15 +91,16 @@ struct BodyTerms {
   Mat3 invI = Mat3::Zero();  // world inverse inertia with the angular factor [1/(kg m^2)]
 };
 
+// The blocks of a patch's 6x6 effective mass K6 = [[W, Knf], [Knf^T, Kff]]
+// the iterations use: W^-1, Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf, and
+// Ks^-1 for the quick stick test (Kff^-1, for a patch off its interior, is
+// rare and computed on demand).
+struct Blocks {
+  Mat3 Winv, Kff, Knf, Ks, G, KsInv;
+};
 // A stacked patch's blocks with its support held (the blocks of
 // K6 - K_PS K_S^-1 K_SP over the held DOFs) and the support's response
 // dlambda_S = gain d.
-// The blocks of a patch's 6x6 effective mass K6 = [[W, Knf], [Knf^T, Kff]]
-// the iterations use: Ks = Kff - Knf^T W^-1 Knf, G = W^-1 Knf, and the
-// inverses for the quick stick test.
-struct Blocks {
-  Mat3 Winv, Kff, Knf, Ks, G, KsInv;  // Kff^-1 (a patch off its interior, rare) on demand
-};
 struct HeldBlocks : Blocks {
   bool valid = false;
   Mat6 gain = Mat6::Zero();
@@ -333,8 +334,8 @@ Eigen::Matrix<double, 6, 6> effectiveMass(const BodyTerms& t, const Mat3& F, dou
 // The patch DOFs' rows for one body (A's side; B enters with a minus):
 // c = J [v; omega], J = [[S F^T, S F^T [r]x^T]] with the DOF order of
 // patchVelocity (u_z, w_x, w_y, u_x, u_y, rho w_z), u = v + omega x r.
-Eigen::Matrix<double, 6, 6> bodyRows(const BodyTerms& t, const Mat3& F, double rho) {
-  Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
+Mat6 bodyRows(const BodyTerms& t, const Mat3& F, double rho) {
+  Mat6 J = Mat6::Zero();
   Mat3 rx;  // [r]x, rx w = r x w
   rx << 0.0, -t.r.z(), t.r.y(), t.r.z(), 0.0, -t.r.x(), -t.r.y(), t.r.x(), 0.0;
   const Mat3 lin = F.transpose(), ang = F.transpose() * rx.transpose();
@@ -407,7 +408,8 @@ void flushCrumbs(btRigidBody& body) {
   // ratio (a heavy body on a light one never gets its weight to the
   // ground in 10 iterations), so P is solved with S held: K_P - K_PS
   // K_S^-1 K_SP, and S takes the impulse that keeps its DOFs where they
-  // were, dlambda_S = -K_S^-1 K_SP d. Used while S is interior and sticks.
+  // were, dlambda_S = -K_S^-1 K_SP d: all six while S sticks (and can take
+  // the share), its normal block while it slips (see solveSingleIteration).
   if (std::any_of(patches.begin(), patches.end(), [](const PatchConstraint& pc) { return pc.b.dynamic; })) {
     std::unordered_map<const btCollisionObject*, int> own;  // body -> its single patch
     for (int i = 0; i < int(patches.size()); ++i) {
