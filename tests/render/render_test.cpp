@@ -3,15 +3,19 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <patchspin/render/renderer.hpp>
+
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <patchspin/render/renderer.hpp>
 #include <string>
+
+#include "demo_test_util.hpp"
 
 namespace patchspin::render {
 namespace {
+
+using demo_test::countDifferentPixels;
+using demo_test::fileBytes;
 
 constexpr int kWidth = 160;
 constexpr int kHeight = 120;
@@ -22,11 +26,6 @@ std::string tempDir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
-}
-
-std::string fileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 SceneBody disk(const Vec3& centre, double angle) {
@@ -55,19 +54,6 @@ RenderOptions smallOptions() {
   o.width = kWidth;
   o.height = kHeight;
   return o;
-}
-
-int countDifferentPixels(const Image& a, const Image& b, int threshold) {
-  int n = 0;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
-      int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
-      if (d > threshold) ++n;
-    }
-  }
-  return n;
 }
 
 // Image box of a disk body (rim points) under an independent pinhole model:
