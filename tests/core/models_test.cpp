@@ -6,6 +6,7 @@
 #include <patchspin/models.hpp>
 
 #include "closed_forms.hpp"
+#include "convex_hull.hpp"
 #include "oracle.hpp"
 
 #include <gtest/gtest.h>
@@ -166,26 +167,7 @@ TEST(ExactModel, MatchesOracleAtSpecialCentres) {
   }
 }
 
-// Convex hull (counter-clockwise, Andrew's monotone chain) of random points.
-std::vector<Vec2> convexHull(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(),
-            [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-  auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  std::vector<Vec2> hull(2 * pts.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
+using patchspin::testing::convexHull;
 
 // Random convex polygons and disks, O inside or outside, random admissible
 // linear pressures and slip directions (fixed seed).
