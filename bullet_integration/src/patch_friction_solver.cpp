@@ -809,9 +809,10 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // ellipsoidal law's limit set: |z| <= L, exactly the block's own test)
       // or, for the exact law, inside L times the bicone |(z1, z2)| + |z3|
       // <= 1 that its limit set contains (every pure translation u gives
-      // q = -Pi (u, 0), and q(e3) = -Pi e3: the fitting motions of Eq. (37)-(39); step_test.cpp checks
-      // it against the law's support function). Resting bodies, most of a
-      // pile, then cost two 3x3 products instead of a block solve.
+      // q = -Pi (u, 0), and q(e3) = -Pi e3: the fitting motions of Eq.
+      // (37)-(39); step_test.cpp checks it against the law's support
+      // function). Resting bodies, most of a pile, then cost two 3x3
+      // products instead of a block solve.
       bool quick = false;
       if (settings.quickStick) {
         PatchState& st = *pc.state;
