@@ -58,6 +58,19 @@ bool isSpd(const Mat3& K) {
   return es.eigenvalues().minCoeff() > 0.0;
 }
 
+// cond of K scaled to a unit diagonal (2-norm): the exact block refuses K
+// above 1e12 in the Frobenius norm (at most 3 times this) as numerically
+// singular, since its slip potential needs K^-1
+double scaledCondition(const Mat3& K) {
+  const Vec3 d = K.diagonal().cwiseAbs().cwiseSqrt().cwiseInverse();
+  const Mat3 S = d.asDiagonal() * K * d.asDiagonal();
+  if (!S.allFinite()) return std::numeric_limits<double>::infinity();
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(S);
+  const double lo = es.eigenvalues().minCoeff(), hi = es.eigenvalues().maxCoeff();
+  return lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
+}
+constexpr double kSingularCondition = 1e11;
+
 void run(ByteReader& in) {
   const PatchShape shape = takeShape(in);
   const uint8_t mode = in.byte();
@@ -86,7 +99,8 @@ void run(ByteReader& in) {
   } catch (const Error& e) {
     checkErrorMessage(e);
     // refusing is right for bad input, and for K not positive definite
-    // (and for magnitudes whose products overflow: kRange)
+    // (and for magnitudes whose products overflow: kRange; and, exact law,
+    // for a numerically singular K: scaledCondition)
     constexpr double kRange = 1e100;
     const double size = input.b.stableNorm() + input.L * input.K.stableNorm() + input.warmSlip.stableNorm();
     const bool moderate = size < kRange && input.K.stableNorm() < kRange &&
@@ -99,7 +113,8 @@ void run(ByteReader& in) {
                                  (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * shape.maxDistanceFromOrigin()) *
                                  (1.0 + shape.maxDistanceFromOrigin() / patch.rho());
     const bool hugePressure = !(pressureTerms < std::numeric_limits<double>::max() / 1e8);
-    if (finite && moderate && !hugePressure && input.L >= 0.0 && isSpd(input.K)) {
+    const bool singular = model == Model::Exact && isSpd(input.K) && scaledCondition(input.K) >= kSingularCondition;
+    if (finite && moderate && !hugePressure && !singular && input.L >= 0.0 && isSpd(input.K)) {
       fail("valid block refused (%s): %s", toString(model), e.what());
     }
     return;
@@ -113,8 +128,12 @@ void run(ByteReader& in) {
   if (out.sticking && !out.slip.isZero(0.0)) fail("sticking with nonzero slip");
 
   // slip = b + K impulse
+  // (plus the rounding of slip and impulse to the denormal grid, half a step
+  // per entry, the impulse's through K; found: b of denormals against
+  // K_xx = 3.8e146, where K^-1 b = 0 in x)
   const double slipScale = input.b.stableNorm() + input.K.stableNorm() * out.impulse.stableNorm();
-  if (Vec3(out.slip - input.b - input.K * out.impulse).stableNorm() > kBoundSlack * slipScale) {
+  const double slipDenormals = 4.0 * std::numeric_limits<double>::denorm_min() * (1.0 + input.K.stableNorm());
+  if (Vec3(out.slip - input.b - input.K * out.impulse).stableNorm() > kBoundSlack * slipScale + slipDenormals) {
     fail("slip != b + K impulse");
   }
   if (input.L == 0.0) {
@@ -145,9 +164,27 @@ void run(ByteReader& in) {
   // slipping: the impulse is the law at the slip direction
   const double s = out.slip.stableNorm();
   const double scale = input.b.stableNorm() + L * input.K.stableNorm() * unitScale;
-  if (!out.sticking && s > 1e4 * kLawSlack * scale && isSpd(input.K)) {
+  // where the law itself has digits: the unit law sums the pressure's terms
+  // about O, each up to A |c_k| max|r|^k / Pz (times the lever for the
+  // torque), and a sliver's kernel integrals cancel by diameter^2 / A, as in
+  // friction_q (kTermsUlps there). Found: a 1e-8 m x 0.5 m sliver with p0 =
+  // 2.6e16 and cx = -5.1e16 for Pz = 0.92 (terms / Pz = 3e8): q(w) changed
+  // by 40% between w and w (1 + 1e-12), so no slip could be consistent with
+  // it (the core accepts such pressures: the open friction_q finding)
+  constexpr double kTermsUlps = 64.0;
+  const LinearPressure& pq = patch.pressure();
+  const double termsA = shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rmax);
+  const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
+  const double lawRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA /
+                             std::abs(patch.Pz()) * (1.0 + rmax / patch.rho());
+  const bool lawHasDigits = model == Model::Ellipsoidal || lawRoundOff < kLawSlack / 100.0 * unitScale;
+  if (!out.sticking && s > 1e4 * kLawSlack * scale && isSpd(input.K) && lawHasDigits) {
     const Vec3 q = patch.unitQ(model, out.slip);
-    if ((out.impulse - L * q).stableNorm() > kLawSlack * L * unitScale) {
+    // (plus the rounding of L q to the denormal grid: each of the three
+    // entries of impulse and of L q is off by up to half a denormal step;
+    // found, L = 5e-324 gave an error of 1 denormal against 3)
+    const double denormalRounding = 4.0 * std::numeric_limits<double>::denorm_min();
+    if ((out.impulse - L * q).stableNorm() > kLawSlack * L * unitScale + denormalRounding) {
       fail("%s slip: impulse != L q(s^), error %.3g of %.3g", toString(model),
            (out.impulse - L * q).stableNorm(), L * unitScale);
     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace patchspin {
@@ -162,6 +163,23 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && det > 0.0))
     throw Error("friction block matrix K is not positive definite");
   const Mat3 Kinv = Ksym.inverse();
+  // numerically singular K: the slip potential below needs K^-1, which has
+  // no digits when K, scaled to a unit diagonal (the cofactor inverse is
+  // invariant under that scaling), has cond above kSingularCondition (found
+  // by fuzzing: K = A A^T + d I with cond ~1e34 gave a slip along its
+  // largest eigenvector driven by the impulse itself, off the law by 0.9 of
+  // L |q|). The scaled cond is at most 3 times the plain |K| |K^-1|
+  // (van der Sluis), so the common path pays one product of two norms.
+  constexpr double kSingularCondition = 1e12;
+  if (!(Ksym.norm() * Kinv.norm() < kSingularCondition / 3.0)) {
+    const Vec3 d = Ksym.diagonal().cwiseSqrt();
+    const Mat3 scaledK = d.cwiseInverse().asDiagonal() * Ksym * d.cwiseInverse().asDiagonal();
+    const Mat3 scaledKinv = d.asDiagonal() * Kinv * d.asDiagonal();
+    const double cond = scaledK.norm() * scaledKinv.norm();
+    if (!(cond < kSingularCondition))
+      throw Error("friction block matrix K is numerically singular (condition number " +
+                  internal::formatDouble(cond) + " after scaling to a unit diagonal)");
+  }
   const Vec3 lambda0 = -Kinv * in.b;
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {
@@ -332,6 +350,22 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // D is O(|b|^2 / |K|); its decrease is invisible below this round-off level,
   // where the Newton steps are judged by the gradient instead
   const double roundOffD = 1e-13 * (std::abs(D) + in.b.dot(Kinvb));
+  // With a badly scaled K (diagonal entries kBadlyScaledK apart) that level
+  // is wrong: b's part along K's stiff directions dominates b^T K^-1 b while
+  // the slip there equals b's to round-off and adds nothing to D (found by
+  // fuzzing: K = diag(1e10, 1.5e10, 2e-129), b_z = 0.5, b^T K^-1 b = 1e128,
+  // so every trial counted as flat and the iterates wandered off to a slip
+  // of 6e9 driven by the impulse itself). There the round-off of each
+  // evaluation is taken from its own terms.
+  constexpr double kBadlyScaledK = 1e8;
+  const double kDiagMax = Ksym.diagonal().maxCoeff(), kDiagMin = Ksym.diagonal().minCoeff();
+  const bool badlyScaledK = !(kDiagMax < kBadlyScaledK * kDiagMin);
+  const Mat3 absKinv = badlyScaledK ? Mat3(Kinv.cwiseAbs()) : Mat3::Zero();
+  auto roundOffAt = [&](const Vec3& x, const Vec3& qx) {
+    if (!badlyScaledK) return 0.5 * roundOffD;
+    const Vec3 d = (x - in.b).cwiseAbs();
+    return 1e-13 * (d.dot(absKinv * d) + in.L * qx.cwiseAbs().dot(x.cwiseAbs()));
+  };
   for (int it = 0; it < kMaxIterations; ++it) {
     ++out.iterations;
     // converged: the slip b + K L q(s^) equals s to ~1e-14 of the slip scale
@@ -364,12 +398,18 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       if (!(sNew.norm() > 0.0)) continue;
       Vec3 qNew;
       Mat3 jNew;
-      sNew = radialOptimum(sNew, qNew, jNew, inCone);
+      // (a trial where the law's Jacobian leaves double's range, with a
+      // pressure near overflow, is rejected like one outside the cone)
+      try {
+        sNew = radialOptimum(sNew, qNew, jNew, inCone);
+      } catch (const Error&) {
+        continue;
+      }
       if (!inCone) continue;
       const double DNew = potential(sNew, qNew);
       const Vec3 gradNew = Kinv * (sNew - in.b) - in.L * qNew;
       const bool decrease = DNew <= D + 1e-4 * t * grad.dot(dir);
-      const bool flatButBetter = DNew <= D + roundOffD && gradNew.norm() < grad.norm();
+      const bool flatButBetter = DNew <= D + roundOffAt(s, q) + roundOffAt(sNew, qNew) && gradNew.norm() < grad.norm();
       if (decrease || flatButBetter) {
         s = sNew, q = qNew, J = jNew, D = DNew, grad = gradNew;
         accepted = true;
@@ -398,7 +438,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   }
   if (!(qPolished == q)) {
     const Vec3 sPolished = in.b + in.K * (in.L * qPolished);
-    if (potential(sPolished, qPolished) <= D + roundOffD) q = qPolished;
+    if (potential(sPolished, qPolished) <= D + roundOffAt(s, q) + roundOffAt(sPolished, qPolished)) q = qPolished;
   }
   out.impulse = in.L * q;
   out.slip = in.b + in.K * out.impulse;
@@ -417,6 +457,24 @@ FrictionBlockResult requireFiniteResult(const FrictionBlockResult& r) {
 }
 }  // namespace
 
+namespace {
+// The block after validation, at the scale it is given.
+FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const FrictionBlockInput& input) {
+  if (model == Model::Ellipsoidal) {
+    // K positive definite, as documented and as the exact path checks
+    // (leading minors of its symmetric part; found by fuzzing: an
+    // indefinite K gave a NaN impulse here)
+    const Mat3 Ksym = 0.5 * (input.K + input.K.transpose());
+    const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
+    if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
+      throw Error("friction block matrix K is not positive definite");
+    return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
+  }
+  return requireFiniteResult(solveExact(patch, input));
+}
+
+}  // namespace
+
 FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
                                        const FrictionBlockInput& input) {
   validate(input);
@@ -430,17 +488,49 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
     out.sticking = true;
     return out;
   }
-  if (model == Model::Ellipsoidal) {
-    // K positive definite, as documented and as the exact path checks
-    // (leading minors of its symmetric part; found by fuzzing: an
-    // indefinite K gave a NaN impulse here)
-    const Mat3 Ksym = 0.5 * (input.K + input.K.transpose());
-    const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
-    if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
-      throw Error("friction block matrix K is not positive definite");
-    return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
+  // The block is homogeneous: K -> a K, b -> c b, L -> (c / a) L (and the
+  // warm start with b) give s -> c s, lambda -> (c / a) lambda. Far from unit
+  // scale it is solved at |K| ~ 1 and |b| ~ 1 (or, when L |K| dwarfs |b| by
+  // more than 2^kMaxLeverage, at L |K| ~ 2^kMaxLeverage, where the
+  // ellipsoidal |L K Pi|^2 stays in range), with a and c powers of two, so
+  // the scaling is exact: squares of 1e-160 underflowed (found by fuzzing:
+  // b of denormals, where |K^-1 b| came out 0 and the exact block stuck with
+  // a zero impulse; with b = 1e-170 the exact block slipped with a zero
+  // impulse). One range check on the common path.
+  {
+    const double bMax = input.b.cwiseAbs().maxCoeff(), kMax = input.K.cwiseAbs().maxCoeff();
+    constexpr double kLow = 1e-100, kHigh = 1e100;
+    constexpr int kMaxLeverage = 300;
+    // (a K whose diagonal spans more than kMaxSpread keeps its scale: its
+    // determinant leaves double's range at any scale, refused below)
+    constexpr double kMaxSpread = 1e100;
+    const bool spreadOk = input.K.diagonal().cwiseAbs().minCoeff() > kMax / kMaxSpread;
+    if (!(bMax > kLow && bMax < kHigh && kMax > kLow && kMax < kHigh) && bMax > 0.0 && kMax > 0.0 && spreadOk) {
+      const int ek = std::ilogb(kMax);
+      const int es = std::max(std::ilogb(bMax), std::ilogb(input.L) + ek - kMaxLeverage);
+      auto times2To = [](auto v, int e) {
+        return decltype(v)(v.unaryExpr([e](double x) { return std::ldexp(x, e); }));
+      };
+      FrictionBlockInput unit = input;
+      unit.b = times2To(input.b, -es);
+      unit.K = times2To(input.K, -ek);
+      unit.warmSlip = times2To(input.warmSlip, -es);
+      // (a warm start far smaller or larger than b keeps its direction, the
+      // exact block's only use of it: its squares would under- or overflow)
+      const double warmMax = unit.warmSlip.cwiseAbs().maxCoeff();
+      if (input.warmSlip.cwiseAbs().maxCoeff() > 0.0 && !(warmMax > kLow && warmMax < kHigh))
+        unit.warmSlip = times2To(input.warmSlip, -std::ilogb(input.warmSlip.cwiseAbs().maxCoeff()));
+      unit.L = std::ldexp(input.L, ek - es);
+      // (an L that underflows at unit scale is left to the plain path)
+      if (unit.L >= std::numeric_limits<double>::min()) {
+        FrictionBlockResult r = solveModel(patch, model, unit);
+        r.impulse = times2To(r.impulse, es - ek);
+        r.slip = times2To(r.slip, es);
+        return requireFiniteResult(r);
+      }
+    }
   }
-  return requireFiniteResult(solveExact(patch, input));
+  return solveModel(patch, model, input);
 }
 
 }  // namespace patchspin

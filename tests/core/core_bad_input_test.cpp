@@ -426,6 +426,127 @@ TEST(CoreBadInput, ExactBlockWithHugeFreeSlipIsTheLawAtItsSlip) {
   EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * setSize);
 }
 
+// Exact block with a numerically singular K (K = A A^T + d I with
+// eigenvalues ~1e-16 to 1.8e18 after scaling to a unit diagonal, cond ~1e34;
+// fuzz finding step_exact_ill_conditioned_k_torque, now in the step corpus):
+// the slip potential's K^-1 had no digits and the block returned a slip
+// along K's largest eigenvector driven by the impulse itself (impulse_y =
+// -L, slip_y = -1.8e10), 0.9 of L |q| off the law at that slip. Now an
+// Error naming the singular K; a finite answer would have to be the law at
+// its own slip (checked against unitQ, which the solver's answer is not
+// built from when it fails).
+TEST(CoreBadInput, ExactBlockWithNumericallySingularK) {
+  const PatchShape shape = PatchShape::polygon(
+      {{2e-08, 1.00000001e-08}, {1.9766205535603823e-08, 1.2149704499772297e-08},
+       {1.9075754154720659e-08, 1.4198891106360189e-08}, {1.7960930596539016e-08, 1.6051742231546959e-08},
+       {1.6473862771602071e-08, 1.7621620616014996e-08}, {1.4684084318646699e-08, 1.8835120491301074e-08},
+       {1.2675283288937209e-08, 1.9635499951945065e-08}, {1.0541388986000835e-08, 1.9985334143925129e-08},
+       {8.382179935789701e-09, 1.9868265209237061e-08}, {6.2986183537031865e-09, 1.9289767161154098e-08},
+       {4.3881292636072782e-09, 1.8276889925450199e-08}, {2.7400450119987498e-09, 1.6876994515934688e-08},
+       {1.4314281867687222e-09, 1.51555384860845e-08}, {5.2346825624182251e-10, 1.3193015206594482e-08},
+       {5.8620417644502455e-11, 1.1081190084825624e-08}, {5.8620439268305649e-11, 8.9188097163467921e-09},
+       {5.2346832010212787e-10, 6.806984603874884e-09}, {1.4314282898794938e-09, 4.8444613425440653e-09},
+       {2.7400451495386354e-09, 3.1230053388662202e-09}, {4.3881294291450745e-09, 1.7231099623123909e-09},
+       {6.2986185394985276e-09, 7.102327648182723e-10}, {8.3821801331550051e-09, 1.3173475840654039e-10},
+       {1.0541389185707508e-08, 1.4665866902652304e-11}, {1.26752834816472e-08, 3.6450010156060337e-10},
+       {1.4684084495349107e-08, 1.1648796023806164e-09}, {1.6473862924034484e-08, 2.3783795134622653e-09},
+       {1.7960930717573863e-08, 3.9482579276716577e-09}, {1.9075754238698476e-08, 5.8011090751548926e-09},
+       {1.9766205578597912e-08, 7.8502956955518106e-09}});
+  const FrictionPatch patch(
+      shape, LinearPressure::fromLoads(shape, {0.09269204466265292, -7.5064762499732558e-10, 1.0766479339077318e-09}),
+      1e-8, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 1e-8);
+  in.L = 1e-8;
+  in.K << 3.0000000000000004e-16, 13.305774080000001, 2.0691215973347427e-16, 13.305774080000001,
+      1.7704362386799985e+18, 0.91971635818481468, 2.0691215973347427e-16, 0.91971635818481468,
+      2.0047777952181065e-16;
+  // the law's round-off at this ordinary pressure (p > 0, a 2e-8 m 29-gon):
+  // ~1e-14 of L times the set's size; 1e-6 as the fuzz target checks it
+  constexpr double kLawTol = 1e-6;
+  try {
+    const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+    ASSERT_FALSE(r.sticking);
+    const double setSize = 1.0 + shape.maxDistanceFromOrigin() / patch.rho();
+    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * setSize);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+  }
+}
+
+// Exact block with a badly scaled (diagonal, so well-conditioned once
+// scaled) K = diag(9.7e9, 1.5e10, 2.3e-129): the backtracking's round-off
+// level of the potential, 1e-13 b^T K^-1 b = 1e115, came from b_z = 0.5
+// along the soft direction, where the slip equals b_z to round-off and adds
+// nothing to the potential. Every trial counted as flat, and the block
+// returned a slip of (-2.7e9, 6.2e9, 0.5) driven by the impulse itself,
+// 1.72 of L (1 + max|r| / rho) = 3.4 off the law at that slip (fuzz finding,
+// corpus/step/exact-badly-scaled-diagonal-k). Checked against the law at the
+// returned slip, to what double resolves there: s_xy = b_xy + K_xy L q_xy
+// carries eps |K| L |q| of round-off, so the slip's direction, and the law
+// at it, are known to kResolutionUlps eps |K| L set / |s| (relative to set).
+TEST(CoreBadInput, ExactBlockWithBadlyScaledK) {
+  const PatchShape disk = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(
+      disk, LinearPressure::fromLoads(disk, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
+      0.5, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 0.5);
+  in.L = 0.5;
+  in.K = Vec3(9701425152.0, 14943780864.0, 2.2739476699754749e-129).asDiagonal();
+  in.warmSlip = Vec3(0.0, -0.0, 0.5);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  ASSERT_FALSE(r.sticking);
+  const double set = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
+  // a few ulps per term of the 3x3 products, times |J| <= set
+  constexpr double kResolutionUlps = 64.0;
+  const double resolution = kResolutionUlps * std::numeric_limits<double>::epsilon() * in.K.norm() * in.L * set /
+                            r.slip.norm();
+  ASSERT_LT(resolution, 1e-2);  // the check below still means something
+  EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), resolution * in.L * set);
+}
+
+// The block far from unit scale (found by fuzzing: b of denormals against
+// K_xx = 3.8e146 stuck with a zero impulse, since |K^-1 b| squared
+// underflowed to 0). The block is homogeneous (K -> a K, b -> c b,
+// L -> (c / a) L scale s by c and lambda by c / a), so each case is checked
+// against the law itself, with every comparison divided by the scale first
+// (squares of 1e-170 underflow). Before: b = 1e-170 stuck with a zero
+// impulse against L = 1e-180 (exact) or slipped with a zero impulse
+// (ellipsoidal); b = 1e-170 inside the set (exact) stuck with impulse 0,
+// not -K^-1 b; K = 1e-160 I was refused as not positive definite (its
+// leading minors underflowed).
+TEST(CoreBadInput, FrictionBlockFarFromUnitScale) {
+  const PatchShape disk = PatchShape::disk(0.5);
+  const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.5, 0.0);
+  // the law's round-off on a uniform disk, with room for the solver's 1e-14
+  constexpr double kLawTol = 1e-12;
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    // slips: L far below |b| / |K|
+    FrictionBlockInput in;
+    in.b = Vec3(1e-170, 0.0, 1e-170);
+    in.L = 1e-180;
+    FrictionBlockResult r = solveFrictionBlock(patch, model, in);
+    ASSERT_FALSE(r.sticking);
+    EXPECT_LT((r.impulse / in.L - patch.unitQ(model, r.slip)).norm(), kLawTol);
+    EXPECT_LT(((r.slip - in.b - in.K * r.impulse) / 1e-170).norm(), kLawTol);
+    // sticks: -K^-1 b = -b well inside L E (L = 1, the set's force radius)
+    in.b = Vec3(1e-170, 0.0, 0.0);
+    in.L = 1.0;
+    r = solveFrictionBlock(patch, model, in);
+    ASSERT_TRUE(r.sticking);
+    EXPECT_LT(((r.impulse + in.b) / 1e-170).norm(), kLawTol);
+    // K = 1e-160 I: positive definite, slips with impulse L q(s^)
+    in.b = Vec3(1.0, 0.0, 1.0);
+    in.L = 1e-10;
+    in.K = 1e-160 * Mat3::Identity();
+    r = solveFrictionBlock(patch, model, in);
+    ASSERT_FALSE(r.sticking);
+    EXPECT_LT((r.impulse / in.L - patch.unitQ(model, r.slip)).norm(), kLawTol);
+  }
+}
+
 // The polygon table's edge integrals far from their edge: on a sliver
 // 1.8e9 m long and 1 m wide passing 0.5 m from O, the 1 m end edges are
 // 9e8 m from O, and rb - ra (1e-8) and (tau r - d^2 asinh(tau/d)) / 2 were
