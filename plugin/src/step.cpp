@@ -74,7 +74,8 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   const Vec3 n2 = in.b;
   const Vec3 n1 = tMinusA * in.b;
   const Vec3 n0 = adj * in.b;
-  const double scale = in.b.norm() + A.norm();
+  const double bNorm = in.b.norm(), aNorm = A.norm();
+  const double scale = bNorm + aNorm;
   // |A|^2 beyond double's range (the old form squared A and overflowed to a
   // NaN impulse, refused): refuse it here, before the iteration runs on inf
   if (!std::isfinite(scale) || !std::isfinite(m) || !std::isfinite(d) || !n0.allFinite() ||
@@ -116,9 +117,12 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     df = (dp * nN - p * N.dot(dN) / nN) / (nN * nN);
     return p / nN - 1.0;
   };
-  double lo = 0.0, hi = scale;
-  double r = std::max(0.0, in.b.norm() - t / 3.0);  // isotropic estimate
-  if (in.warmSlip.norm() > 0.0 && in.warmSlip.norm() < hi) r = in.warmSlip.norm();
+  // r w = b - A w with |w| = 1 brackets the root by |b| -+ |A|_F (the lower
+  // end found by fuzzing: from a stale warm start 1e-88 times the root,
+  // |N(r)| underflowed and f(r) = inf moved the upper end below the root)
+  double lo = std::max(0.0, bNorm - aNorm), hi = scale;
+  double r = std::max(lo, bNorm - t / 3.0);  // isotropic estimate
+  if (in.warmSlip.norm() > lo && in.warmSlip.norm() < hi) r = in.warmSlip.norm();
   Vec3 N = in.b;
   for (int it = 0; it < kMaxIterations; ++it) {
     out.iterations = it + 1;
@@ -129,8 +133,12 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     // bracket and of the step (relative to |b| + |A| a long lever, |A| >> r,
     // stopped far from the root: found by fuzzing)
     if (std::abs(fr) <= tol || hi - lo <= tol * hi) break;
-    double next = df > 0.0 ? r - fr / df : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // safeguard: bisect
+    // safeguard: bisect, geometrically while the bracket spans orders of
+    // magnitude (found by fuzzing: a stale warm start 1e-88 times the root,
+    // where |N(r)| underflowed and 100 linear bisections did not reach it)
+    const double mid = lo > 0.0 && hi > 4.0 * lo ? std::sqrt(lo) * std::sqrt(hi) : 0.5 * (lo + hi);
+    double next = df > 0.0 ? r - fr / df : mid;
+    if (!(next > lo && next < hi)) next = mid;
     if (std::abs(next - r) <= tol * next) {
       r = next;
       f(r, df, N);
@@ -162,6 +170,17 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   const double det = Ksym.determinant();
   if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && det > 0.0))
     throw Error("friction block matrix K is not positive definite");
+  // a diagonal spanning more than kMaxDiagonalSpread is out of this
+  // solver's range: its slip potential weighs the slip's round-off along the
+  // soft directions by K^-1 up to 1e300 (found by fuzzing: K = diag(1e10,
+  // 1.5e10, 1.3e-306), where every trial's potential and gradient came out
+  // 1e258 or inf and the block returned a slip of 7e8 driven by the impulse
+  // itself). A unit-scaled K within it has |K|, |K^-1| < 1e200.
+  constexpr double kMaxDiagonalSpread = 1e200;
+  if (!(Ksym.diagonal().maxCoeff() < kMaxDiagonalSpread * Ksym.diagonal().minCoeff()))
+    throw Error("friction block out of range: the diagonal of K spans more than 1e200 (" +
+                internal::formatDouble(Ksym.diagonal().minCoeff()) + " to " +
+                internal::formatDouble(Ksym.diagonal().maxCoeff()) + ")");
   const Mat3 Kinv = Ksym.inverse();
   // numerically singular K: the slip potential below needs K^-1, which has
   // no digits when K, scaled to a unit diagonal (the cofactor inverse is
@@ -391,9 +410,16 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       }
     }
     // backtracking: sufficient decrease of D, or (at round-off level of D) of |grad D|
+    // (down to t = 2^-kMaxHalvings: with a badly scaled K the descent
+    // fallback -K grad can be 1e18 times too long along K's stiff direction;
+    // found by fuzzing: K_zz = 7.4e9 against |s| = 1e-8 and a lever of 5e7,
+    // where 60 halvings rejected every trial and the block returned the warm
+    // start's q, 1.3 of the set off the law at its slip. Costs evaluations
+    // only when trials keep failing.)
+    constexpr int kMaxHalvings = 200;
     double t = 1.0;
     bool accepted = false;
-    for (int k = 0; k < 60 && !accepted; ++k, t *= 0.5) {
+    for (int k = 0; k < kMaxHalvings && !accepted; ++k, t *= 0.5) {
       Vec3 sNew = s + t * dir;
       if (!(sNew.norm() > 0.0)) continue;
       Vec3 qNew;

@@ -504,6 +504,50 @@ TEST(CoreBadInput, ExactBlockWithBadlyScaledK) {
                             r.slip.norm();
   ASSERT_LT(resolution, 1e-2);  // the check below still means something
   EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), resolution * in.L * set);
+
+  // K_zz = 1.3e-306 (a diagonal spanning 1e316): the slip's round-off along
+  // z, weighed by K^-1 = 7.5e305, swamped every trial's potential, and the
+  // block slipped at (-7.2e8, -3.1e8, 1e-8), 0.59 of the set off the law
+  // there. Now an Error (K^-1 out of double's useful range), or the law.
+  in.b = Vec3(1e-8, 1e-8, 1e-8);
+  in.K(2, 2) = 1.3350831721133898e-306;
+  in.warmSlip.setZero();
+  try {
+    const FrictionBlockResult far = solveFrictionBlock(patch, Model::Exact, in);
+    ASSERT_FALSE(far.sticking);
+    const double farResolution = kResolutionUlps * std::numeric_limits<double>::epsilon() * in.K.norm() * in.L *
+                                 set / far.slip.norm();
+    EXPECT_LT((far.impulse - in.L * patch.unitQ(Model::Exact, far.slip)).norm(), farResolution * in.L * set);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
+}
+
+// Exact block with a long lever (max|r| / rho = 5e7) and K = diag(1e-8,
+// 0.5, 7.4e9): the first Newton direction (the descent fallback -K grad)
+// was 1e18 times too long along z, 60 halvings rejected every trial, and the
+// block returned the warm start's q: impulse (-1e-8, 0, -1), slip
+// (1e-8, 0, -7.4e9), 1.33 of the set off the law there. Checked as the fuzz
+// target does: where the slip is long enough for its direction to be
+// resolved (|s| > 1e-2 of the slip scale |b| + L |K| set), the impulse is
+// the law at it.
+TEST(CoreBadInput, ExactBlockWithLongLeverAndStiffSpin) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {0.5, 0.5, 0.5}), 1e-8, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-300, -1.0);
+  in.L = 1e-8;
+  in.K = Vec3(1e-8, 0.5, 7410810880.0).asDiagonal();
+  in.warmSlip = Vec3(1e-8, 0.0, 0.0);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  const double set = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
+  const double slipScale = in.b.norm() + in.L * in.K.norm() * set;
+  // the fuzz target's kLawSlack and its resolvability threshold 1e4 kLawSlack
+  constexpr double kLawTol = 1e-6;
+  if (!r.sticking && r.slip.norm() > 1e4 * kLawTol * slipScale) {
+    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * set);
+  }
+  EXPECT_LT((r.slip - in.b - in.K * r.impulse).norm(), 1e-9 * slipScale);
 }
 
 // The block far from unit scale (found by fuzzing: b of denormals against
@@ -544,6 +588,22 @@ TEST(CoreBadInput, FrictionBlockFarFromUnitScale) {
     r = solveFrictionBlock(patch, model, in);
     ASSERT_FALSE(r.sticking);
     EXPECT_LT((r.impulse / in.L - patch.unitQ(model, r.slip)).norm(), kLawTol);
+  }
+  // |b| = 8.8e223 (|b|^2 overflows; refused before) with a stale warm start
+  // 1e88 times shorter: at unit scale the ellipsoidal root search began at
+  // r = 1e-88, where |N(r)| underflowed, and returned a zero impulse (found
+  // by fuzzing the unit-scale path). Slips with the law at its slip.
+  const PatchShape offset = PatchShape::disk(1.0, Vec2(1.0, 1.0));
+  const FrictionPatch tilted(offset, LinearPressure::fromLoads(offset, {0.5, 0.5, 0.5}), 0.5, 0.5);
+  FrictionBlockInput far;
+  far.b = Vec3(8.2454865162493023e+136, 8.8001147761699866e+223, 1.0);
+  far.L = 1.0;
+  far.warmSlip = Vec3(2.8177690084182086e-202, 4.0132898972871156e+135, 1.0);
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(tilted, model, far);
+    ASSERT_FALSE(r.sticking);
+    EXPECT_LT((r.impulse / far.L - tilted.unitQ(model, r.slip)).norm(), kLawTol * tilted.Pi().norm());
   }
 }
 
