@@ -5,6 +5,8 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <string>
 #include <patchspin/analysis.hpp>
 
 namespace patchspin {
@@ -239,12 +241,17 @@ bool newtonSphere(const FlatBodyModel& model, Vec3& w, double scale) {
 void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, LimitAnalysis& out) {
   const double scale = fieldScale(model);
   std::vector<LimitDirection> found;
+  // detectContinua's cache (below)
+  std::size_t cachedSize = 0;
+  bool cacheValid = false;
+  std::pair<std::vector<LimitContinuum>, std::vector<LimitDirection>> cached;
   auto search = [&](const std::vector<Vec3>& seeds) {
     for (Vec3 w : seeds) {
       if (!newtonSphere(model, w, scale)) continue;
       LimitDirection d = classifyDirection(model, w);
       addUnique(found, d);
     }
+    cacheValid = false;  // (addUnique may also replace an entry)
   };
   auto ringsAround = [&](const std::vector<LimitDirection>& points) {
     // seeds close to known points find partners born in pitchforks
@@ -261,8 +268,10 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
     }
     return seeds;
   };
-  // continua: many nonhyperbolic points with one rate on one plane
-  auto detectContinua = [&]() {
+  // continua: many nonhyperbolic points with one rate on one plane (cached
+  // until `found` changes: the search below asks up to four times, and with
+  // many nonhyperbolic points the plane search is cubic in their number)
+  auto detectContinuaUncached = [&]() {
     std::vector<LimitContinuum> continua;
     std::vector<bool> used(found.size(), false);
     for (std::size_t i = 0; i < found.size(); ++i) {
@@ -289,7 +298,9 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
               if (std::abs(n.dot(found[j].w - p)) < 1e-6) members.push_back(j);
             }
             if (members.size() > best.size()) best = members;
+            if (best.size() == group.size()) break;  // cannot do better
           }
+          if (best.size() == group.size()) break;
         }
         if (best.size() < 4) break;
         Vec3 mean = Vec3::Zero();
@@ -323,6 +334,14 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
       if (!used[i]) isolated.push_back(found[i]);
     }
     return std::make_pair(continua, isolated);
+  };
+  auto detectContinua = [&]() {
+    if (!cacheValid || cachedSize != found.size()) {
+      cached = detectContinuaUncached();
+      cachedSize = found.size();
+      cacheValid = true;
+    }
+    return cached;
   };
   auto consistent = [&]() {
     const auto [continua, isolated] = detectContinua();
@@ -385,13 +404,154 @@ LimitDirection classifyDirection(const FlatBodyModel& model, const Vec3& wIn) {
   return d;
 }
 
+namespace {
+
+// Exponent (ilogb) of |x|, or kNoExponent for 0.
+constexpr int kNoExponent = -100000;
+int exponentOf(double x) { return x == 0.0 ? kNoExponent : std::ilogb(std::abs(x)); }
+
+LimitAnalysis solveAtScale(const FlatBodyModel& model, const LimitOptions& options);
+
+// The limit field F_o = M^-1 (Q(w) + Q_e) is linear in the loads (gravity,
+// force, couple: the pressure, hence Q, is linear in them) and in M^-1. With
+// loads times 2^-eL and m, Jz, Jxz, Jyz times 2^eM (g times 2^(-eL - eM), so
+// that m g scales as the loads) it is F_o times 2^(-eL - eM): the same
+// directions, with rates, eigenvalues and residuals times 2^(-eL - eM) and
+// pressures times 2^-eL (powers of two: exact). Far from unit scale the
+// directions are found at unit scale (found by fuzzing: fields of 1e-300
+// made every direction a fixed point to round-off, fields of 1e283 and
+// tipping couples of 6.8e283 overflowed the residual to inf, a denormal Jz
+// ran for 11 s).
+LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& options) {
+  const FlatBody& body = model.body();
+  const double rho = model.rho();
+  // load exponents, as forces: couples over the shorter of max|r| and rho,
+  // the weight and the force with the lever |r_c| / that length
+  const int eLength = std::min(exponentOf(body.shape.maxDistanceFromOrigin()), exponentOf(rho));
+  const int eWeight = exponentOf(body.mass) + exponentOf(body.g);
+  const int eForce = std::max(exponentOf(body.force.x()), exponentOf(body.force.y()));
+  const int eCouple = std::max({exponentOf(body.torque.x()), exponentOf(body.torque.y()), exponentOf(body.torque.z())});
+  const int eCom = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(body.com.z())});
+  int eLoad = std::max(eWeight, eForce);
+  if (eCom != kNoExponent) eLoad += std::max(0, eCom - eLength);
+  if (eCouple != kNoExponent) eLoad = std::max(eLoad, eCouple - eLength);
+  // (a large mu scales the friction part of the field: normalised as well)
+  eLoad += std::max(0, exponentOf(body.mu));
+  // M^-1 = W^-1 diag(1/m, 1/m, 1/Jz) W^-T with W^-1 = [[1, 0, yc], [0, 1, -xc], [0, 0, rho]]
+  const int eOffset = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(rho)});
+  const int eMass = std::max(-exponentOf(body.mass), 2 * eOffset - exponentOf(body.Jz));
+  constexpr int kUnitRange = 100;  // 2^100 ~ 1e30: well inside double's range
+  if (std::abs(eLoad) <= kUnitRange && std::abs(eMass) <= kUnitRange) return solveAtScale(model, options);
+
+  FlatBody unit = body;
+  unit.rho = rho;
+  unit.mass = std::ldexp(body.mass, eMass);
+  unit.Jz = std::ldexp(body.Jz, eMass);
+  unit.Jxz = std::ldexp(body.Jxz, eMass);
+  unit.Jyz = std::ldexp(body.Jyz, eMass);
+  unit.g = std::ldexp(body.g, -eLoad - eMass);
+  unit.force = Vec2(std::ldexp(body.force.x(), -eLoad), std::ldexp(body.force.y(), -eLoad));
+  unit.torque = Vec3(std::ldexp(body.torque.x(), -eLoad), std::ldexp(body.torque.y(), -eLoad),
+                     std::ldexp(body.torque.z(), -eLoad));
+  const bool inRange = std::isnormal(unit.mass) && std::isnormal(unit.Jz) && std::isnormal(unit.g);
+  if (!inRange) {
+    throw Error("limit directions: the body's mass and loads span more than double's range (m " +
+                internal::formatDouble(body.mass) + ", Jz " + internal::formatDouble(body.Jz) + ", g " +
+                internal::formatDouble(body.g) + ")");
+  }
+  LimitAnalysis out = solveAtScale(FlatBodyModel(unit, model.model()), options);
+  // back to the body's own scale (F_o times 2^(eLoad + eMass))
+  const int eField = eLoad + eMass;
+  for (LimitDirection& d : out.directions) {
+    d.rdot = std::ldexp(d.rdot, eField);
+    d.residual = std::ldexp(d.residual, eField);
+    d.eigenvalues = Eigen::Vector2cd(std::complex<double>(std::ldexp(d.eigenvalues[0].real(), eField),
+                                                          std::ldexp(d.eigenvalues[0].imag(), eField)),
+                                     std::complex<double>(std::ldexp(d.eigenvalues[1].real(), eField),
+                                                          std::ldexp(d.eigenvalues[1].imag(), eField)));
+    d.minPressure = std::ldexp(d.minPressure, eLoad);
+    if (!std::isfinite(d.rdot) || !d.eigenvalues.allFinite() || !std::isfinite(d.residual) ||
+        !std::isfinite(d.minPressure)) {
+      throw Error("limit directions: the limit field overflows double (rate " + internal::formatDouble(d.rdot) +
+                  " at unit scale times 2^" + std::to_string(eField) + ")");
+    }
+  }
+  for (LimitContinuum& c : out.continua) {
+    c.rdot = std::ldexp(c.rdot, eField);
+    if (!std::isfinite(c.rdot)) throw Error("limit directions: the limit field overflows double");
+  }
+  return out;
+}
+
+}  // namespace
+
 LimitAnalysis findLimitDirections(const FlatBodyModel& model, const LimitOptions& options) {
+  return solveNormalised(model, options);
+}
+
+namespace {
+
+// Friction negligible against the external wrench: F_o = c + f(w) with
+// |f| <= kNegligibleFriction |c|, so every fixed point lies within that angle
+// of +-c^ (F_o parallel to w), one near each (the tangential Jacobian there,
+// -R* P for f = 0, is regular): Newton from +-c^ finds both. With mu = 0 and
+// no external wrench the field vanishes: every direction is a limit
+// direction, the sphere continuum with rate 0.
+constexpr double kNegligibleFriction = 1e-10;
+// Below this (at unit loads and M^-1: a friction coefficient near the
+// smallest normal double) the field has no digits to resolve directions.
+constexpr double kUnresolvableField = 1e-280;
+
+bool solveDegenerate(const FlatBodyModel& model, LimitAnalysis& out) {
+  const BodyLoads loads = model.bodyLoads();
+  const Mat3 Minv = model.massMatrix().inverse();
+  const Vec3 c = Minv * model.externalWrench(loads);
+  const double external = c.norm();
+  // friction bound mu |M^-1| ∫|p| (1 + max|r| / rho), with the pressure at
+  // rest (the friction wrench's share of it is of the friction's order)
+  const FlatBody& body = model.body();
+  const ContactState rest = model.contactAtRest(Vec3::Zero(), loads);
+  const double rmax = body.shape.maxDistanceFromOrigin();
+  const double absP = body.shape.area() *
+                      (std::abs(rest.pressure[0]) + (std::abs(rest.pressure[1]) + std::abs(rest.pressure[2])) * rmax);
+  const double friction = body.mu * Minv.norm() * absP * (1.0 + rmax / model.rho());
+  if (body.mu == 0.0 && external == 0.0) {
+    LimitContinuum sphere;
+    sphere.sphere = true;
+    sphere.rdot = 0.0;
+    sphere.attracting = false;
+    out.continua.push_back(sphere);
+    return true;
+  }
+  if (!(external > 0.0 && friction <= kNegligibleFriction * external)) {
+    if (!(friction + external >= kUnresolvableField)) {
+      throw Error("limit directions: the limit field is below double's resolution (friction scale " +
+                  internal::formatDouble(friction) + " at unit loads; mu = " + internal::formatDouble(body.mu) + ")");
+    }
+    return false;
+  }
+  const double scale = fieldScale(model);
+  for (double sign : {1.0, -1.0}) {
+    Vec3 w = sign * c / external;
+    if (!newtonSphere(model, w, scale)) {
+      throw Error("limit directions: Newton did not converge near the external wrench's direction");
+    }
+    addUnique(out.directions, classifyDirection(model, w));
+  }
+  return true;
+}
+
+LimitAnalysis solveAtScale(const FlatBodyModel& model, const LimitOptions& options) {
   LimitAnalysis out;
-  out.linear = !model.isNonlinear() && !options.sphereSolver;
-  if (out.linear) {
-    solveLinear(model, out);
+  if (solveDegenerate(model, out)) {
+    out.linear = false;  // closed form, not (111)
   } else {
-    solveNonlinear(model, options, out);
+    out.linear = !model.isNonlinear() && !options.sphereSolver;
+    if (out.linear) {
+      solveLinear(model, out);
+    } else {
+      solveNonlinear(model, options, out);
+    }
   }
   std::sort(out.directions.begin(), out.directions.end(),
             [](const LimitDirection& a, const LimitDirection& b) {
@@ -418,5 +578,7 @@ LimitAnalysis findLimitDirections(const FlatBodyModel& model, const LimitOptions
   out.indexConsistent = !out.continua.empty() || !hyperbolic || sum == 2;
   return out;
 }
+
+}  // namespace
 
 }  // namespace patchspin

@@ -516,13 +516,14 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
   }
   // The block is homogeneous: K -> a K, b -> c b, L -> (c / a) L (and the
   // warm start with b) give s -> c s, lambda -> (c / a) lambda. Far from unit
-  // scale it is solved at |K| ~ 1 and |b| ~ 1 (or, when L |K| dwarfs |b| by
-  // more than 2^kMaxLeverage, at L |K| ~ 2^kMaxLeverage, where the
-  // ellipsoidal |L K Pi|^2 stays in range), with a and c powers of two, so
-  // the scaling is exact: squares of 1e-160 underflowed (found by fuzzing:
-  // b of denormals, where |K^-1 b| came out 0 and the exact block stuck with
-  // a zero impulse; with b = 1e-170 the exact block slipped with a zero
-  // impulse). One range check on the common path.
+  // scale it is solved at |K| ~ 1 and |b| ~ 1, with a and c powers of two,
+  // so the scaling is exact: squares of 1e-160 underflowed (found by
+  // fuzzing: b of denormals, where |K^-1 b| came out 0 and the exact block
+  // stuck with a zero impulse; with b = 1e-170 the exact block slipped with
+  // a zero impulse). An L beyond 2^kMaxLeverage there (|L K Pi|^2 would
+  // overflow) is tried at that bound: a block that sticks with it sticks
+  // with any larger L; one that slips is left to the plain path, as is an L
+  // that underflows. One range check on the common path.
   {
     const double bMax = input.b.cwiseAbs().maxCoeff(), kMax = input.K.cwiseAbs().maxCoeff();
     constexpr double kLow = 1e-100, kHigh = 1e100;
@@ -532,8 +533,7 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
     constexpr double kMaxSpread = 1e100;
     const bool spreadOk = input.K.diagonal().cwiseAbs().minCoeff() > kMax / kMaxSpread;
     if (!(bMax > kLow && bMax < kHigh && kMax > kLow && kMax < kHigh) && bMax > 0.0 && kMax > 0.0 && spreadOk) {
-      const int ek = std::ilogb(kMax);
-      const int es = std::max(std::ilogb(bMax), std::ilogb(input.L) + ek - kMaxLeverage);
+      const int ek = std::ilogb(kMax), es = std::ilogb(bMax);
       auto times2To = [](auto v, int e) {
         return decltype(v)(v.unaryExpr([e](double x) { return std::ldexp(x, e); }));
       };
@@ -546,12 +546,24 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
       const double warmMax = unit.warmSlip.cwiseAbs().maxCoeff();
       if (input.warmSlip.cwiseAbs().maxCoeff() > 0.0 && !(warmMax > kLow && warmMax < kHigh))
         unit.warmSlip = times2To(input.warmSlip, -std::ilogb(input.warmSlip.cwiseAbs().maxCoeff()));
-      unit.L = std::ldexp(input.L, ek - es);
-      // (an L that underflows at unit scale is left to the plain path)
+      const bool clamped = std::ilogb(input.L) + ek - es > kMaxLeverage;
+      unit.L = clamped ? std::ldexp(1.0, kMaxLeverage) : std::ldexp(input.L, ek - es);
       if (unit.L >= std::numeric_limits<double>::min()) {
         FrictionBlockResult r = solveModel(patch, model, unit);
-        r.impulse = times2To(r.impulse, es - ek);
-        r.slip = times2To(r.slip, es);
+        if (!clamped || r.sticking) {
+          r.impulse = times2To(r.impulse, es - ek);
+          r.slip = times2To(r.slip, es);
+          return requireFiniteResult(r);
+        }
+      } else {
+        // L |K| below 2^-1022 of |b|: the impulse cannot move the slip off b
+        // by one ulp and -K^-1 b is far outside L E, so the block slips
+        // along b with the law there (found by fuzzing: |b| = 1e300 against
+        // L |K| = 2e-9 kept the warm start's q, 0.77 of the set off the law)
+        FrictionBlockResult r;
+        r.impulse = input.L * patch.unitQ(model, unit.b);
+        r.slip = input.b + input.K * r.impulse;
+        r.iterations = 1;
         return requireFiniteResult(r);
       }
     }

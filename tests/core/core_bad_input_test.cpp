@@ -589,6 +589,38 @@ TEST(CoreBadInput, FrictionBlockFarFromUnitScale) {
     ASSERT_FALSE(r.sticking);
     EXPECT_LT((r.impulse / in.L - patch.unitQ(model, r.slip)).norm(), kLawTol);
   }
+  // K = 1e300 I and L = 1e300 against |b| = 0.5: sticks with lambda = -K^-1 b
+  // (L K Pi overflowed: refused before; at unit scale with L clamped to keep
+  // |L K Pi| in range, b first underflowed to 0 and the block stuck with a
+  // zero impulse, found by fuzzing the unit-scale path)
+  const PatchShape speck = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const FrictionPatch lever(speck, LinearPressure::fromLoads(speck, {0.5, 1e-8, -1.0}), 1e-8, 1e-8);
+  FrictionBlockInput stiff;
+  stiff.b = Vec3(1e-8, 0.5, 1e-300);
+  stiff.L = 1e300;
+  stiff.K = 1e300 * Mat3::Identity();
+  stiff.warmSlip = Vec3(1e300, 6e-310, 0.0);
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(lever, model, stiff);
+    ASSERT_TRUE(r.sticking);
+    EXPECT_LT((stiff.b + stiff.K * r.impulse).norm(), kLawTol * stiff.b.norm());
+  }
+  // |b| = 1e300 against L |K| = 1.6e-9 with a warm start along x: the block
+  // kept the warm start's q (0.77 of the set off the law at the slip, which
+  // is b's direction to 1e-308); now the law at b's direction (found by
+  // fuzzing)
+  FrictionBlockInput huge;
+  huge.b = Vec3(1e-8, 1e300, 1e-8);
+  huge.L = 0.5;
+  huge.K = 3.2233629197666603e-09 * Mat3::Identity();
+  huge.warmSlip = Vec3(0.5, 1e-8, 1e-8);
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, huge);
+    ASSERT_FALSE(r.sticking);
+    EXPECT_LT((r.impulse / huge.L - patch.unitQ(model, r.slip)).norm(), kLawTol);
+  }
   // |b| = 8.8e223 (|b|^2 overflows; refused before) with a stale warm start
   // 1e88 times shorter: at unit scale the ellipsoidal root search began at
   // r = 1e-88, where |N(r)| underflowed, and returned a zero impulse (found
@@ -670,6 +702,117 @@ TEST(CoreBadInput, LimitEigenvaluesOfAHugeField) {
       const std::complex<double> expected = reference.directions[i].eigenvalues[k] * 1e140;
       EXPECT_LE(std::abs(d.eigenvalues[k] - expected), kScaleTol * (std::abs(expected) + std::abs(d.rdot)));
     }
+  }
+}
+
+// Limit directions far from unit scale (found by fuzzing: couples of
+// 6.8e283 about x on a 0.5 m disk gave a direction with residual = inf, the
+// fuzz finding limits_tipping_torque_inf_residual, now in the limits
+// corpus). Each direction must be a fixed point of the limit field itself,
+// F_o(w) parallel to w, to kFixedPointTol of |F_o(w)| (the solver polishes
+// to 1e-11 of its field scale), with finite rate, eigenvalues and residual.
+TEST(CoreBadInput, LimitDirectionsWithHugeTippingCouple) {
+  FlatBody body;
+  body.shape = PatchShape::disk(0.5, Vec2(0.5, -5.0497563083659848e-195));
+  body.mass = 0.5;
+  body.Jz = 0.5;
+  body.Jxz = 0.5;
+  body.Jyz = 0.5;
+  body.com = Vec3(0.5, 0.5, 0.5);
+  body.mu = 0.5;
+  body.g = 0.5;
+  body.force = Vec2(0.5, 0.5);
+  body.torque = Vec3(6.782694702302148e+283, 0.0, 0.0);
+  const FlatBodyModel model(body, Model::Ellipsoidal);
+  LimitOptions options;
+  options.seeds = 20;
+  constexpr double kFixedPointTol = 1e-8;
+  try {
+    const LimitAnalysis result = findLimitDirections(model, options);
+    for (const LimitDirection& d : result.directions) {
+      EXPECT_TRUE(std::isfinite(d.residual));
+      EXPECT_TRUE(std::isfinite(d.rdot));
+      EXPECT_TRUE(d.eigenvalues.allFinite());
+      const Vec3 F = model.limitField(d.w);
+      ASSERT_TRUE(F.allFinite());
+      EXPECT_LE((F - d.w.dot(F) * d.w).stableNorm(), kFixedPointTol * F.stableNorm());
+    }
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("range"), std::string::npos) << e.what();
+  }
+}
+
+// The limit field is linear in the loads (gravity, force, couple), so a body
+// with every load times 2^-1000 (g = 9.8e-301: a field of ~1e-301, where
+// the solver took every direction for a fixed point to round-off and ran 5 s
+// to 150 s, an input class the fuzz target had to exclude) has the same
+// directions as the body itself, with rates times 2^-1000. Checked against
+// the unscaled body, to the solver's own polish (1e-11 of the field).
+TEST(CoreBadInput, LimitDirectionsOfATinyField) {
+  FlatBody body;
+  body.shape = PatchShape::rectangle(0.4, 0.2);
+  body.com = Vec3(0.02, -0.01, 0.3);
+  body.mu = 0.4;
+  body.force = Vec2(0.5, -0.2);
+  body.torque = Vec3(0.01, 0.02, 0.05);
+  FlatBody tiny = body;
+  const double c = std::ldexp(1.0, -1000);
+  tiny.g = body.g * c;
+  tiny.force = body.force * c;
+  tiny.torque = body.torque * c;
+  constexpr double kDirectionTol = 1e-8;
+  for (Model m : {Model::Ellipsoidal, Model::Exact}) {
+    SCOPED_TRACE(toString(m));
+    LimitOptions options;
+    options.seeds = 20;
+    const LimitAnalysis reference = findLimitDirections(FlatBodyModel(body, m), options);
+    const LimitAnalysis scaled = findLimitDirections(FlatBodyModel(tiny, m), options);
+    ASSERT_FALSE(reference.directions.empty());
+    ASSERT_EQ(scaled.directions.size(), reference.directions.size());
+    double rateScale = 0.0;  // the field's size along its fixed points
+    for (const LimitDirection& d : reference.directions) rateScale = std::max(rateScale, std::abs(d.rdot));
+    for (std::size_t i = 0; i < reference.directions.size(); ++i) {
+      EXPECT_LT((scaled.directions[i].w - reference.directions[i].w).norm(), kDirectionTol);
+      EXPECT_NEAR(std::ldexp(scaled.directions[i].rdot, 1000), reference.directions[i].rdot, kDirectionTol * rateScale);
+    }
+  }
+}
+
+// mu = 0: the limit field is the constant c = M^-1 Q_e, whose fixed points
+// on the sphere are w = +-c / |c| (F_o parallel to w) with rate +-|c|; and
+// with no external wrench either the field vanishes and every direction is
+// one: the sphere continuum with rate 0 (the fuzz target excluded friction
+// below 1e-14 of the field, mu = 0 included, as the solver degenerated there).
+TEST(CoreBadInput, LimitDirectionsWithoutFriction) {
+  FlatBody body;
+  body.shape = PatchShape::disk(0.3);
+  body.com = Vec3(0.05, 0.0, 0.2);
+  body.mu = 0.0;
+  body.force = Vec2(1.0, 2.0);
+  body.torque = Vec3(0.0, 0.0, 0.5);
+  constexpr double kTol = 1e-12;
+  for (Model m : {Model::Ellipsoidal, Model::Exact}) {
+    SCOPED_TRACE(toString(m));
+    const FlatBodyModel model(body, m);
+    const Vec3 c = model.massMatrix().inverse() * model.externalWrench(model.bodyLoads());
+    LimitOptions options;
+    options.seeds = 20;
+    const LimitAnalysis result = findLimitDirections(model, options);
+    ASSERT_EQ(result.directions.size(), 2u);
+    EXPECT_TRUE(result.continua.empty());
+    for (const LimitDirection& d : result.directions) {
+      const double sign = d.w.dot(c) > 0.0 ? 1.0 : -1.0;
+      EXPECT_LT((d.w - sign * c.normalized()).norm(), kTol);
+      EXPECT_NEAR(d.rdot, sign * c.norm(), kTol * c.norm());
+    }
+    FlatBody still = body;
+    still.force.setZero();
+    still.torque.setZero();
+    const LimitAnalysis none = findLimitDirections(FlatBodyModel(still, m), options);
+    EXPECT_TRUE(none.directions.empty());
+    ASSERT_EQ(none.continua.size(), 1u);
+    EXPECT_TRUE(none.continua[0].sphere);
+    EXPECT_EQ(none.continua[0].rdot, 0.0);
   }
 }
 
