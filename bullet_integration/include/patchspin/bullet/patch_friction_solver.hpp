@@ -131,6 +131,7 @@ struct PatchSolverStats {
   long blockSolves = 0;      // friction block solves (others reused the last solution)
   long pressureRefreshes = 0;  // Pi / exact-law pressure refreshes
   long quickSticks = 0;        // friction visits that stuck by the quick test (no block solve)
+  long shapeRebuilds = 0;      // patch shapes and friction laws built anew (outline changed)
   // largest distance, relative to the patch diameter, between a patch's
   // centre of pressure at the end of the step and the one its friction law
   // was last refreshed with [-]
