@@ -40,11 +40,18 @@ constexpr double kTipRelTol = 1e-3;
 constexpr long kTipCooldownSteps = 10;
 // Pseudo-velocity iterations of the patch position correction per step.
 constexpr int kPushIterations = 4;
-// A patch outline that moved by less than this fraction of its size since the
-// last step keeps its PatchShape and FrictionPatch (moment tables are the
-// expensive part): far below any physical effect, above float round-off
-// of the transforms (~1e-7).
-constexpr double kOutlineRelTol = 1e-6;
+// A patch outline whose vertices (or radius) are within this fraction of its
+// size of the outline its PatchShape and FrictionPatch were built from keeps
+// them (moment tables are the expensive part, ~35k instructions); the drift
+// does not accumulate, since the comparison is with the outline of the last
+// rebuild. Just above round-off: float transforms carry ~6e-8 m at 1 m, ~1e-6
+// of a 5 cm patch, and at 1e-6 that round-off rebuilt twice as many shapes in
+// a resting pile (bench_bullet_scale, N = 100 / 1000: 4.6 / 71 rebuilds per
+// step against 2.0 / 34 at 1e-5). No larger: a real change of 1e-5 left
+// standing (double) or 1e-4 (float) made the 55-block pyramid of the stress
+// scenes (ellipsoidal) move, its largest speed 2e-3 and 1.3e-3 m/s against
+// 1e-4 and 3e-4.
+constexpr double kOutlineRelTol = sizeof(btScalar) == sizeof(double) ? 1e-6 : 1e-5;
 // Within a step, a slipping friction block whose input (b, L, loads) changed
 // by less than this, relative, since its last solve keeps that solution: the
 // solve would return it up to round-off (float: velocities carry ~6e-8).
@@ -198,6 +205,7 @@ struct PatchFrictionSolver::Impl {
     auto it = options.find(o);
     return it == options.end() ? nullptr : &it->second;
   }
+  std::vector<int> ownPatch, patchesAbove;  // scratch of linkStackedPatches
 };
 
 namespace {
@@ -402,7 +410,9 @@ void flushCrumbs(btRigidBody& body) {
   return size <= Ls;
 }
 
-[[gnu::noinline]] void linkStackedPatches(std::vector<PatchConstraint>& patches, std::vector<StackHold>& holds) {
+// `own` and `above` are scratch, indexed by solver body id (numBodies of them).
+[[gnu::noinline]] void linkStackedPatches(std::vector<PatchConstraint>& patches, std::vector<StackHold>& holds,
+                                          int numBodies, std::vector<int>& own, std::vector<int>& above) {
   // supported patches (a stack): the lower body B of patch P stands on a
   // patch S of its own. Gauss-Seidel over P and S converges like the mass
   // ratio (a heavy body on a light one never gets its weight to the
@@ -411,21 +421,25 @@ void flushCrumbs(btRigidBody& body) {
   // were, dlambda_S = -K_S^-1 K_SP d: all six while S sticks (and can take
   // the share), its normal block while it slips (see solveSingleIteration).
   if (std::any_of(patches.begin(), patches.end(), [](const PatchConstraint& pc) { return pc.b.dynamic; })) {
-    std::unordered_map<const btCollisionObject*, int> own;  // body -> its single patch
+    // by solver body id (a patch's body a is dynamic, so its id is its own):
+    // own: the body's single patch (kNone: none, kSeveral: more than one);
+    // above: how many patches stand on the body
+    constexpr int kNone = -2, kSeveral = -1;
+    own.assign(std::size_t(numBodies), kNone);
+    above.assign(std::size_t(numBodies), 0);
     for (int i = 0; i < int(patches.size()); ++i) {
-      auto [it, added] = own.emplace(patches[i].state->body, i);
-      if (!added) it->second = -1;  // several patches below one body: none
+      int& o = own[std::size_t(patches[std::size_t(i)].a.id)];
+      o = o == kNone ? i : kSeveral;
     }
-    std::unordered_map<const btCollisionObject*, int> above;  // body -> patches standing on it
     for (const PatchConstraint& pc : patches)
-      if (pc.b.dynamic) ++above[pc.state->other];
+      if (pc.b.dynamic) ++above[std::size_t(pc.b.id)];
     for (PatchConstraint& pc : patches) {
       // a simple stack only: the upper body stands on this patch alone, and
       // the lower body carries nothing else and stands on one patch
-      if (!pc.b.dynamic || above[pc.state->other] != 1 || own[pc.state->body] < 0) continue;
-      const auto it = own.find(pc.state->other);
-      if (it == own.end() || it->second < 0) continue;
-      const PatchConstraint& sp = patches[std::size_t(it->second)];
+      if (!pc.b.dynamic || above[std::size_t(pc.b.id)] != 1 || own[std::size_t(pc.a.id)] < 0) continue;
+      const int support = own[std::size_t(pc.b.id)];
+      if (support < 0) continue;
+      const PatchConstraint& sp = patches[std::size_t(support)];
       if (&sp == &pc || sp.a.id != pc.b.id) continue;
       // K_PS = -J_{P,b} M_L^-1 J_{S,a}^T (the lower body L is P's b, S's a)
       const Mat6 JPb = bodyRows(pc.b, pc.F, pc.rho), JSa = bodyRows(sp.a, sp.F, sp.rho);
@@ -452,7 +466,7 @@ void flushCrumbs(btRigidBody& body) {
       fold(6, sh.all);
       fold(3, sh.normal);
       if (!sh.all.valid && !sh.normal.valid) continue;
-      pc.support = it->second;
+      pc.support = support;
       pc.hold = int(holds.size());
       holds.push_back(sh);
     }
@@ -536,6 +550,13 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   const double dt = double(info.m_timeStep);
   for (int i = 0; i < numManifolds; ++i) {
     btPersistentManifold* m = manifolds[i];
+    // empty manifolds first: the broadphase keeps one for every pair whose
+    // bounding boxes overlap (~10 per touching one in a pile), and the option
+    // lookups below are hash lookups
+    if (m->getNumContacts() == 0) {
+      convertContact(m, info);
+      continue;
+    }
     const btCollisionObject* o0 = m->getBody0();
     const btCollisionObject* o1 = m->getBody1();
     // the patch belongs to an opted-in dynamic body (a static or kinematic
@@ -546,7 +567,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     };
     const PatchOptions* opt0 = dynamicOptions(o0);
     const PatchOptions* opt1 = dynamicOptions(o1);
-    if ((!opt0 && !opt1) || m->getNumContacts() == 0) {
+    if (!opt0 && !opt1) {
       convertContact(m, info);
       continue;
     }
@@ -621,6 +642,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         st.pressureCop = shape.centroid();  // uniform pressure
         st.piInvValid = false;
         st.shapeId = ++im.shapeCount;
+        ++im.stats.shapeRebuilds;
       } catch (const Error&) {
         st.flat = false;  // degenerate overlap: leave it to Bullet
         st.friction.reset();
@@ -687,7 +709,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     }
   }
 
-  if (im.settings.supportedStacks) linkStackedPatches(im.patches, im.holds);
+  if (im.settings.supportedStacks)
+    linkStackedPatches(im.patches, im.holds, m_tmpSolverBodyPool.size(), im.ownPatch, im.patchesAbove);
 }
 
 btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
@@ -795,11 +818,12 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         ++pc.refreshes;
         PatchLoads loads = raw;
         // a disk's linear pressure is >= 0 iff the centre of pressure lies in
-        // its kern, |cop - C| <= I / (A R) = R / 4; polygons: isAdmissible
-        const bool admissible =
-            shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= 0.0625 * shape.radius() * shape.radius()
-                           : isAdmissible(shape, loads);
-        if (!admissible) loads = nearestAdmissibleLoads(shape, loads, pc.rho);
+        // its kern, |cop - C| <= I / (A R) = R / 4; a polygon's admissibility
+        // test is nearestAdmissibleLoads' own first step (admissible loads
+        // come back unchanged)
+        if (!shape.isDisk() ||
+            (cop - shape.centre()).squaredNorm() > 0.0625 * shape.radius() * shape.radius())
+          loads = nearestAdmissibleLoads(shape, loads, pc.rho);
         friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
         pc.state->pressureCop = cop;
         refreshed = true;

@@ -135,6 +135,7 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
   if (!shape.isDisk()) {
     const Mat3 Minv = M.inverse();
     std::vector<Vec3> a;
+    a.reserve(shape.vertices().size());  // one allocation (the Bullet layer calls this per iteration)
     for (const Vec2& v : shape.vertices()) a.push_back(Minv.transpose() * Vec3(1.0, v.x(), v.y()));
     // feasibility with a small relative slack for round-off
     auto feasible = [&](const Vec3& l) {
