@@ -163,18 +163,24 @@ void run(ByteReader& in) {
   const double forceRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA /
                                std::abs(patch.Pz());
   const double lawRoundOff = forceRoundOff * (1.0 + rmax / patch.rho());
+  // (plus the rounding of the impulse to the denormal grid: each of its
+  // three entries, and of L q, is off by up to half a denormal step; found,
+  // L = 5e-324 gave a law error of 1 denormal against 3, and a torque of 1
+  // denormal against a bound that rounded to 0)
+  const double denormalRounding = 4.0 * std::numeric_limits<double>::denorm_min();
   if (model == Model::Ellipsoidal) {
-    if (out.impulse.stableNorm() > L * unitScale * (1.0 + kBoundSlack)) {
+    if (out.impulse.stableNorm() > L * unitScale * (1.0 + kBoundSlack) + denormalRounding) {
       fail("ellipsoidal impulse %.17g outside L |Pi| = %.17g", out.impulse.stableNorm(), L * unitScale);
     }
   } else {
     if (std::hypot(out.impulse.x(), out.impulse.y()) >
-        L * absRatio * (1.0 + kBoundSlack) + kBoundSlack * L * unitScale + L * forceRoundOff) {
+        L * absRatio * (1.0 + kBoundSlack) + kBoundSlack * L * unitScale + L * forceRoundOff + denormalRounding) {
       fail("exact impulse force %.17g outside L ∫|p|/Pz = %.17g",
            std::hypot(out.impulse.x(), out.impulse.y()), L * absRatio);
     }
     if (std::abs(out.impulse.z()) > L * absRatio * rmax / patch.rho() * (1.0 + kBoundSlack) +
-                                        kBoundSlack * L * unitScale + L * forceRoundOff * rmax / patch.rho()) {
+                                        kBoundSlack * L * unitScale + L * forceRoundOff * rmax / patch.rho() +
+                                        denormalRounding) {
       fail("exact impulse torque %.17g outside its bound", std::abs(out.impulse.z()));
     }
   }
@@ -186,10 +192,6 @@ void run(ByteReader& in) {
   const bool lawHasDigits = model == Model::Ellipsoidal || lawRoundOff < kLawSlack / 100.0 * unitScale;
   if (!out.sticking && s > 1e4 * kLawSlack * scale && isSpd(input.K) && lawHasDigits) {
     const Vec3 q = patch.unitQ(model, out.slip);
-    // (plus the rounding of L q to the denormal grid: each of the three
-    // entries of impulse and of L q is off by up to half a denormal step;
-    // found, L = 5e-324 gave an error of 1 denormal against 3)
-    const double denormalRounding = 4.0 * std::numeric_limits<double>::denorm_min();
     if ((out.impulse - L * q).stableNorm() > kLawSlack * L * unitScale + denormalRounding) {
       fail("%s slip: impulse != L q(s^), error %.3g of %.3g", toString(model),
            (out.impulse - L * q).stableNorm(), L * unitScale);

@@ -182,6 +182,10 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
                 internal::formatDouble(Ksym.diagonal().minCoeff()) + " to " +
                 internal::formatDouble(Ksym.diagonal().maxCoeff()) + ")");
   const Mat3 Kinv = Ksym.inverse();
+  // (found by fuzzing: entries of 1e148 with K_xx = 6e17, det(K) = inf and
+  // K^-1 = 0, so K^-1 b = 0 and the block stuck with a zero impulse)
+  if (!std::isfinite(det) || !Kinv.allFinite())
+    throw Error("friction block out of range: det K overflows double (" + internal::formatDouble(det) + ")");
   // numerically singular K: the slip potential below needs K^-1, which has
   // no digits when K, scaled to a unit diagonal (the cofactor inverse is
   // invariant under that scaling), has cond above kSingularCondition (found

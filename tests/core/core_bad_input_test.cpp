@@ -621,6 +621,23 @@ TEST(CoreBadInput, FrictionBlockFarFromUnitScale) {
     ASSERT_FALSE(r.sticking);
     EXPECT_LT((r.impulse / huge.L - patch.unitQ(model, r.slip)).norm(), kLawTol);
   }
+  // det K = inf (entries 6e17 to 1.2e148, a diagonal spanning 2e130): K^-1
+  // came out 0 and the exact block stuck with a zero impulse against
+  // b = (0, 0, 2.8e-4), so b + K lambda = b != 0 (found by fuzzing). Now an
+  // Error, or a stick with b + K lambda = 0 to round-off, or a slip
+  FrictionBlockInput overflowing;
+  overflowing.b = Vec3(0.0, 0.0, 0.00027956068515777588);
+  overflowing.L = 2.2204460492503131e-16;
+  overflowing.K << 6.0026327207929446e+17, 2.432376922470289e+58, 7.7476659200000002, 2.432376922470289e+58,
+      1.2000001427493119e+148, 1.0954451801661788e+66, 7.7476659200000002, 1.0954451801661788e+66,
+      1.2241048138797834e+148;
+  try {
+    const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, overflowing);
+    const Vec3 residual = overflowing.b + overflowing.K * r.impulse - r.slip;
+    EXPECT_LT(residual.stableNorm(), kLawTol * (overflowing.b.norm() + overflowing.K.stableNorm() * r.impulse.stableNorm()));
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+  }
   // |b| = 8.8e223 (|b|^2 overflows; refused before) with a stale warm start
   // 1e88 times shorter: at unit scale the ellipsoidal root search began at
   // r = 1e-88, where |N(r)| underflowed, and returned a zero impulse (found

@@ -150,6 +150,17 @@ struct LimitOptions {
 };
 
 // All limit directions of the body at rest in the frame psi = 0.
+// Far from unit scale the field is solved for the body with its loads and
+// masses scaled by powers of two (F_o is linear in both), so fields of 1e-300
+// or 1e280 give the same directions, with rates in the body's own units.
+// Degenerate fields are decided up front:
+//  * friction below 1e-10 of the external wrench's field c = M^-1 Q_e
+//    (mu = 0 included): the two directions +-c / |c|, polished by Newton;
+//  * mu = 0 and no external wrench: F_o = 0, every direction is a limit
+//    direction: one continuum with `sphere` set and rate 0, no directions;
+//  * a field with no digits (friction ~1e-280 of unit loads with no external
+//    wrench, e.g. a denormal mu), or masses and loads whose ratio leaves
+//    double's range (a denormal Jz against m = 1): patchspin::Error.
 LimitAnalysis findLimitDirections(const FlatBodyModel& model,
                                   const LimitOptions& options = LimitOptions());
 

@@ -40,6 +40,11 @@ struct FrictionBlockResult {
 
 // Solves the block for `patch` (its Pi or its exact law; its Pz only sets the
 // scale of q). Throws Error for non-finite input or a K that is not SPD.
+// The block is homogeneous in (K, b, L); far from unit scale it is solved at
+// |K| ~ |b| ~ 1 (powers of two), so b and K of 1e-300 or 1e300 are fine.
+// The exact law also refuses, as out of its range, a K that is numerically
+// singular (condition number above 1e12 once scaled to a unit diagonal) or
+// whose diagonal spans more than 1e200: its slip potential needs K^-1.
 FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
                                        const FrictionBlockInput& input);
 
