@@ -134,14 +134,24 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
 
   if (!shape.isDisk()) {
     const Mat3 Minv = M.inverse();
-    std::vector<Vec3> a;
-    a.reserve(shape.vertices().size());  // one allocation (the Bullet layer calls this per iteration)
-    for (const Vec2& v : shape.vertices()) a.push_back(Minv.transpose() * Vec3(1.0, v.x(), v.y()));
+    // the cone's inward normals a_i and their norms (computed once: the
+    // Bullet layer calls this at every pressure refresh of a patch whose
+    // centre of pressure is outside its kern)
+    struct Row {
+      Vec3 a;
+      double norm;
+    };
+    std::vector<Row> rows;
+    rows.reserve(shape.vertices().size());
+    for (const Vec2& v : shape.vertices()) {
+      const Vec3 a = Minv.transpose() * Vec3(1.0, v.x(), v.y());
+      rows.push_back({a, a.norm()});
+    }
     // feasibility with a small relative slack for round-off
     auto feasible = [&](const Vec3& l) {
       const double scale = l.norm();
-      for (const Vec3& ai : a)
-        if (ai.dot(l) < -1e-12 * ai.norm() * scale) return false;
+      for (const Row& r : rows)
+        if (r.a.dot(l) < -1e-12 * r.norm * scale) return false;
       return true;
     };
     Vec3 best = Vec3::Zero();
@@ -153,13 +163,22 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
         best = l;
       }
     };
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      consider(y - a[i].dot(y) / a[i].squaredNorm() * a[i]);
-      const std::size_t j = (i + 1) % a.size();
-      const Vec3 d = a[i].cross(a[j]);
-      if (d.norm() <= 1e-14 * a[i].norm() * a[j].norm()) continue;
-      const Vec3 u = d.normalized();
-      consider(u.dot(y) * u);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Vec3& ai = rows[i].a;
+      // the face candidate y - (a_i.y / |a_i|^2) a_i has the multiplier
+      // -a_i.y / |a_i|^2 of the KKT conditions, which must be >= 0: only
+      // faces that y violates can hold the projection
+      const double aiy = ai.dot(y);
+      if (aiy < 0.0) consider(y - aiy / ai.squaredNorm() * ai);
+      // the edge ray u of faces i and i+1 (only rays with u.y > 0 are nearer
+      // than the apex)
+      const Row& next = rows[(i + 1) % rows.size()];
+      const Vec3 d = ai.cross(next.a);
+      const double dn = d.norm();
+      if (dn <= 1e-14 * rows[i].norm * next.norm) continue;
+      const Vec3 u = d / dn;
+      const double uy = u.dot(y);
+      if (uy > 0.0) consider(uy * u);
     }
     // the uniform pressure's ray is admissible by construction: the answer is
     // at least as near as its nearest point (found by fuzzing: on a sliver
