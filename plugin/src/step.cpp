@@ -29,6 +29,26 @@ void validate(const FrictionBlockInput& in) {
     throw Error("friction block tolerance must lie in [0, 1): got " + internal::formatDouble(in.tolerance));
 }
 
+// K (symmetric, positive diagonal) scaled to a unit diagonal must have a
+// condition number below kSingularCondition: K^-1 then carries eps cond ~
+// 2e-6 relative error at most, the resolution to which the blocks' answers
+// are checked (the cofactor inverse is invariant under that scaling, so this
+// is its error bound; found by fuzzing: at a scaled cond of 3.3e11 the
+// ellipsoidal block was 1.07 of L |Pi| off the law, and at ~1e34 the exact
+// one 0.9 of L |q|). The scaled cond is at most 3 times the plain
+// |K| |K^-1| (van der Sluis), so callers test that first.
+constexpr double kSingularCondition = 1e10;
+void requireNotNumericallySingular(const Mat3& Ksym, const Mat3& Kinv) {
+  const Vec3 d = Ksym.diagonal().cwiseAbs().cwiseSqrt();
+  const Mat3 scaledK = d.cwiseInverse().asDiagonal() * Ksym * d.cwiseInverse().asDiagonal();
+  const Mat3 scaledKinv = d.asDiagonal() * Kinv * d.asDiagonal();
+  const double cond = scaledK.norm() * scaledKinv.norm();
+  if (!(cond < kSingularCondition))
+    throw Error("friction block matrix K is numerically singular (condition number " +
+                internal::formatDouble(cond) + " after scaling to a unit diagonal)");
+}
+void requireNotNumericallySingular(const Mat3& Ksym) { requireNotNumericallySingular(Ksym, Ksym.inverse()); }
+
 // Ellipsoidal law q(w) = -Pi w. With A = L K Pi the slip s = b - A w must
 // equal r w: w = (r I + A)^-1 b with |w| = 1, a scalar root in r > 0.
 // No matrix is factorised: by Cayley-Hamilton, for the 3x3 A with
@@ -98,6 +118,12 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     stick = n0.norm() <= d;
     if (stick) lambda0 = -in.L * (Pi * (n0 / d));
   } else {
+    // (an ill-conditioned A only: a numerically singular K, as the exact
+    // block refuses it, has no digits in this answer either; found by
+    // fuzzing: K with entries 3e-16 to 9.9e19 whose y-z block is singular
+    // once scaled to a unit diagonal returned a slip of 1.4e19 driven by the
+    // impulse, 1.07 of L |Pi| off the law)
+    requireNotNumericallySingular(0.5 * (in.K + in.K.transpose()));
     lambda0 = -in.K.partialPivLu().solve(in.b);
     const Vec3 w0 = -Pi.partialPivLu().solve(lambda0) / in.L;
     stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0.norm() <= d;
@@ -186,23 +212,11 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // K^-1 = 0, so K^-1 b = 0 and the block stuck with a zero impulse)
   if (!std::isfinite(det) || !Kinv.allFinite())
     throw Error("friction block out of range: det K overflows double (" + internal::formatDouble(det) + ")");
-  // numerically singular K: the slip potential below needs K^-1, which has
-  // no digits when K, scaled to a unit diagonal (the cofactor inverse is
-  // invariant under that scaling), has cond above kSingularCondition (found
-  // by fuzzing: K = A A^T + d I with cond ~1e34 gave a slip along its
-  // largest eigenvector driven by the impulse itself, off the law by 0.9 of
-  // L |q|). The scaled cond is at most 3 times the plain |K| |K^-1|
-  // (van der Sluis), so the common path pays one product of two norms.
-  constexpr double kSingularCondition = 1e12;
-  if (!(Ksym.norm() * Kinv.norm() < kSingularCondition / 3.0)) {
-    const Vec3 d = Ksym.diagonal().cwiseSqrt();
-    const Mat3 scaledK = d.cwiseInverse().asDiagonal() * Ksym * d.cwiseInverse().asDiagonal();
-    const Mat3 scaledKinv = d.asDiagonal() * Kinv * d.asDiagonal();
-    const double cond = scaledK.norm() * scaledKinv.norm();
-    if (!(cond < kSingularCondition))
-      throw Error("friction block matrix K is numerically singular (condition number " +
-                  internal::formatDouble(cond) + " after scaling to a unit diagonal)");
-  }
+  // numerically singular K: the slip potential below needs K^-1 (found by
+  // fuzzing: K = A A^T + d I with cond ~1e34 gave a slip along its largest
+  // eigenvector driven by the impulse itself, off the law by 0.9 of L |q|);
+  // the common path pays one product of two norms
+  if (!(Ksym.norm() * Kinv.norm() < kSingularCondition / 3.0)) requireNotNumericallySingular(Ksym, Kinv);
   const Vec3 lambda0 = -Kinv * in.b;
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {

@@ -472,6 +472,28 @@ TEST(CoreBadInput, ExactBlockWithNumericallySingularK) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
   }
+
+  // the ellipsoidal block with K of entries 3e-16 to 9.9e19, whose y-z block
+  // is singular once scaled to a unit diagonal (K_yz^2 = K_yy K_zz to 1e-10):
+  // it slipped at (1e-8, 1.6e14, 1.4e19), driven by the impulse, 1.07 of
+  // L |Pi| off the law q = -Pi s^ (found by fuzzing). Now an Error, or the law.
+  const PatchShape disk = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
+  const FrictionPatch small(
+      disk, LinearPressure::fromLoads(disk, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
+      1e-8, 1e-8);
+  FrictionBlockInput ell;
+  ell.b = Vec3(1e-8, 1e-8, 0.5);
+  ell.L = 0.5;
+  ell.warmSlip = Vec3(14936440832.0, -795.125, -0.38824462890625);
+  ell.K << 3.2204460492503131e-16, 5.0000000000000001e-09, 2.2204460492503131e-24, 5.0000000000000001e-09,
+      12713013504.25, 1119806363271168.0, 2.2204460492503131e-24, 1119806363271168.0, 9.8636431938662957e+19;
+  try {
+    const FrictionBlockResult r = solveFrictionBlock(small, Model::Ellipsoidal, ell);
+    ASSERT_FALSE(r.sticking);
+    EXPECT_LT((r.impulse - ell.L * small.unitQ(Model::Ellipsoidal, r.slip)).norm(), kLawTol * ell.L * small.Pi().norm());
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+  }
 }
 
 // Exact block with a badly scaled (diagonal, so well-conditioned once

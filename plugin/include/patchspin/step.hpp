@@ -42,9 +42,11 @@ struct FrictionBlockResult {
 // scale of q). Throws Error for non-finite input or a K that is not SPD.
 // The block is homogeneous in (K, b, L); far from unit scale it is solved at
 // |K| ~ |b| ~ 1 (powers of two), so b and K of 1e-300 or 1e300 are fine.
-// The exact law also refuses, as out of its range, a K that is numerically
-// singular (condition number above 1e12 once scaled to a unit diagonal) or
-// whose diagonal spans more than 1e200: its slip potential needs K^-1.
+// It also refuses a K that is numerically singular: condition number above
+// 1e10 once scaled to a unit diagonal (the exact law always checks; the
+// ellipsoidal one when L K Pi is ill-conditioned), and the exact law a K
+// whose diagonal spans more than 1e200 or whose determinant overflows: its
+// slip potential needs K^-1.
 FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
                                        const FrictionBlockInput& input);
 
