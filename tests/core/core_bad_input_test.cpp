@@ -572,6 +572,32 @@ TEST(CoreBadInput, ExactBlockWithLongLeverAndStiffSpin) {
   EXPECT_LT((r.slip - in.b - in.K * r.impulse).norm(), 1e-9 * slipScale);
 }
 
+// Exact block on a 0.5 m disk with a couple of 6e228 (its pressure, hence
+// the ellipsoidal L K Pi, overflows when squared, while the exact law is in
+// range): the block was refused because its ellipsoidal slip candidate
+// was (found by fuzzing). Now solved: a stick has b + K lambda = 0 and a
+// force inside L ∫|p| / Pz (brute-force quadrature of |p|).
+TEST(CoreBadInput, ExactBlockDoesNotInheritTheEllipsoidalRefusal) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const LinearPressure pressure = LinearPressure::fromLoads(disk, {0.5, -14630256640.0, 5.9567624915341203e+228});
+  const FrictionPatch patch(disk, pressure, 2.2204460492503131e-16, 0.0);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 1e-8);
+  in.L = 1e-8;
+  in.K = Vec3(0.5, 220.71875, 1e-8).asDiagonal();
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+  // the quadrature's accuracy; the force bound to it and a few 3x3
+  // round-offs; b + K lambda to round-off; the law as the fuzz target checks
+  constexpr double kOracleTol = 1e-10, kBoundTol = 1e-9, kSlipTol = 1e-12, kLawTol = 1e-6;
+  const double absP = testing::bruteForceIntegral(disk, [&](const Vec2& p) { return std::abs(pressure.at(p)); }, kOracleTol);
+  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * absP / patch.Pz() * (1.0 + kBoundTol));
+  if (r.sticking) {
+    EXPECT_LT((in.b + in.K * r.impulse).norm(), kSlipTol * in.b.norm());
+  } else {
+    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * r.impulse.norm());
+  }
+}
+
 // The block far from unit scale (found by fuzzing: b of denormals against
 // K_xx = 3.8e146 stuck with a zero impulse, since |K^-1 b| squared
 // underflowed to 0). The block is homogeneous (K -> a K, b -> c b,
