@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -29,17 +30,26 @@ constexpr double kDt = 1.0 / 240.0;
 // box-box test finds no contact between exactly touching faces, so each
 // block starts overlapping the one below by kOverlap (else it falls freely
 // for a step). After kStandTime every block is within kStandTol of where it
-// started (1 % of the block: the stack visibly stands) and slower than
-// kStandSpeed (at rest: 1 mm/s, far above float round-off).
+// started (1 % of the block: the stack visibly stands) and no longer drifts:
+// its displacement over the last kDriftWindow, divided by that time, is below
+// kStandSpeed (at rest: 1 mm/s, far above float round-off). The speed itself
+// is no criterion: with 10 solver iterations the blocks of the pyramid
+// jitter at up to 1-3 mm/s from one step to the next with every model, stock
+// included (the largest speed over the window is reported), and the speed
+// at the last step was a sample of that jitter (it passed or failed with
+// unrelated changes: 1.3e-4 or 1.3e-3 m/s twenty steps apart).
 constexpr double kA = 0.1, kHalfH = 0.025;
 constexpr double kOverlap = 1e-5;
 constexpr double kStandTime = 2.0;
+constexpr double kDriftWindow = 0.25;
 constexpr double kStandTol = 0.01 * kA;
 constexpr double kStandSpeed = 1e-3;
 
 struct StandResult {
   bool finite = true;
-  double maxMove = 0.0, maxSpeed = 0.0;
+  double maxMove = 0.0;
+  double drift = 0.0;     // largest displacement over the last kDriftWindow / kDriftWindow [m/s]
+  double maxSpeed = 0.0;  // largest |v| + |omega| a/2 over the last kDriftWindow [m/s]
 };
 
 // `positions`: block centres; runs kStandTime and measures.
@@ -53,15 +63,23 @@ StandResult standStill(const std::vector<btVector3>& positions, Friction model, 
     blocks.push_back(b);
   }
   StandResult r;
-  for (int k = 0; k < int(kStandTime / kDt); ++k) {
+  const int steps = int(std::lround(kStandTime / kDt)), windowStart = steps - int(std::lround(kDriftWindow / kDt));
+  std::vector<btVector3> atWindowStart;
+  for (int k = 0; k < steps; ++k) {
+    if (k == windowStart)
+      for (btRigidBody* b : blocks) atWindowStart.push_back(b->getWorldTransform().getOrigin());
     scene.step(kDt);
     for (btRigidBody* b : blocks) r.finite = r.finite && isFinite(b);
     if (!r.finite) return r;
+    if (k >= windowStart)
+      for (btRigidBody* b : blocks)
+        r.maxSpeed = std::max(r.maxSpeed, double(b->getLinearVelocity().length()) +
+                                              double(b->getAngularVelocity().length()) * kA / 2);
   }
   for (size_t i = 0; i < blocks.size(); ++i) {
-    r.maxMove = std::max(r.maxMove, double((blocks[i]->getWorldTransform().getOrigin() - positions[i]).length()));
-    r.maxSpeed = std::max(r.maxSpeed, double(blocks[i]->getLinearVelocity().length()) +
-                                          double(blocks[i]->getAngularVelocity().length()) * kA / 2);
+    const btVector3 p = blocks[i]->getWorldTransform().getOrigin();
+    r.maxMove = std::max(r.maxMove, double((p - positions[i]).length()));
+    r.drift = std::max(r.drift, double((p - atWindowStart[i]).length()) / kDriftWindow);
   }
   return r;
 }
@@ -72,15 +90,17 @@ StandResult standStill(const std::vector<btVector3>& positions, Friction model, 
 // blocks kept a steady sinking velocity, 2.7 cm/s at the top of the stack of
 // 10, 6 mm sunk. Fixed by the full warm start, kPatchWarmStartFactor = 1.)
 void reportStand(const char* scene, const std::vector<btVector3>& positions) {
-  Table table(scene, {"model", "finite", "max displacement [m]", "max speed [m/s]", "stands"});
+  Table table(scene, {"model", "finite", "max displacement [m]", "drift, last 0.25 s [m/s]",
+                       "max speed, last 0.25 s [m/s]", "stands"});
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
     const StandResult r = standStill(positions, m);
-    const bool ok = r.finite && r.maxMove < kStandTol && r.maxSpeed < kStandSpeed;
-    table.add({toString(m), passFail(r.finite), fmt("%.3e", r.maxMove), fmt("%.3e", r.maxSpeed), passFail(ok)});
+    const bool ok = r.finite && r.maxMove < kStandTol && r.drift < kStandSpeed;
+    table.add({toString(m), passFail(r.finite), fmt("%.3e", r.maxMove), fmt("%.3e", r.drift), fmt("%.3e", r.maxSpeed),
+               passFail(ok)});
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_LT(r.maxMove, kStandTol) << toString(m);
-    EXPECT_LT(r.maxSpeed, kStandSpeed) << toString(m);
+    EXPECT_LT(r.drift, kStandSpeed) << toString(m);
   }
   table.emit();
 }
