@@ -115,8 +115,17 @@ struct StackHold {
   HeldBlocks all, normal;  // support sticking: all six DOFs held; slipping: its normal block
 };
 
+// The friction block's K must be well inside the positive definite cone for
+// the core's block solvers, which refuse a K whose unit-diagonal form has a
+// condition number of 1e10 or more: det(D K D) > kMinUnitDet with D =
+// diag(K)^-1/2 bounds that condition number by 27 / kMinUnitDet (3x3, unit
+// diagonal: lambda_max <= 3, lambda_min >= det / 9).
+constexpr double kMinUnitDet = 1e-8;
+
 // The blocks of K6 (false if its normal block W is not positive definite,
-// by Sylvester's criterion: e.g. a body with locked rotation).
+// by Sylvester's criterion, e.g. a body with locked rotation, or if the
+// friction block Ks is not safely so, e.g. spin about the normal locked
+// with setAngularFactor(1, 1, 0): its spin DOF has no effective mass).
 bool makeBlocks(const Mat6& K6, Blocks& b) {
   const Mat3 W = K6.topLeftCorner<3, 3>();
   if (!(W(0, 0) > 0.0 && W.topLeftCorner<2, 2>().determinant() > 0.0 && W.determinant() > 0.0)) return false;
@@ -126,6 +135,10 @@ bool makeBlocks(const Mat6& K6, Blocks& b) {
   b.G = b.Winv * b.Knf;
   b.Ks = b.Kff - b.Knf.transpose() * b.G;
   b.Ks = 0.5 * (b.Ks + b.Ks.transpose());
+  const Vec3 d = b.Ks.diagonal();
+  if (!(d.minCoeff() > 0.0)) return false;
+  const Vec3 s = d.cwiseSqrt().cwiseInverse();
+  if (!((s.asDiagonal() * b.Ks * s.asDiagonal()).determinant() > kMinUnitDet)) return false;
   b.KsInv = b.Ks.inverse();
   return true;
 }
@@ -149,6 +162,7 @@ struct PatchConstraint {
   bool tipping = false;
   bool sticking = false;
   int refreshes = 0;  // pressure refreshes in this step
+  bool failed = false;  // the law or block refused its input in this step (see blockErrors)
   // converged: the last visit changed nothing, and while neither body's
   // velocity has changed since (snapshot), a visit would change nothing again
   bool settled = false;
@@ -650,7 +664,17 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         continue;
       }
     }
-    if (st.friction->mu() != mu) st.friction->setMu(mu);
+    if (st.friction->mu() != mu) {
+      try {
+        st.friction->setMu(mu);
+      } catch (const Error&) {
+        st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
+        st.friction.reset();
+        st.outline.reset();
+        convertContact(m, info);
+        continue;
+      }
+    }
 
     im.patches.emplace_back();
     PatchConstraint& pc = im.patches.back();
@@ -791,92 +815,102 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     Vec3 lamF = Vec3::Zero();
     bool refreshed = false;  // the pressure of the friction law changed in this visit
     if (L > 0.0) {
-      const Mat3& K = pc.interior ? k.Ks : k.Kff;
-      FrictionBlockInput in;
-      in.b = s - K * pc.lamF;
-      in.K = K;
-      in.L = L;
-      in.warmSlip = pc.warmSlip;
-      in.tolerance = kBlockRelTol;
-      // friction pressure: the linear pressure of Eq. (94) carrying the loads,
-      // or, when that would be negative somewhere (centre of pressure outside
-      // the kern), the nearest admissible linear one (DESIGN item 2);
-      // refreshed only when its centre of pressure moves (see below)
-      const PatchLoads raw = toLoads(pc.lamN);
-      const Vec2 cop(raw.Ty / raw.Pz, -raw.Tx / raw.Pz);
-      // The friction law for unit mu Pz (Pi of Eq. (40), the exact law's
-      // integrals) depends on the linear pressure only through its shape,
-      // i.e. the centre of pressure (Ty, -Tx) / Pz: refreshed when that point
-      // has moved by more than settings.pressureRefreshTolerance (default
-      // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
-      // while a body at rest or sliding steadily never pays for a refresh
-      // and a centred symmetric patch keeps Pi = I.
-      const double moved = (cop - pc.state->pressureCop).norm() / shape.diameter();
-      if (moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance : settings.pressureLagTolerance)) {
-        ++stats.pressureRefreshes;
-        ++pc.refreshes;
-        PatchLoads loads = raw;
-        // a disk's linear pressure is >= 0 iff the centre of pressure lies in
-        // its kern, |cop - C| <= I / (A R) = R / 4; a polygon's admissibility
-        // test is nearestAdmissibleLoads' own first step (admissible loads
-        // come back unchanged)
-        if (!shape.isDisk() ||
-            (cop - shape.centre()).squaredNorm() > 0.0625 * shape.radius() * shape.radius())
-          loads = nearestAdmissibleLoads(shape, loads, pc.rho);
-        friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
-        pc.state->pressureCop = cop;
-        refreshed = true;
-      }
-      // quick stick: the impulse that stops the slip, lambda0 = -K^-1 b,
-      // with z = Pi^-1 lambda0, inside L times the ellipsoid Pi B (the
-      // ellipsoidal law's limit set: |z| <= L, exactly the block's own test)
-      // or, for the exact law, inside L times the bicone |(z1, z2)| + |z3|
-      // <= 1 that its limit set contains (every pure translation u gives
-      // q = -Pi (u, 0), and q(e3) = -Pi e3: the fitting motions of Eq.
-      // (37)-(39); step_test.cpp checks it against the law's support
-      // function). Resting bodies, most of a pile, then cost two 3x3
-      // products instead of a block solve.
-      bool quick = false;
-      if (settings.quickStick) {
-        PatchState& st = *pc.state;
-        if (refreshed || !st.piInvValid) {
-          st.piInv = friction.Pi().inverse();
-          st.piInvValid = true;
+      try {
+        const Mat3& K = pc.interior ? k.Ks : k.Kff;
+        FrictionBlockInput in;
+        in.b = s - K * pc.lamF;
+        in.K = K;
+        in.L = L;
+        in.warmSlip = pc.warmSlip;
+        in.tolerance = kBlockRelTol;
+        // friction pressure: the linear pressure of Eq. (94) carrying the loads,
+        // or, when that would be negative somewhere (centre of pressure outside
+        // the kern), the nearest admissible linear one (DESIGN item 2);
+        // refreshed only when its centre of pressure moves (see below)
+        const PatchLoads raw = toLoads(pc.lamN);
+        const Vec2 cop(raw.Ty / raw.Pz, -raw.Tx / raw.Pz);
+        // The friction law for unit mu Pz (Pi of Eq. (40), the exact law's
+        // integrals) depends on the linear pressure only through its shape,
+        // i.e. the centre of pressure (Ty, -Tx) / Pz: refreshed when that point
+        // has moved by more than settings.pressureRefreshTolerance (default
+        // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
+        // while a body at rest or sliding steadily never pays for a refresh
+        // and a centred symmetric patch keeps Pi = I.
+        const double moved = (cop - pc.state->pressureCop).norm() / shape.diameter();
+        if (moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance : settings.pressureLagTolerance)) {
+          ++stats.pressureRefreshes;
+          ++pc.refreshes;
+          PatchLoads loads = raw;
+          // a disk's linear pressure is >= 0 iff the centre of pressure lies in
+          // its kern, |cop - C| <= I / (A R) = R / 4; a polygon's admissibility
+          // test is nearestAdmissibleLoads' own first step (admissible loads
+          // come back unchanged)
+          if (!shape.isDisk() ||
+              (cop - shape.centre()).squaredNorm() > 0.0625 * shape.radius() * shape.radius())
+            loads = nearestAdmissibleLoads(shape, loads, pc.rho);
+          friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
+          pc.state->pressureCop = cop;
+          refreshed = true;
         }
-        const Vec3 lambda0 =
-            -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
-        const Vec3 unitLoad = st.piInv * lambda0;
-        const double size = pc.model == Model::Ellipsoidal
-                                ? unitLoad.norm()
-                                : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
-        if (lambda0.allFinite() && unitLoad.allFinite() && size <= L) {
-          quick = true;
-          ++stats.quickSticks;
-          pc.last.impulse = lambda0;
-          pc.last.slip.setZero();
-          pc.last.sticking = true;
-          pc.last.iterations = 0;
+        // quick stick: the impulse that stops the slip, lambda0 = -K^-1 b,
+        // with z = Pi^-1 lambda0, inside L times the ellipsoid Pi B (the
+        // ellipsoidal law's limit set: |z| <= L, exactly the block's own test)
+        // or, for the exact law, inside L times the bicone |(z1, z2)| + |z3|
+        // <= 1 that its limit set contains (every pure translation u gives
+        // q = -Pi (u, 0), and q(e3) = -Pi e3: the fitting motions of Eq.
+        // (37)-(39); step_test.cpp checks it against the law's support
+        // function). Resting bodies, most of a pile, then cost two 3x3
+        // products instead of a block solve.
+        bool quick = false;
+        if (settings.quickStick) {
+          PatchState& st = *pc.state;
+          if (refreshed || !st.piInvValid) {
+            st.piInv = friction.Pi().inverse();
+            st.piInvValid = true;
+          }
+          const Vec3 lambda0 =
+              -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
+          const Vec3 unitLoad = st.piInv * lambda0;
+          const double size = pc.model == Model::Ellipsoidal
+                                  ? unitLoad.norm()
+                                  : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
+          if (lambda0.allFinite() && unitLoad.allFinite() && size <= L) {
+            quick = true;
+            ++stats.quickSticks;
+            pc.last.impulse = lambda0;
+            pc.last.slip.setZero();
+            pc.last.sticking = true;
+            pc.last.iterations = 0;
+            pc.haveLast = true;
+            pc.lastHeld = held;
+            pc.lastB = in.b;
+            pc.lastL = L;
+          }
+        }
+        const bool reuse = quick || (pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
+                                     (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
+                                     std::abs(L - pc.lastL) <= kReuseRelTol * L);
+        if (!reuse) {
+          ++stats.blockSolves;
+          pc.last = solveFrictionBlock(friction, pc.model, in);
           pc.haveLast = true;
           pc.lastHeld = held;
           pc.lastB = in.b;
           pc.lastL = L;
         }
+        const FrictionBlockResult& res = pc.last;
+        lamF = res.impulse;
+        pc.sticking = res.sticking;
+        pc.warmSlip = res.slip;
+      } catch (const Error&) {
+        // the law or the block refused its input (e.g. the pressure of a
+        // patch at the edge of double range): this visit keeps the friction
+        // impulse it had, and the manifold goes to Bullet's point contacts
+        // for kTipCooldownSteps (as a tipping patch); the world keeps running
+        ++stats.blockErrors;
+        pc.failed = true;
+        lamF = pc.lamF;
       }
-      const bool reuse = quick || (pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
-                                   (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
-                                   std::abs(L - pc.lastL) <= kReuseRelTol * L);
-      if (!reuse) {
-        ++stats.blockSolves;
-        pc.last = solveFrictionBlock(friction, pc.model, in);
-        pc.haveLast = true;
-        pc.lastHeld = held;
-        pc.lastB = in.b;
-        pc.lastL = L;
-      }
-      const FrictionBlockResult& res = pc.last;
-      lamF = res.impulse;
-      pc.sticking = res.sticking;
-      pc.warmSlip = res.slip;
     }
     d.tail<3>() = lamF - pc.lamF;
     pc.lamF = lamF;
@@ -965,7 +999,7 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     st.frictionSpin = pc.lamF[2];
     st.slipT = c[3] * ex + c[4] * ey;
     st.slipSpin = c[5];
-    if (pc.tipping) {
+    if (pc.tipping || pc.failed) {
       st.tipStep = im.step;
       st.flat = false;
     }

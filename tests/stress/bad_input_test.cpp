@@ -302,6 +302,114 @@ TEST(BadInput, DegenerateShapesDoNotDisturbTheWorld) {
 }
 
 // ---- opted in twice, disabled without being enabled -------------------------------------
+// A body whose spin about the patch normal is locked (angular factor
+// (1, 1, 0): a common way to keep a body upright) has no effective mass in
+// the friction block's spin DOF on a static floor, so its K is singular. The
+// body must still slide and stop under friction (Bullet's point friction,
+// the documented fallback for blocks the patch cannot take), and the world
+// must keep running with the witnesses unaffected.
+TEST(BadInput, BodyWithLockedSpinSlidesAndStops) {
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    btRigidBody* box = nullptr;
+    Hooks hooks;
+    hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
+      btVector3 inertia;
+      btBoxShape probe(bt(0.05, 0.05, 0.02));
+      probe.calculateLocalInertia(1.0, inertia);
+      box = addFarBox(owned, bt(0.05, 0.05, 0.02), 1.0, inertia);
+      box->setAngularFactor(bt(1, 1, 0));
+      box->setLinearVelocity(bt(0.5, 0, 0));
+      scene.solver().enablePatchFriction(box, {model});
+    };
+    // the box's state before the last step (run() deletes it at the end)
+    btVector3 position, velocity;
+    hooks.before = [&](Scene&, int) {
+      position = box->getWorldTransform().getOrigin();
+      velocity = box->getLinearVelocity();
+    };
+    RunResult r;
+    ASSERT_NO_THROW(r = run(hooks)) << int(model);
+    expectWitnessesUnaffected(r, "locked spin");
+    // mu g = 4.9 m/s^2 stops 0.5 m/s in 0.1 s, well within the run
+    EXPECT_LT(double(velocity.length()), 1e-3) << int(model);
+    EXPECT_TRUE(std::isfinite(double(position.x()))) << int(model);
+  }
+}
+
+// A friction coefficient the law cannot take (mu = 1e308: mu Pz overflows
+// double) is accepted by enablePatchFriction (finite, >= 0) but refused by
+// the friction law, whether the body is opted in with it or switched to it
+// mid-run (the patch's law already built): the patch falls back to Bullet's
+// contact and the world keeps running. (Switching mid-run threw out of
+// stepSimulation before.)
+TEST(BadInput, OverflowingFrictionCoefficientFallsBackToBullet) {
+  for (Model model : {Model::Ellipsoidal, Model::Exact})
+    for (bool midRun : {false, true}) {
+      btRigidBody* box = nullptr;
+      Hooks hooks;
+      hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
+        btVector3 inertia;
+        btBoxShape probe(bt(0.05, 0.05, 0.02));
+        probe.calculateLocalInertia(1.0, inertia);
+        box = addFarBox(owned, bt(0.05, 0.05, 0.02), 1.0, inertia);
+        box->setLinearVelocity(bt(0.5, 0, 0));
+        scene.solver().enablePatchFriction(box, {model, midRun ? 0.5 : 1e308});
+      };
+      constexpr int kSwitchStep = 20;
+      int patchSteps = 0;  // steps with the huge mu after which the box reported a patch
+      btVector3 position, velocity;  // before the last step (run() deletes the box at the end)
+      hooks.before = [&](Scene& scene, int k) {
+        if (midRun && k == kSwitchStep) scene.solver().enablePatchFriction(box, {model, 1e308});
+        if (k > (midRun ? kSwitchStep : 0) && scene.solver().findPatchReport(box)) ++patchSteps;
+        position = box->getWorldTransform().getOrigin();
+        velocity = box->getLinearVelocity();
+      };
+      RunResult r;
+      ASSERT_NO_THROW(r = run(hooks)) << int(model) << " " << midRun;
+      expectWitnessesUnaffected(r, "mu = 1e308");
+      EXPECT_EQ(patchSteps, 0) << int(model) << " " << midRun;
+      EXPECT_TRUE(std::isfinite(double(position.x()))) << int(model);
+      EXPECT_TRUE(std::isfinite(double(velocity.x()))) << int(model);
+    }
+}
+
+// mu = 1e307 passes when the patch is built (mu Pz finite at rest: 1e308)
+// but overflows when an impact raises the normal force beyond ~18 N: then
+// the law refuses the pressure inside the solver iterations. That visit keeps
+// the friction impulse it had, the manifold goes to Bullet's contact
+// (stats().blockErrors counts the refusals), and nothing is thrown.
+TEST(BadInput, FrictionLawRefusingInsideTheIterationsFallsBackToBullet) {
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    btRigidBody* box = nullptr;
+    Hooks hooks;
+    hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
+      btVector3 inertia;
+      btBoxShape probe(bt(0.05, 0.05, 0.02));
+      probe.calculateLocalInertia(1.0, inertia);
+      box = addFarBox(owned, bt(0.05, 0.05, 0.02), 1.0, inertia);
+      scene.solver().enablePatchFriction(box, {model, 1e307});
+    };
+    constexpr int kDropStep = 60;  // resting on a patch by then
+    long blockErrors = 0, patchStepsBeforeDrop = 0;
+    btVector3 position;  // before the last step (run() deletes the box at the end)
+    hooks.before = [&](Scene& scene, int k) {
+      if (k > 0 && k <= kDropStep) patchStepsBeforeDrop += scene.solver().findPatchReport(box) != nullptr;
+      if (k > 0) blockErrors += scene.solver().stats().blockErrors;
+      if (k == kDropStep) box->setLinearVelocity(bt(0.3, 0, -2.0));  // an impact: ~480 N in one step
+      position = box->getWorldTransform().getOrigin();
+    };
+    RunResult r;
+    ASSERT_NO_THROW(r = run(hooks)) << int(model);
+    expectWitnessesUnaffected(r, "mu = 1e307, impact");
+    std::printf("[mu = 1e307] %s: patch in %ld of %d steps before the impact, %ld refused friction visits\n",
+                int(model) ? "exact" : "ellipsoidal", patchStepsBeforeDrop, kDropStep, blockErrors);
+    EXPECT_GE(patchStepsBeforeDrop, kDropStep - 5) << int(model);  // the law took it at rest
+    EXPECT_GT(blockErrors, 0) << int(model);
+    EXPECT_TRUE(std::isfinite(double(position.z()))) << int(model);
+    EXPECT_GT(double(position.z()), 0.0) << int(model);  // still above the floor
+  }
+}
+
 // The second enablePatchFriction replaces the options: the run equals one
 // with only the second call (same island: kSameTrajectoryTol).
 TEST(BadInput, OptedInTwiceTheSecondOptionsWin) {

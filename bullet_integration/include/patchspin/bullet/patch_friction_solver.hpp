@@ -132,6 +132,9 @@ struct PatchSolverStats {
   long pressureRefreshes = 0;  // Pi / exact-law pressure refreshes
   long quickSticks = 0;        // friction visits that stuck by the quick test (no block solve)
   long shapeRebuilds = 0;      // patch shapes and friction laws built anew (outline changed)
+  // friction visits whose law or block refused its input (patchspin::Error);
+  // the patch kept its impulse and its manifold went to Bullet's contacts
+  long blockErrors = 0;
   // largest distance, relative to the patch diameter, between a patch's
   // centre of pressure at the end of the step and the one its friction law
   // was last refreshed with [-]
