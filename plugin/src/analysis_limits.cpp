@@ -255,8 +255,14 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
   };
   auto ringsAround = [&](const std::vector<LimitDirection>& points) {
     // seeds close to known points find partners born in pitchforks
+    // (around at most kMaxRingAnchors points: a body has a handful of limit
+    // directions, and hundreds of found points are the nonhyperbolic points
+    // of a degenerate field, where 24 seeds each, 3312 for one body, cost
+    // 10 s under the fuzzer; found by profiling)
+    constexpr std::size_t kMaxRingAnchors = 24;
     std::vector<Vec3> seeds;
-    for (const LimitDirection& d : points) {
+    for (std::size_t i = 0; i < std::min(points.size(), kMaxRingAnchors); ++i) {
+      const LimitDirection& d = points[i];
       const Eigen::Matrix<double, 3, 2> E = tangentBasis(d.w);
       for (double radius : {1e-3, 1e-2, 5e-2}) {
         for (int k = 0; k < 8; ++k) {
@@ -273,22 +279,37 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
   // many nonhyperbolic points the plane search is cubic in their number)
   auto detectContinuaUncached = [&]() {
     std::vector<LimitContinuum> continua;
-    std::vector<bool> used(found.size(), false);
+    std::vector<bool> used(found.size(), false), grouped(found.size(), false);
     for (std::size_t i = 0; i < found.size(); ++i) {
-      if (used[i] || found[i].type != LimitType::Nonhyperbolic) continue;
+      if (used[i] || grouped[i] || found[i].type != LimitType::Nonhyperbolic) continue;
       std::vector<std::size_t> group;
       for (std::size_t j = i; j < found.size(); ++j) {
-        if (!used[j] && found[j].type == LimitType::Nonhyperbolic &&
+        if (!used[j] && !grouped[j] && found[j].type == LimitType::Nonhyperbolic &&
             std::abs(found[j].rdot - found[i].rdot) < 1e-6 * scale) {
           group.push_back(j);
+          grouped[j] = true;
         }
       }
       // split the group into circles: planes through three of its points with
-      // the most members (two circles may share one rate by symmetry)
-      while (group.size() >= 4) {
+      // the most members (two circles may share one rate by symmetry). A
+      // point on no circle is dropped as the anchor and the next one tried,
+      // kMaxTries times in all per group: each try costs |group|^2 tests
+      // (found by profiling: a degenerate field with 500 nonhyperbolic points
+      // on no circle, where every point of a rate group formed the same
+      // group again and failed again, 3 s per body under the fuzzer)
+      constexpr int kMaxTries = 8;
+      int tries = 0;
+      while (group.size() >= 4 && tries++ < kMaxTries) {
         std::vector<std::size_t> best;
         const Vec3 p = found[group[0]].w;
-        for (std::size_t a = 1; a < group.size(); ++a) {
+        // planes through p, one of the next kAnchors points, and any other:
+        // a circle through p with a share of the group has one of its points
+        // among them (all pairs cost |group|^3 membership tests: with the
+        // hundreds of nonhyperbolic points of a degenerate field, seconds per
+        // body under the fuzzer; found by profiling the limits target)
+        constexpr std::size_t kAnchors = 8;
+        const std::size_t anchorEnd = std::min(group.size(), kAnchors + 1);
+        for (std::size_t a = 1; a < anchorEnd; ++a) {
           for (std::size_t b = a + 1; b < group.size(); ++b) {
             Vec3 n = (found[group[a]].w - p).cross(found[group[b]].w - p);
             if (n.norm() < 1e-6) continue;
@@ -302,7 +323,10 @@ void solveNonlinear(const FlatBodyModel& model, const LimitOptions& options, Lim
           }
           if (best.size() == group.size()) break;
         }
-        if (best.size() < 4) break;
+        if (best.size() < 4) {
+          group.erase(group.begin());  // the anchor is on no circle
+          continue;
+        }
         Vec3 mean = Vec3::Zero();
         for (std::size_t j : best) mean += found[j].w;
         mean /= static_cast<double>(best.size());
