@@ -424,8 +424,9 @@ void flushCrumbs(btRigidBody& body) {
 }
 
 // `own` and `above` are scratch, indexed by solver body id (numBodies of them).
-[[gnu::noinline]] void linkStackedPatches(std::vector<PatchConstraint>& patches, std::vector<StackHold>& holds,
-                                          int numBodies, std::vector<int>& own, std::vector<int>& above) {
+[[gnu::noinline]] void linkStackedPatches(std::vector<PatchConstraint>& patches,
+                                          std::vector<StackHold>& holds, int numBodies,
+                                          std::vector<int>& own, std::vector<int>& above) {
   // supported patches (a stack): the lower body B of patch P stands on a
   // patch S of its own. Gauss-Seidel over P and S converges like the mass
   // ratio (a heavy body on a light one never gets its weight to the
@@ -449,7 +450,8 @@ void flushCrumbs(btRigidBody& body) {
     for (PatchConstraint& pc : patches) {
       // a simple stack only: the upper body stands on this patch alone, and
       // the lower body carries nothing else and stands on one patch
-      if (!pc.b.dynamic || above[std::size_t(pc.b.id)] != 1 || own[std::size_t(pc.a.id)] < 0) continue;
+      if (!pc.b.dynamic || above[std::size_t(pc.b.id)] != 1 || own[std::size_t(pc.a.id)] < 0)
+        continue;
       const int support = own[std::size_t(pc.b.id)];
       if (support < 0) continue;
       const PatchConstraint& sp = patches[std::size_t(support)];
@@ -733,7 +735,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   }
 
   if (im.settings.supportedStacks)
-    linkStackedPatches(im.patches, im.holds, m_tmpSolverBodyPool.size(), im.ownPatch, im.patchesAbove);
+    linkStackedPatches(im.patches, im.holds, m_tmpSolverBodyPool.size(), im.ownPatch,
+                       im.patchesAbove);
 }
 
 btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
@@ -837,7 +840,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // while a body at rest or sliding steadily never pays for a refresh
         // and a centred symmetric patch keeps Pi = I.
         const double moved = (cop - pc.state->pressureCop).norm() / shape.diameter();
-        if (moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance : settings.pressureLagTolerance)) {
+        if (moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance
+                                       : settings.pressureLagTolerance)) {
           ++stats.pressureRefreshes;
           ++pc.refreshes;
           PatchLoads loads = raw;
@@ -868,8 +872,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
             st.piInv = friction.Pi().inverse();
             st.piInvValid = true;
           }
-          const Vec3 lambda0 =
-              -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
+          const Vec3 lambda0 = -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
           const Vec3 unitLoad = st.piInv * lambda0;
           const double size = pc.model == Model::Ellipsoidal
                                   ? unitLoad.norm()
@@ -887,9 +890,10 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
             pc.lastL = L;
           }
         }
-        const bool reuse = quick || (pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
-                                     (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
-                                     std::abs(L - pc.lastL) <= kReuseRelTol * L);
+        const bool reuse =
+            quick || (pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
+                      (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
+                      std::abs(L - pc.lastL) <= kReuseRelTol * L);
         if (!reuse) {
           ++stats.blockSolves;
           pc.last = solveFrictionBlock(friction, pc.model, in);

@@ -286,8 +286,10 @@ TEST(PatchFrictionSolver, PatchShapeIsRebuiltOnlyWhenTheOutlineChanges) {
   for (bool sliding : {false, true}) {
     Scene scene(kG);
     scene.addGroundPlane(1.0);
-    btRigidBody* lower = scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 5.0, btVector3(0, 0, 0.05f), 0.5);
-    btRigidBody* upper = scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 1.0, btVector3(0.05f, 0.03f, 0.15f), 0.5);
+    btRigidBody* lower =
+        scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 5.0, btVector3(0, 0, 0.05f), 0.5);
+    btRigidBody* upper =
+        scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 1.0, btVector3(0.05f, 0.03f, 0.15f), 0.5);
     scene.solver().enablePatchFriction(lower, {Model::Ellipsoidal});
     scene.solver().enablePatchFriction(upper, {Model::Ellipsoidal});
     for (int k = 0; k < 120; ++k) scene.step(kDt);  // settled (see the test above)
@@ -300,10 +302,11 @@ TEST(PatchFrictionSolver, PatchShapeIsRebuiltOnlyWhenTheOutlineChanges) {
       rebuilds += scene.solver().stats().shapeRebuilds;
       ASSERT_EQ(scene.solver().stats().patches, 2) << "sliding " << sliding << " step " << k;
     }
-    std::printf("[shape reuse] %s: %ld shape rebuilds in %d steps\n", sliding ? "sliding" : "at rest", rebuilds,
-                kSteps);
+    std::printf("[shape reuse] %s: %ld shape rebuilds in %d steps\n",
+                sliding ? "sliding" : "at rest", rebuilds, kSteps);
     if (sliding)
-      EXPECT_GE(rebuilds, kSteps - 2);  // every step but where a step's change falls below the tolerance
+      EXPECT_GE(rebuilds,
+                kSteps - 2);  // every step but where a step's change falls below the tolerance
     else
       EXPECT_EQ(rebuilds, 0);
   }

@@ -356,7 +356,7 @@ TEST(BadInput, OverflowingFrictionCoefficientFallsBackToBullet) {
         scene.solver().enablePatchFriction(box, {model, midRun ? 0.5 : 1e308});
       };
       constexpr int kSwitchStep = 20;
-      int patchSteps = 0;  // steps with the huge mu after which the box reported a patch
+      int patchSteps = 0;            // steps with the huge mu after which the box reported a patch
       btVector3 position, velocity;  // before the last step (run() deletes the box at the end)
       hooks.before = [&](Scene& scene, int k) {
         if (midRun && k == kSwitchStep) scene.solver().enablePatchFriction(box, {model, 1e308});
@@ -393,16 +393,20 @@ TEST(BadInput, FrictionLawRefusingInsideTheIterationsFallsBackToBullet) {
     long blockErrors = 0, patchStepsBeforeDrop = 0;
     btVector3 position;  // before the last step (run() deletes the box at the end)
     hooks.before = [&](Scene& scene, int k) {
-      if (k > 0 && k <= kDropStep) patchStepsBeforeDrop += scene.solver().findPatchReport(box) != nullptr;
+      if (k > 0 && k <= kDropStep)
+        patchStepsBeforeDrop += scene.solver().findPatchReport(box) != nullptr;
       if (k > 0) blockErrors += scene.solver().stats().blockErrors;
-      if (k == kDropStep) box->setLinearVelocity(bt(0.3, 0, -2.0));  // an impact: ~480 N in one step
+      if (k == kDropStep)
+        box->setLinearVelocity(bt(0.3, 0, -2.0));  // an impact: ~480 N in one step
       position = box->getWorldTransform().getOrigin();
     };
     RunResult r;
     ASSERT_NO_THROW(r = run(hooks)) << int(model);
     expectWitnessesUnaffected(r, "mu = 1e307, impact");
-    std::printf("[mu = 1e307] %s: patch in %ld of %d steps before the impact, %ld refused friction visits\n",
-                int(model) ? "exact" : "ellipsoidal", patchStepsBeforeDrop, kDropStep, blockErrors);
+    std::printf(
+        "[mu = 1e307] %s: patch in %ld of %d steps before the impact, %ld refused friction "
+        "visits\n",
+        int(model) ? "exact" : "ellipsoidal", patchStepsBeforeDrop, kDropStep, blockErrors);
     EXPECT_GE(patchStepsBeforeDrop, kDropStep - 5) << int(model);  // the law took it at rest
     EXPECT_GT(blockErrors, 0) << int(model);
     EXPECT_TRUE(std::isfinite(double(position.z()))) << int(model);

@@ -4,20 +4,18 @@
 // a patch shrinking to a point. Each scene also runs with stock Bullet (no
 // body opted in) and prints its figure beside ours; only the patch runs are
 // asserted. Full-size pour behind PATCHSPIN_STRESS_FULL=1.
-#include "stress_scenes.hpp"
-
-#include <closed_forms.hpp>
-
-#include <patchspin/models.hpp>
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <closed_forms.hpp>
 #include <cmath>
 #include <cstdio>
+#include <patchspin/models.hpp>
 #include <random>
 #include <string>
 #include <vector>
+
+#include "stress_scenes.hpp"
 
 namespace patchspin::bullet::stress {
 namespace {
@@ -63,7 +61,8 @@ StandResult standStill(const std::vector<btVector3>& positions, Friction model, 
     blocks.push_back(b);
   }
   StandResult r;
-  const int steps = int(std::lround(kStandTime / kDt)), windowStart = steps - int(std::lround(kDriftWindow / kDt));
+  const int steps = int(std::lround(kStandTime / kDt)),
+            windowStart = steps - int(std::lround(kDriftWindow / kDt));
   std::vector<btVector3> atWindowStart;
   for (int k = 0; k < steps; ++k) {
     if (k == windowStart)
@@ -91,12 +90,12 @@ StandResult standStill(const std::vector<btVector3>& positions, Friction model, 
 // 10, 6 mm sunk. Fixed by the full warm start, kPatchWarmStartFactor = 1.)
 void reportStand(const char* scene, const std::vector<btVector3>& positions) {
   Table table(scene, {"model", "finite", "max displacement [m]", "drift, last 0.25 s [m/s]",
-                       "max speed, last 0.25 s [m/s]", "stands"});
+                      "max speed, last 0.25 s [m/s]", "stands"});
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
     const StandResult r = standStill(positions, m);
     const bool ok = r.finite && r.maxMove < kStandTol && r.drift < kStandSpeed;
-    table.add({toString(m), passFail(r.finite), fmt("%.3e", r.maxMove), fmt("%.3e", r.drift), fmt("%.3e", r.maxSpeed),
-               passFail(ok)});
+    table.add({toString(m), passFail(r.finite), fmt("%.3e", r.maxMove), fmt("%.3e", r.drift),
+               fmt("%.3e", r.maxSpeed), passFail(ok)});
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_LT(r.maxMove, kStandTol) << toString(m);
