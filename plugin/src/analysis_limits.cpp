@@ -454,13 +454,24 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   const int eLength = std::min(exponentOf(body.shape.maxDistanceFromOrigin()), exponentOf(rho));
   const int eWeight = exponentOf(body.mass) + exponentOf(body.g);
   const int eForce = std::max(exponentOf(body.force.x()), exponentOf(body.force.y()));
-  const int eCouple = std::max({exponentOf(body.torque.x()), exponentOf(body.torque.y()), exponentOf(body.torque.z())});
+  const int eTipping = std::max(exponentOf(body.torque.x()), exponentOf(body.torque.y()));
+  const int eSpin = exponentOf(body.torque.z());
   const int eCom = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(body.com.z())});
-  int eLoad = std::max(eWeight, eForce);
-  if (eCom != kNoExponent) eLoad += std::max(0, eCom - eLength);
-  if (eCouple != kNoExponent) eLoad = std::max(eLoad, eCouple - eLength);
-  // (a large mu scales the friction part of the field: normalised as well)
-  eLoad += std::max(0, exponentOf(body.mu));
+  const int eLever = eCom == kNoExponent ? 0 : std::max(0, eCom - eLength);
+  auto plus = [](int e, int d) { return e == kNoExponent ? kNoExponent : e + d; };
+  // the pressure's loads (weight, tipping couples, force on its lever) set
+  // the friction part mu ∫|p|, the force and the spin couple the external
+  // part: the larger of the two parts is brought to unit scale (found by
+  // fuzzing: mu = 2.6e-231 with g = 4e289 left a field of 1e-231 at unit
+  // loads, where the directions were off by 2e-3 of the field)
+  const int ePressure = std::max({eWeight, plus(eForce, eLever), plus(eTipping, -eLength)});
+  const int eExternal = std::max(plus(eForce, eLever), plus(eSpin, -eLength));
+  const int eMu = exponentOf(body.mu);
+  int eLoad = eMu == kNoExponent ? eExternal : std::max(ePressure + eMu, eExternal);
+  if (eLoad == kNoExponent) eLoad = ePressure;
+  // (not beyond pressures of 2^600 at unit scale: mu of 1e-300 stays tiny)
+  constexpr int kMaxPressureExponent = 600;
+  eLoad = std::max(eLoad, ePressure - kMaxPressureExponent);
   // M^-1 = W^-1 diag(1/m, 1/m, 1/Jz) W^-T with W^-1 = [[1, 0, yc], [0, 1, -xc], [0, 0, rho]]
   const int eOffset = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(rho)});
   const int eMass = std::max(-exponentOf(body.mass), 2 * eOffset - exponentOf(body.Jz));

@@ -807,6 +807,38 @@ TEST(CoreBadInput, LimitDirectionsWithHugeTippingCouple) {
   }
 }
 
+// mu = 2.6e-231 with g = 4e289: friction dominates the field (1.7e61)
+// although mu is tiny. Solved at unit loads, the field was 1e-231 and the
+// directions were off by 2e-3 of it (found by fuzzing the unit-scale path);
+// the larger part of the field, friction or external, is now brought to
+// unit scale. Each direction must be a fixed point of the limit field
+// itself, as above.
+TEST(CoreBadInput, LimitDirectionsWithTinyMuAndHugeWeight) {
+  FlatBody body;
+  body.shape = PatchShape::disk(0.5, Vec2(0.5, 0.5));
+  body.mass = 0.5;
+  body.Jz = 0.5;
+  body.Jxz = 0.5;
+  body.Jyz = 0.5;
+  body.com = Vec3(1.0, 2.5865632706146919e-231, 2.5865632706146919e-231);
+  body.mu = 2.5865632706146919e-231;
+  body.g = 4.0161949803506898e+289;
+  body.force = Vec2(2.0000028348584991, 0.5);
+  body.torque = Vec3(0.5, 0.5, 113080.0);
+  body.rho = 0.5;
+  const FlatBodyModel model(body, Model::Ellipsoidal);
+  LimitOptions options;
+  options.seeds = 20;
+  const LimitAnalysis result = findLimitDirections(model, options);
+  ASSERT_FALSE(result.directions.empty());
+  // the solver polishes to 1e-11 of its field scale
+  constexpr double kFixedPointTol = 1e-8;
+  for (const LimitDirection& d : result.directions) {
+    const Vec3 F = model.limitField(d.w);
+    EXPECT_LE((F - d.w.dot(F) * d.w).norm(), kFixedPointTol * F.norm());
+  }
+}
+
 // The limit field is linear in the loads (gravity, force, couple), so a body
 // with every load times 2^-1000 (g = 9.8e-301: a field of ~1e-301, where
 // the solver took every direction for a fixed point to round-off and ran 5 s
