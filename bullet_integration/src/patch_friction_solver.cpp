@@ -189,6 +189,10 @@ struct PatchState {
   // Pi^-1 of `friction` (quick stick test), valid until the next refresh
   Mat3 piInv = Mat3::Identity();
   bool piInvValid = false;
+  // a value q(w) of the exact law (a point on the boundary of its limit set)
+  // and the direction of lambda0 / L it was taken for: see exactHullSticks
+  Vec3 hullPoint = Vec3::Zero(), hullDirection = Vec3::Zero();
+  bool hullValid = false;
   std::optional<internal::PatchOutline> outline;  // shape of `friction`
   std::optional<FrictionPatch> friction;
   internal::DetectedPatch geometry;               // this step's patch
@@ -405,6 +409,47 @@ void flushCrumbs(btRigidBody& body) {
     body.setWorldTransform(tr);
     body.setInterpolationWorldTransform(tr);
   }
+}
+
+// The exact law's quick stick beyond the bicone. Its limit set E (unit mu Pz)
+// is convex and odd, and every law value q(w) lies in it (on its boundary),
+// so E contains conv(B u {+-q*}) for the bicone B = Pi {|(z1, z2)| + |z3| <=
+// 1} and any q* = q(w). With q* taken along the ellipsoidal inverse of the
+// direction of x = lambda0 / L (w = -Pi^-1 x: the ellipsoidal law's q(w) is
+// parallel to x), x = a q* + (1 - a) b with b in B certifies x in E, i.e. the
+// block sticks, as the block's own gauge test would decide (a tried on a
+// grid in [0, 1]). q* costs one evaluation of the law and is kept while the
+// law's pressure and shape stay and x turns by less than kHullTurnCos; a
+// resting exact patch then no longer re-solves its block in every
+// iteration when x lies between the bicone and E's boundary (a rectangle:
+// most resting boxes).
+constexpr double kHullTurnCos = 0.999;  // ~2.6 degrees
+[[gnu::noinline]] bool exactHullSticks(PatchState& st, const FrictionPatch& friction, const Vec3& lambda0,
+                                       double L) {
+  const Vec3 x = lambda0 / L;
+  const double xNorm = x.norm();
+  if (!(xNorm > 0.0) || !std::isfinite(xNorm)) return false;
+  const Vec3 direction = x / xNorm;
+  if (!st.hullValid || direction.dot(st.hullDirection) < kHullTurnCos) {
+    const Vec3 w = -(st.piInv * direction);
+    const double wNorm = w.norm();
+    if (!(wNorm > 0.0) || !std::isfinite(wNorm)) return false;
+    st.hullPoint = friction.unitQ(Model::Exact, w / wNorm);
+    st.hullDirection = direction;
+    st.hullValid = st.hullPoint.allFinite();
+    if (!st.hullValid) return false;
+  }
+  const Vec3 q = st.hullPoint.dot(x) >= 0.0 ? st.hullPoint : Vec3(-st.hullPoint);
+  auto inHull = [&](double a) {
+    const Vec3 z = st.piInv * (x - a * q);
+    return std::hypot(z.x(), z.y()) + std::abs(z.z()) <= 1.0 - a;
+  };
+  // the projection of x on q, and a grid in [0, 1]
+  const double along = std::clamp(x.dot(q) / q.squaredNorm(), 0.0, 1.0);
+  if (inHull(along) || inHull(0.9375 * along)) return true;
+  for (int k = 1; k < 8; ++k)
+    if (inHull(k / 8.0)) return true;
+  return false;
 }
 
 // Whether the support of a stacked patch keeps its friction impulse inside
@@ -656,6 +701,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         st.outline = outline;
         st.pressureCop = shape.centroid();  // uniform pressure
         st.piInvValid = false;
+        st.hullValid = false;
         st.shapeId = ++im.shapeCount;
         ++im.stats.shapeRebuilds;
       } catch (const Error&) {
@@ -854,6 +900,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
             loads = nearestAdmissibleLoads(shape, loads, pc.rho);
           friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
           pc.state->pressureCop = cop;
+          pc.state->piInvValid = false;  // Pi and the law changed (also for supportCanTake)
+          pc.state->hullValid = false;
           refreshed = true;
         }
         // quick stick: the impulse that stops the slip, lambda0 = -K^-1 b,
@@ -868,7 +916,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         bool quick = false;
         if (settings.quickStick) {
           PatchState& st = *pc.state;
-          if (refreshed || !st.piInvValid) {
+          if (!st.piInvValid) {
             st.piInv = friction.Pi().inverse();
             st.piInvValid = true;
           }
@@ -877,7 +925,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           const double size = pc.model == Model::Ellipsoidal
                                   ? unitLoad.norm()
                                   : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
-          if (lambda0.allFinite() && unitLoad.allFinite() && size <= L) {
+          if (lambda0.allFinite() && unitLoad.allFinite() &&
+              (size <= L || (pc.model == Model::Exact && exactHullSticks(st, friction, lambda0, L)))) {
             quick = true;
             ++stats.quickSticks;
             pc.last.impulse = lambda0;
