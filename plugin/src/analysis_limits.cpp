@@ -460,21 +460,25 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   const int eLever = eCom == kNoExponent ? 0 : std::max(0, eCom - eLength);
   auto plus = [](int e, int d) { return e == kNoExponent ? kNoExponent : e + d; };
   // the pressure's loads (weight, tipping couples, force on its lever) set
-  // the friction part mu ∫|p|, the force and the spin couple the external
-  // part: the larger of the two parts is brought to unit scale (found by
+  // the friction part mu ∫|p| of the field, through all of M^-1 =
+  // W^-1 diag(1/m, 1/m, 1/Jz) W^-T, W^-1 = [[1, 0, yc], [0, 1, -xc],
+  // [0, 0, rho]]; the force acts through 1/m and off^2 / Jz, the spin couple
+  // T_z through off / Jz. The larger part is brought to unit scale (found by
   // fuzzing: mu = 2.6e-231 with g = 4e289 left a field of 1e-231 at unit
-  // loads, where the directions were off by 2e-3 of the field)
+  // loads, directions off by 2e-3 of the field; T_z = 1.9e185 against
+  // Jz = 1e300, a field part of 1e-115, set the scale while friction's was
+  // 1e8)
   const int ePressure = std::max({eWeight, plus(eForce, eLever), plus(eTipping, -eLength)});
-  const int eExternal = std::max(plus(eForce, eLever), plus(eSpin, -eLength));
+  const int eOffset = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(rho)});
+  const int eMass = std::max(-exponentOf(body.mass), 2 * eOffset - exponentOf(body.Jz));
   const int eMu = exponentOf(body.mu);
-  int eLoad = eMu == kNoExponent ? eExternal : std::max(ePressure + eMu, eExternal);
-  if (eLoad == kNoExponent) eLoad = ePressure;
+  const int eFrictionField = eMu == kNoExponent ? kNoExponent : ePressure + eMu + eMass;
+  const int eExternalField = std::max(plus(plus(eForce, eLever), eMass), plus(eSpin, eOffset - exponentOf(body.Jz)));
+  int eLoad = std::max(eFrictionField, eExternalField);
+  eLoad = eLoad == kNoExponent ? ePressure : eLoad - eMass;
   // (not beyond pressures of 2^600 at unit scale: mu of 1e-300 stays tiny)
   constexpr int kMaxPressureExponent = 600;
   eLoad = std::max(eLoad, ePressure - kMaxPressureExponent);
-  // M^-1 = W^-1 diag(1/m, 1/m, 1/Jz) W^-T with W^-1 = [[1, 0, yc], [0, 1, -xc], [0, 0, rho]]
-  const int eOffset = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(rho)});
-  const int eMass = std::max(-exponentOf(body.mass), 2 * eOffset - exponentOf(body.Jz));
   constexpr int kUnitRange = 100;  // 2^100 ~ 1e30: well inside double's range
   if (std::abs(eLoad) <= kUnitRange && std::abs(eMass) <= kUnitRange) return solveAtScale(model, options);
 

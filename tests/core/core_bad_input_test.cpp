@@ -837,6 +837,30 @@ TEST(CoreBadInput, LimitDirectionsWithTinyMuAndHugeWeight) {
     const Vec3 F = model.limitField(d.w);
     EXPECT_LE((F - d.w.dot(F) * d.w).norm(), kFixedPointTol * F.norm());
   }
+
+  // a spin couple T_z = 1.9e185 against Jz = 1e300 (a field part of 1e-115)
+  // set the unit scale, while friction's part was 1e8: directions off by
+  // 4e-4 of the field (found by fuzzing); the parts are now weighed
+  // through M^-1
+  FlatBody frozen;
+  frozen.shape = PatchShape::polygon({{1.4387912809451864, -0.7602872306978985},
+                                      {0.7602872306978985, -0.56120871905481362},
+                                      {0.56120871905481362, -1.2397127693021015},
+                                      {1.2397127693021015, -1.4387912809451864}});
+  frozen.mass = 1.0;
+  frozen.Jz = 1e300;
+  frozen.Jxz = 1.0;
+  frozen.Jyz = 7.3555384005885571e-09;
+  frozen.com = Vec3(0.5, 0.5, 0.5);
+  frozen.mu = 0.5;
+  frozen.g = 0.5;
+  frozen.force = Vec2(0.5, 0.5);
+  frozen.torque = Vec3(0.5, -851968.0, 1.9035990625065692e+185);
+  const FlatBodyModel frozenModel(frozen, Model::Exact);
+  for (const LimitDirection& d : findLimitDirections(frozenModel, options).directions) {
+    const Vec3 F = frozenModel.limitField(d.w);
+    EXPECT_LE((F - d.w.dot(F) * d.w).norm(), kFixedPointTol * F.norm());
+  }
 }
 
 // The limit field is linear in the loads (gravity, force, couple), so a body
