@@ -127,6 +127,14 @@ btRigidBody* addFarBox(OwnedBodies& owned, const btVector3& h, double mass, cons
   return owned.add(std::move(shape), mass, inertia, t, 0.5);
 }
 
+// A 10 x 10 x 4 cm box of 1 kg far away, with its own inertia.
+btRigidBody* addFarTile(OwnedBodies& owned) {
+  const btVector3 half = bt(0.05, 0.05, 0.02);
+  btVector3 inertia;
+  btBoxShape(half).calculateLocalInertia(1.0, inertia);
+  return addFarBox(owned, half, 1.0, inertia);
+}
+
 // ---- options --------------------------------------------------------------------
 
 TEST(BadInput, InvalidOptionsThrowAndLeaveTheBodyAsItWas) {
@@ -301,7 +309,7 @@ TEST(BadInput, DegenerateShapesDoNotDisturbTheWorld) {
   }
 }
 
-// ---- opted in twice, disabled without being enabled -------------------------------------
+// ---- bodies the friction law cannot take -----------------------------------------
 // A body whose spin about the patch normal is locked (angular factor
 // (1, 1, 0): a common way to keep a body upright) has no effective mass in
 // the friction block's spin DOF on a static floor, so its K is singular. The
@@ -313,10 +321,7 @@ TEST(BadInput, BodyWithLockedSpinSlidesAndStops) {
     btRigidBody* box = nullptr;
     Hooks hooks;
     hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
-      btVector3 inertia;
-      btBoxShape probe(bt(0.05, 0.05, 0.02));
-      probe.calculateLocalInertia(1.0, inertia);
-      box = addFarBox(owned, bt(0.05, 0.05, 0.02), 1.0, inertia);
+      box = addFarTile(owned);
       box->setAngularFactor(bt(1, 1, 0));
       box->setLinearVelocity(bt(0.5, 0, 0));
       scene.solver().enablePatchFriction(box, {model});
@@ -348,10 +353,7 @@ TEST(BadInput, OverflowingFrictionCoefficientFallsBackToBullet) {
       btRigidBody* box = nullptr;
       Hooks hooks;
       hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
-        btVector3 inertia;
-        btBoxShape probe(bt(0.05, 0.05, 0.02));
-        probe.calculateLocalInertia(1.0, inertia);
-        box = addFarBox(owned, bt(0.05, 0.05, 0.02), 1.0, inertia);
+        box = addFarTile(owned);
         box->setLinearVelocity(bt(0.5, 0, 0));
         scene.solver().enablePatchFriction(box, {model, midRun ? 0.5 : 1e308});
       };
@@ -383,10 +385,7 @@ TEST(BadInput, FrictionLawRefusingInsideTheIterationsFallsBackToBullet) {
     btRigidBody* box = nullptr;
     Hooks hooks;
     hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
-      btVector3 inertia;
-      btBoxShape probe(bt(0.05, 0.05, 0.02));
-      probe.calculateLocalInertia(1.0, inertia);
-      box = addFarBox(owned, bt(0.05, 0.05, 0.02), 1.0, inertia);
+      box = addFarTile(owned);
       scene.solver().enablePatchFriction(box, {model, 1e307});
     };
     constexpr int kDropStep = 60;  // resting on a patch by then
@@ -414,6 +413,7 @@ TEST(BadInput, FrictionLawRefusingInsideTheIterationsFallsBackToBullet) {
   }
 }
 
+// ---- opted in twice, disabled without being enabled -------------------------------------
 // The second enablePatchFriction replaces the options: the run equals one
 // with only the second call (same island: kSameTrajectoryTol).
 TEST(BadInput, OptedInTwiceTheSecondOptionsWin) {
