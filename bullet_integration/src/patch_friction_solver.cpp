@@ -153,8 +153,11 @@ struct PatchConstraint {
   double mu = 0.0, rho = 0.0, dt = 0.0;
   Blocks k;  // effective-mass blocks
   // supporting patch (the lower body's own patch: index in the island's
-  // patches, or -1) and the blocks with it held (index in Impl::holds)
+  // patches, or -1) and the blocks with it held (index in Impl::holds);
+  // for a support on a static body, its load: the patch standing on it,
+  // and the support's blocks with that load held
   int support = -1, hold = -1;
+  int load = -1, loadHold = -1;
   Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
   Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
   Vec3 warmSlip = Vec3::Zero();
@@ -533,6 +536,35 @@ constexpr double kHullTurnCos = 0.999;  // ~2.6 degrees
       pc.support = support;
       pc.hold = int(holds.size());
       holds.push_back(sh);
+      // and the other way round: a support on a static body (the bottom of
+      // the stack) is solved with its load P held, K_S - K_SP K_P^-1 K_PS,
+      // P taking dlambda_P = -K_P^-1 K_PS d: all six DOFs while P sticks
+      // (the two bodies move as one: the floor feels the heavy body's
+      // inertia), its normal block while P slips. Without it a light
+      // support under a heavy body stops on the floor at each visit while
+      // the body above keeps sliding, and the iterations end with the two
+      // slipping against each other while P reports a stick (1000:1 stack)
+      if (sp.b.dynamic || sp.load >= 0) continue;
+      StackHold lh;
+      auto foldLoad = [&](int n, HeldBlocks& h) {
+        const Eigen::MatrixXd Kpp = K6p.topLeftCorner(n, n);
+        const Eigen::MatrixXd Kpsn = Kps.topRows(n);
+        const Eigen::LDLT<Eigen::MatrixXd> ldlt(Kpp);
+        if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
+        const Eigen::MatrixXd KpInvKps = ldlt.solve(Kpsn);
+        Mat6 K = K6s - Kpsn.transpose() * KpInvKps;
+        if (!makeBlocks(0.5 * (K + K.transpose()), h)) return;
+        h.gain.setZero();
+        h.gain.topRows(n) = -KpInvKps;
+        h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.gain.allFinite();
+      };
+      foldLoad(6, lh.all);
+      foldLoad(3, lh.normal);
+      if (!lh.all.valid && !lh.normal.valid) continue;
+      PatchConstraint& spm = patches[std::size_t(support)];
+      spm.load = int(&pc - patches.data());
+      spm.loadHold = int(holds.size());
+      holds.push_back(lh);
     }
   }
 }
@@ -825,8 +857,16 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     // solved with that support held (see convertContacts): all six DOFs
     // while the support sticks and can take the share without slipping,
     // else its normal block only
-    PatchConstraint* sup = pc.support >= 0 ? &impl_->patches[std::size_t(pc.support)] : nullptr;
-    const StackHold* stackHold = pc.hold >= 0 ? &impl_->holds[std::size_t(pc.hold)] : nullptr;
+    // (a support on a static body is solved with its load held instead)
+    PatchConstraint* sup = nullptr;
+    const StackHold* stackHold = nullptr;
+    if (pc.hold >= 0) {
+      sup = &impl_->patches[std::size_t(pc.support)];
+      stackHold = &impl_->holds[std::size_t(pc.hold)];
+    } else if (pc.loadHold >= 0) {
+      sup = &impl_->patches[std::size_t(pc.load)];
+      stackHold = &impl_->holds[std::size_t(pc.loadHold)];
+    }
     // one visit with the given support hold (0 none, 1 normal, 2 all);
     // false: the support cannot take its share, the visit is to be redone
     auto visit = [&](const HeldBlocks* hold, int held) -> bool {

@@ -310,27 +310,33 @@ TEST(StabilityMatrix, MassRatioHeavyOnLight) {
   runGroup(title("mass ratio, heavy on light"), {with("mass ratio", [](Cell& c) { c.massRatio = 10.0; })});
 }
 
-// 100:1 and 1000:1 (known defects, reported). At 100:1 the exact law's
-// friction DOFs still gain 8.7e-6 E0 in one step (under the float tolerance
-// 1e-5, far over double's 1e-12; ellipsoidal passes). At 1000:1, while the
-// pair slides the support cannot be held in full (its friction is at its
-// limit), only its normal block, and the friction transfer through the
-// light block converges like the mass ratio: the heavy block sinks 5-6 cm
-// into the light one and the pair rests late (before the support was held,
-// from 100:1 the heavy block sank through). Stock Bullet fails these cells
-// too.
+// 100:1 and 1000:1. Until the support of a stack on the ground was also
+// solved with its load held (see linkStackedPatches), these were known
+// defects: at 1000:1 the light block stopped on the floor at each of its
+// visits while the heavy one kept sliding, the upper patch reported a stick
+// with 0.35 m/s of slip left, the floor patch tipped and the heavy block sank
+// 5 cm into the light one; at 100:1 the exact law's friction DOFs gained
+// 8.7e-6 E0 in one step. Stock Bullet fails these cells (printed).
+// The corner with the largest friction uses mu = 0.6, not 1.5: a stack
+// whose weight sits at height h = 0.75 s over a base of half-width b = s / 2
+// tips over as a whole once mu > b / h = 2/3 (friction's moment about the
+// leading edge beats gravity's), which is a fall, not a slide to rest that
+// the checks above could judge (mu = 0.9 tips in every model; mu = 1.5 is
+// covered by the single-body cells).
 TEST(StabilityMatrix, MassRatioHeavyOnLightExtreme) {
   std::vector<Cell> cells;
   for (double q : stressFull() ? std::vector<double>{1e2, 1e3} : std::vector<double>{1e3})
     cells.push_back(with("mass ratio", [&](Cell& c) { c.massRatio = q; }));
   if (stressFull()) {
     cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 30; c.massRatio = 1e3; c.iterations = 4; }));
-    cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 1000; c.massRatio = 1e3; c.mu = 1.5; c.iterations = 50; }));
+    cells.push_back(with("corner", [](Cell& c) {
+      c.dt = 1.0 / 1000;
+      c.massRatio = 1e3;
+      c.mu = 0.6;
+      c.iterations = 50;
+    }));
   }
-  runGroup(title("mass ratio 100-1000, heavy on light"), cells,
-           "heavy-on-light stacks at 100:1 (exact law: energy rise 8.7e-6 E0 in a step) and 1000:1 (the "
-           "friction transfer through the light block converges like the mass ratio while the pair slides; the "
-           "heavy block sinks into the light one)");
+  runGroup(title("mass ratio 100-1000, heavy on light"), cells);
 }
 
 TEST(StabilityMatrix, Spin) {
