@@ -475,6 +475,23 @@ constexpr double kHullTurnCos = 0.999;  // ~2.6 degrees
   return size <= Ls;
 }
 
+// The blocks of a patch with the first N DOFs of another patch held:
+// K - C Kh^-1 C^T over the 6 DOFs, with Kh the held DOFs' effective mass and
+// C the coupling (rows: this patch's DOFs, columns: the held ones); the held
+// patch takes dlambda_h = -Kh^-1 C^T d (the gain's first N rows).
+template <int N>
+void foldHeld(const Mat6& K, const Mat6& K6held, const Eigen::Matrix<double, 6, N>& C,
+              HeldBlocks& h) {
+  const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(K6held.topLeftCorner<N, N>());
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
+  const Eigen::Matrix<double, N, 6> KhInvCt = ldlt.solve(C.transpose());
+  const Mat6 Kf = K - C * KhInvCt;
+  if (!makeBlocks(0.5 * (Kf + Kf.transpose()), h)) return;
+  h.gain.setZero();
+  h.gain.template topRows<N>() = -KhInvCt;
+  h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.gain.allFinite();
+}
+
 // `own` and `above` are scratch, indexed by solver body id (numBodies of them).
 [[gnu::noinline]] void linkStackedPatches(std::vector<PatchConstraint>& patches,
                                           std::vector<StackHold>& holds, int numBodies,
@@ -518,20 +535,8 @@ constexpr double kHullTurnCos = 0.999;  // ~2.6 degrees
       const Mat6 K6p = effectiveMass(pc.a, pc.F, pc.rho) + effectiveMass(pc.b, pc.F, pc.rho);
       const Mat6 K6s = effectiveMass(sp.a, sp.F, sp.rho) + effectiveMass(sp.b, sp.F, sp.rho);
       StackHold sh;
-      auto fold = [&](int n, HeldBlocks& h) {
-        const Eigen::MatrixXd Kss = K6s.topLeftCorner(n, n);
-        const Eigen::MatrixXd Ksp = Kps.leftCols(n).transpose();
-        const Eigen::LDLT<Eigen::MatrixXd> ldlt(Kss);
-        if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
-        const Eigen::MatrixXd KsInvKsp = ldlt.solve(Ksp);
-        Mat6 K = K6p - Kps.leftCols(n) * KsInvKsp;
-        if (!makeBlocks(0.5 * (K + K.transpose()), h)) return;
-        h.gain.setZero();
-        h.gain.topRows(n) = -KsInvKsp;
-        h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.gain.allFinite();
-      };
-      fold(6, sh.all);
-      fold(3, sh.normal);
+      foldHeld<6>(K6p, K6s, Kps.leftCols<6>(), sh.all);
+      foldHeld<3>(K6p, K6s, Kps.leftCols<3>(), sh.normal);
       if (!sh.all.valid && !sh.normal.valid) continue;
       pc.support = support;
       pc.hold = int(holds.size());
@@ -546,20 +551,8 @@ constexpr double kHullTurnCos = 0.999;  // ~2.6 degrees
       // slipping against each other while P reports a stick (1000:1 stack)
       if (sp.b.dynamic || sp.load >= 0) continue;
       StackHold lh;
-      auto foldLoad = [&](int n, HeldBlocks& h) {
-        const Eigen::MatrixXd Kpp = K6p.topLeftCorner(n, n);
-        const Eigen::MatrixXd Kpsn = Kps.topRows(n);
-        const Eigen::LDLT<Eigen::MatrixXd> ldlt(Kpp);
-        if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
-        const Eigen::MatrixXd KpInvKps = ldlt.solve(Kpsn);
-        Mat6 K = K6s - Kpsn.transpose() * KpInvKps;
-        if (!makeBlocks(0.5 * (K + K.transpose()), h)) return;
-        h.gain.setZero();
-        h.gain.topRows(n) = -KpInvKps;
-        h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.gain.allFinite();
-      };
-      foldLoad(6, lh.all);
-      foldLoad(3, lh.normal);
+      foldHeld<6>(K6s, K6p, Kps.topRows<6>().transpose(), lh.all);
+      foldHeld<3>(K6s, K6p, Kps.topRows<3>().transpose(), lh.normal);
       if (!lh.all.valid && !lh.normal.valid) continue;
       PatchConstraint& spm = patches[std::size_t(support)];
       spm.load = int(&pc - patches.data());
