@@ -22,6 +22,15 @@ void validate(const FrictionBlockInput& in) {
   internal::requireFinite(in.b, "friction block free slip b");
   internal::requireFinite(in.warmSlip, "friction block warm-start slip");
   if (!in.K.allFinite()) throw Error("friction block matrix K must be finite");
+  // K symmetric (SPD, as documented), to kSymmetryTol of its largest entry:
+  // both blocks work with its symmetric part, so an asymmetric K stuck with
+  // lambda = -Ksym^-1 b where b + K lambda != 0 (found by fuzzing: K_xy =
+  // 2.1e-4 against K_yx = 0.5). 1e-10 leaves room for a K assembled in
+  // floating point (a few ulps of asymmetry) and keeps the stick residual
+  // of the asymmetric part, |K - K^T| |lambda| / 2, at 1e-10 of |K| |lambda|.
+  constexpr double kSymmetryTol = 1e-10;
+  if (!((in.K - in.K.transpose()).cwiseAbs().maxCoeff() <= kSymmetryTol * in.K.cwiseAbs().maxCoeff()))
+    throw Error("friction block matrix K must be symmetric (positive definite)");
   internal::requireFinite(in.L, "friction block bound L");
   if (in.L < 0.0) throw Error("friction block bound L must be >= 0: got " + internal::formatDouble(in.L));
   internal::requireFinite(in.tolerance, "friction block tolerance");
@@ -551,7 +560,10 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
   // that underflows. One range check on the common path.
   {
     const double bMax = input.b.cwiseAbs().maxCoeff(), kMax = input.K.cwiseAbs().maxCoeff();
-    constexpr double kLow = 1e-100, kHigh = 1e100;
+    // (unit scale from 1e40 on, not 1e100: the ellipsoidal root search
+    // squares |N(r)| ~ |b|^3, which overflows for |b| > 1e51; found by
+    // fuzzing, b = 1.1e74 against L |K| = 0.25 returned a zero impulse)
+    constexpr double kLow = 1e-40, kHigh = 1e40;
     constexpr int kMaxLeverage = 300;
     // (a K whose diagonal spans more than kMaxSpread keeps its scale: its
     // determinant leaves double's range at any scale, refused below)

@@ -1022,5 +1022,67 @@ TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
   EXPECT_LE(std::hypot(q.x(), q.y()), 1.0 + 1e-12);
 }
 
+// ---- fourth fuzzing round (fork mode, step target) ----------------------------------
+
+// A free slip of 1.1e74 against L |K| = 0.25: the ellipsoidal root search
+// squared |N(r)| ~ |b|^3, which overflowed (|b| > 1e51), and the block
+// returned a zero impulse with slip b (found by fuzzing: the unit-scale path
+// began only at 1e100). Both laws: slip = b + K lambda and lambda = L q(s^).
+TEST(CoreBadInput, FrictionBlockWithHugeFreeSlipBelowTheOldUnitScale) {
+  const PatchShape disk = PatchShape::disk(1.0, Vec2(1.0, 1.0));
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {1.0, 1.0, 1.0}), 1.0, 1.0);
+  FrictionBlockInput in;
+  in.b = Vec3(184.71875, 1.106409418319547e+74, 0.5);
+  in.L = 0.5;
+  in.K << 0.50000268673971981, -4.2896462844848639e-12, 2.0000000000000002e-16, -4.2896462844848639e-12,
+      0.50000146447053262, 1.2101631028747559e-11, 2.0000000000000002e-16, 1.2101631028747559e-11,
+      0.50000000000000022;
+  in.warmSlip = Vec3(0.5, 1e-8, 1e-8);
+  // the law's round-off at an ordinary disk, with room for the solver's 1e-14
+  constexpr double kLawTol = 1e-12;
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, in);
+    ASSERT_FALSE(r.sticking);
+    // |lambda| ~ L |q| ~ 1 cannot move a slip of 1e74: s = b to round-off
+    EXPECT_LT((r.slip - in.b - in.K * r.impulse).norm(), kLawTol * in.b.norm());
+    const Vec3 q = patch.unitQ(model, r.slip);
+    ASSERT_GT(q.norm(), 0.1);  // the law has a size here: not the zero impulse
+    EXPECT_LT((r.impulse / in.L - q).norm(), kLawTol * q.norm());
+  }
+}
+
+// An asymmetric K (K_xy = 2.1e-4, K_yx = 0.5): the exact block stuck with
+// lambda = -Ksym^-1 b, so b + K lambda was 2.8e-222 against |b| = 9.3e-223
+// (found by fuzzing). K must be SPD (step.hpp): now an Error for both laws;
+// an asymmetry of a few ulps, as from a K assembled in floating point, is
+// accepted.
+TEST(CoreBadInput, FrictionBlockRefusesAnAsymmetricK) {
+  const PatchShape disk = PatchShape::disk(0.5);
+  const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.5, 0.0);
+  FrictionBlockInput in;
+  in.b = Vec3(-9.3299951151919497e-223, 0.0, 0.0);
+  in.L = 1e-8;
+  in.K << 0.5, 0.00021065026521682739, 1e-08, 0.5, 0.5, 0.5, 0.5, 1e-08, 0.5;
+  in.warmSlip = Vec3(0.5, 0.5, 0.5);
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"symmetric"}));
+  }
+  // one ulp of asymmetry: solved, and a stick has b + K lambda = 0 to round-off
+  FrictionBlockInput nearly;
+  nearly.b = Vec3(0.1, 0.05, 0.0);
+  nearly.L = 1.0;
+  nearly.K << 1.0, 0.25, 0.0, std::nextafter(0.25, 1.0), 1.0, 0.0, 0.0, 0.0, 1.0;
+  // the stick residual: a few ulps of |K| |lambda| (~0.1)
+  constexpr double kStickTol = 1e-14;
+  for (Model model : {Model::Ellipsoidal, Model::Exact}) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, nearly);
+    ASSERT_TRUE(r.sticking);
+    EXPECT_LT((nearly.b + nearly.K * r.impulse).norm(), kStickTol);
+  }
+}
+
 }  // namespace
 }  // namespace patchspin
