@@ -201,6 +201,10 @@ struct PatchState {
   std::optional<FrictionPatch> friction;
   internal::DetectedPatch geometry;               // this step's patch
   long shapeId = 0;                               // unique per built `friction`
+  // squared radius of the largest disk about O inside a polygon patch: a
+  // centre of pressure within it is on the patch without the edge tests
+  // (patches of overlapping coins are clipped 64-gons)
+  double innerRadius2 = 0.0;
   long lastSeen = std::numeric_limits<long>::min() / 2;
   long tipStep = std::numeric_limits<long>::min() / 2;
 };
@@ -264,6 +268,25 @@ Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
     }
   }
   return best;
+}
+
+// Squared distance from O to the nearest edge line of a polygon patch, with
+// a relative margin of 1e-9 for round-off (0 if O is not inside; disks: 0).
+double innerRadiusSquared(const PatchShape& shape) {
+  if (shape.isDisk()) return 0.0;
+  const auto& v = shape.vertices();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, prev = v.size() - 1; i < v.size(); prev = i++) {
+    const Vec2 e = v[i] - v[prev];
+    const double len = e.norm();
+    if (!(len > 0.0)) continue;
+    // signed distance of O from the edge line, > 0 on the inner side (counter-clockwise)
+    const double d = (e.x() * -v[prev].y() - e.y() * -v[prev].x()) / len;
+    best = std::min(best, d);
+  }
+  if (!(best > 0.0) || !std::isfinite(best)) return 0.0;
+  const double r = best * (1.0 - 1e-9);
+  return r * r;
 }
 
 // Velocity of the patch DOFs from per-body (v, omega) read by `get`.
@@ -732,6 +755,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         st.piInvValid = false;
         st.hullValid = false;
         st.shapeId = ++im.shapeCount;
+        st.innerRadius2 = innerRadiusSquared(shape);
         ++im.stats.shapeRebuilds;
       } catch (const Error&) {
         st.flat = false;  // degenerate overlap: leave it to Bullet
@@ -879,8 +903,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
     if (y[0] > 0.0) {
       // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
       const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
-      const bool onPatch = shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= shape.radius() * shape.radius()
-                                          : shape.contains(cop);
+      const bool onPatch =
+          shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= shape.radius() * shape.radius()
+                         : cop.squaredNorm() <= pc.state->innerRadius2 || shape.contains(cop);
       if (onPatch) {
         lamN = y;
         pc.interior = true;

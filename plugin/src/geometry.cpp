@@ -416,10 +416,14 @@ void PatchShape::finish() {
 
 bool PatchShape::contains(const Vec2& point, double tol) const {
   if (kind_ == Kind::Disk) return (point - centre_).norm() <= radius_ + tol;
+  // edge by edge (no modulo, and an edge's length only where the point is
+  // on its outer side: the Bullet layer tests every visit's centre of
+  // pressure, nearly always inside)
   const std::size_t n = vertices_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 e = vertices_[(i + 1) % n] - vertices_[i];
-    if (cross(e, point - vertices_[i]) < -tol * e.norm()) return false;
+  for (std::size_t i = 0, prev = n - 1; i < n; prev = i++) {
+    const Vec2 e = vertices_[i] - vertices_[prev];
+    const double c = cross(e, point - vertices_[prev]);
+    if (c < 0.0 && c < -tol * e.norm()) return false;
   }
   return true;
 }
