@@ -209,6 +209,14 @@ struct PatchState {
   long tipStep = std::numeric_limits<long>::min() / 2;
 };
 
+// A state not seen since the cooldown of a tip: its manifold may have been
+// deleted (and its address reused). Checked at the end of step `step`.
+bool isStale(const PatchState& st, long step) {
+  return st.lastSeen < step - kTipCooldownSteps - 1;
+}
+// Steps between sweeps of the stale states.
+constexpr long kSweepSteps = 16;
+
 }  // namespace
 
 struct PatchFrictionSolver::Impl {
@@ -640,12 +648,18 @@ void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDra
   btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
   impl_->reports.resize(impl_->reportCount);
   impl_->reportShapeIds.resize(impl_->reportCount);
-  // forget manifolds not seen for a while (they may have been deleted)
-  for (auto it = impl_->states.begin(); it != impl_->states.end();) {
-    if (it->second.lastSeen < impl_->step - kTipCooldownSteps - 1)
-      it = impl_->states.erase(it);
-    else
-      ++it;
+  // forget manifolds not seen for a while (they may have been deleted).
+  // The sweep walks every state (a node of a hash map: a cache miss each in
+  // a large pile), so it runs every kSweepSteps steps; a state found stale
+  // before its sweep is reset when it is looked up (convertContacts), which
+  // is what the sweep would have done
+  if (impl_->step % kSweepSteps == 0) {
+    for (auto it = impl_->states.begin(); it != impl_->states.end();) {
+      if (isStale(it->second, impl_->step))
+        it = impl_->states.erase(it);
+      else
+        ++it;
+    }
   }
 }
 
@@ -700,7 +714,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
                                   : -m->getContactPoint(0).m_normalWorldOnB;
     PatchState& st = im.states[m];
-    if (st.body != A || st.other != B) {
+    if (st.body != A || st.other != B || isStale(st, im.step - 1)) {
       st = PatchState();
       st.body = A;
       st.other = B;
