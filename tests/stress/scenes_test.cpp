@@ -144,6 +144,7 @@ struct PourResult {
   bool finite = true;
   int escaped = 0;
   double maxSpeed = 0.0;
+  double maxSpeedOnPatch = 0.0;  // over the coins standing on a patch at the end
   int patches = 0;
 };
 
@@ -182,8 +183,10 @@ PourResult pour(int layers, Friction model) {
     const btVector3 p = c->getWorldTransform().getOrigin();
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf || extremeZ(c, true) < -kPourSinkTol)
       ++r.escaped;
-    r.maxSpeed = std::max(r.maxSpeed, double(c->getLinearVelocity().length()) +
-                                          double(c->getAngularVelocity().length()) * kPourR);
+    const double speed =
+        double(c->getLinearVelocity().length()) + double(c->getAngularVelocity().length()) * kPourR;
+    r.maxSpeed = std::max(r.maxSpeed, speed);
+    if (scene.solver().findPatchReport(c)) r.maxSpeedOnPatch = std::max(r.maxSpeedOnPatch, speed);
   }
   r.patches = int(scene.solver().patchReports().size());
   return r;
@@ -192,15 +195,28 @@ PourResult pour(int layers, Friction model) {
 TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   const int layers = stressFull() ? 10 : 1;
   std::string defects;
-  Table table("Pour of " + std::to_string(100 * layers) + " coins into a box, " + fmt("%.0f", kPourTime) + " s",
-              {"model", "finite", "escaped", "max speed [m/s]", "patches at the end", "at rest"});
+  Table table("Pour of " + std::to_string(100 * layers) + " coins into a box, " +
+                  fmt("%.0f", kPourTime) + " s",
+              {"model", "finite", "escaped", "max speed [m/s]", "max speed on a patch [m/s]",
+               "patches at the end", "at rest"});
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
     const PourResult r = pour(layers, m);
     table.add({toString(m), passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
+               m == Friction::Stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch),
                std::to_string(r.patches), passFail(r.maxSpeed < kPourRestSpeed)});
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_EQ(r.escaped, 0) << toString(m);
+    // what the patches carry is at rest (the coins still moving are on
+    // Bullet's point contacts, below). Not in the 1000-coin pour: after 4 s
+    // its heap is still sliding down in every model (stock 1.7 m/s), coins
+    // on patches included (0.5-0.6 m/s), so it is reported with the rest
+    if (!stressFull()) {
+      EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
+    } else if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed) {
+      defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
+                 fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
+    }
     if (r.finite && r.maxSpeed >= kPourRestSpeed)
       defects += std::string("\n  ") + toString(m) + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
                  fmt("%.0f", kPourTime) + " s";
@@ -222,6 +238,15 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   // contacts, and the three coins that crossed 2 mm while they still
   // reported a floor patch were being knocked over by falling coins (tilted
   // 0.12-0.17 rad within that step; the next step hands them to Bullet).
+  // The coins standing on a patch at the end are at rest (asserted above:
+  // 5.6e-5 m/s in the 100-coin pour); the moving ones are on Bullet's point
+  // contacts, which do not dissipate a wobble on the rim (rolling without
+  // slip loses no energy). Tried: Bullet's rolling and spinning friction
+  // (1e-3 m) on the coins brings stock's 100-coin pour to rest but not the
+  // patch pours: a coin tilted 0.035 rad with its rim on a flat neighbour's,
+  // still a patch within the flatness hysteresis, is turned flat by the
+  // patch's tilt correction into the neighbour's point contact and hops off
+  // the floor every 0.4 s (1.5 cm/s).
   if (!defects.empty())
     GTEST_SKIP() << "known defect: poured coins not at rest after " << kPourTime
                  << " s (tilted coins wobbling on stock point contacts)" << defects;
