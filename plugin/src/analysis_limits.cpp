@@ -480,7 +480,21 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   constexpr int kMaxPressureExponent = 600;
   eLoad = std::max(eLoad, ePressure - kMaxPressureExponent);
   constexpr int kUnitRange = 100;  // 2^100 ~ 1e30: well inside double's range
-  if (std::abs(eLoad) <= kUnitRange && std::abs(eMass) <= kUnitRange) return solveAtScale(model, options);
+  if (std::abs(eLoad) <= kUnitRange && std::abs(eMass) <= kUnitRange) {
+    // (its output checked as the scaled path's below: found by fuzzing, com
+    // 9e117 m off O with Jz = 1.9e215 stayed at its own scale and returned a
+    // rate of inf, where the field itself overflows)
+    LimitAnalysis out = solveAtScale(model, options);
+    for (const LimitDirection& d : out.directions) {
+      if (!std::isfinite(d.rdot) || !d.eigenvalues.allFinite() || !std::isfinite(d.residual) ||
+          !std::isfinite(d.minPressure))
+        throw Error("limit directions: the limit field overflows double (rate " + internal::formatDouble(d.rdot) + ")");
+    }
+    for (const LimitContinuum& c : out.continua) {
+      if (!std::isfinite(c.rdot)) throw Error("limit directions: the limit field overflows double");
+    }
+    return out;
+  }
 
   FlatBody unit = body;
   unit.rho = rho;

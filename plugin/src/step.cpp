@@ -123,9 +123,21 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   const bool wellConditioned = d > 0.0 && A.norm() * adj.norm() < kAdjugateCondition * d;
   bool stick = false;
   Vec3 lambda0;
+  // (|adj(A) b| without squares: at unit scale with a tiny L, adj A ~ 1e-196
+  // and |n0|^2 underflowed to 0 <= d, a false stick with lambda = -K^-1 b
+  // 1e90 times outside the set; found by fuzzing, b = 1e74 against L = 1e-8)
+  const double n0Norm = n0.stableNorm();
   if (wellConditioned) {
-    stick = n0.norm() <= d;
-    if (stick) lambda0 = -in.L * (Pi * (n0 / d));
+    stick = n0Norm <= d;
+    // the impulse -K^-1 b by a pivoted solve with K itself (backward
+    // stable: b + K lambda = 0 to round-off of |K| |lambda|); -L Pi A^-1 b
+    // from the adjugate left b + K lambda at cond(A) eps, 1e-8 of the scale
+    // for a K with eigenvalues 5.9e7 and 2.6e3 (found by fuzzing). Sticks
+    // only.
+    if (stick) {
+      lambda0 = -in.K.partialPivLu().solve(in.b);
+      if (!lambda0.allFinite()) lambda0 = -in.L * (Pi * (n0 / d));
+    }
   } else {
     // (an ill-conditioned A only: a numerically singular K, as the exact
     // block refuses it, has no digits in this answer either; found by
@@ -135,7 +147,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     requireNotNumericallySingular(0.5 * (in.K + in.K.transpose()));
     lambda0 = -in.K.partialPivLu().solve(in.b);
     const Vec3 w0 = -Pi.partialPivLu().solve(lambda0) / in.L;
-    stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0.norm() <= d;
+    stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0Norm <= d;
   }
   if (stick) {
     out.sticking = true;
@@ -226,7 +238,23 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // eigenvector driven by the impulse itself, off the law by 0.9 of L |q|);
   // the common path pays one product of two norms
   if (!(Ksym.norm() * Kinv.norm() < kSingularCondition / 3.0)) requireNotNumericallySingular(Ksym, Kinv);
-  const Vec3 lambda0 = -Kinv * in.b;
+  // (and where the cofactors cancel to K^-1 b = 0 with b != 0, a pivoted
+  // solve: found by fuzzing, K = 0.75 (1 1^T) + 1e-8 I against b = 0.5 (1, 1,
+  // 1) stuck with a zero impulse)
+  const Vec3 lambda0 = [&] {
+    const Vec3 cofactor = -Kinv * in.b;
+    if (cofactor.norm() > 0.0) return cofactor;
+    const Vec3 solved = -in.K.partialPivLu().solve(in.b);
+    return solved.allFinite() ? solved : cofactor;
+  }();
+  // a stick returns -K^-1 b from a pivoted solve with K (backward stable:
+  // b + K lambda = 0 to round-off of |K| |lambda|); the cofactor inverse
+  // left b + K lambda at cond(K) eps, 1e-8 of the scale for a K of cond 1e8
+  // (found by fuzzing)
+  auto stickImpulse = [&] {
+    const Vec3 solved = -in.K.partialPivLu().solve(in.b);
+    return solved.allFinite() ? solved : lambda0;
+  };
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {
     out.sticking = true;
@@ -243,7 +271,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     const Vec3 c = Pinv * lambda0;
     if (c.allFinite() && c.lpNorm<1>() <= in.L) {
       out.sticking = true;
-      out.impulse = lambda0;
+      out.impulse = stickImpulse();
       out.slip.setZero();
       return out;
     }
@@ -327,7 +355,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // slip branch below decides, with its own stick fallback)
   if (!slipProven && gaugeFound && lambda0Norm <= in.L * q.norm()) {
     out.sticking = true;
-    out.impulse = lambda0;
+    out.impulse = stickImpulse();
     out.slip.setZero();
     return out;
   }
@@ -373,7 +401,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   if (!(bestScore < 0.0)) {
     // no direction with a support gap: lambda0 is inside L E after all
     out.sticking = true;
-    out.impulse = lambda0;
+    out.impulse = stickImpulse();
     out.slip.setZero();
     return out;
   }
@@ -583,8 +611,15 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
       const double warmMax = unit.warmSlip.cwiseAbs().maxCoeff();
       if (input.warmSlip.cwiseAbs().maxCoeff() > 0.0 && !(warmMax > kLow && warmMax < kHigh))
         unit.warmSlip = times2To(input.warmSlip, -std::ilogb(input.warmSlip.cwiseAbs().maxCoeff()));
-      const bool clamped = std::ilogb(input.L) + ek - es > kMaxLeverage;
-      unit.L = clamped ? std::ldexp(1.0, kMaxLeverage) : std::ldexp(input.L, ek - es);
+      // (the ellipsoidal A = L K Pi counts Pi's size too: found by fuzzing,
+      // b = 2.2e-308 against Pi ~ 1e281 (mu 1.5e10 times a couple of
+      // 4e262) made L K Pi 1e301 at unit scale, refused as overflowing,
+      // where the block plainly sticks)
+      const double piMax = patch.Pi().cwiseAbs().maxCoeff();
+      const bool piCounts = model == Model::Ellipsoidal && piMax > 0.0 && std::isfinite(piMax);
+      const int ePi = piCounts ? std::max(0, std::ilogb(piMax)) : 0;
+      const bool clamped = std::ilogb(input.L) + ek - es + ePi > kMaxLeverage;
+      unit.L = clamped ? std::ldexp(1.0, kMaxLeverage - ePi) : std::ldexp(input.L, ek - es);
       if (unit.L >= std::numeric_limits<double>::min()) {
         FrictionBlockResult r = solveModel(patch, model, unit);
         if (!clamped || r.sticking) {

@@ -1084,5 +1084,150 @@ TEST(CoreBadInput, FrictionBlockRefusesAnAsymmetricK) {
   }
 }
 
+// At unit scale with a tiny L (b = 1.1e74 and L = 1e-8 scaled by 2^-272)
+// the ellipsoidal stick test compared |adj(A) b| with det A; adj A ~ 1e-196
+// and |adj(A) b|^2 underflowed to 0, a false stick with lambda = -K^-1 b =
+// 1e82 against a set of 1.7e-8 (found by fuzzing, right after the unit
+// scale was widened to 1e40). The block slips with lambda = L q(s^).
+TEST(CoreBadInput, EllipsoidalBlockAtUnitScaleWithTinyLDoesNotStick) {
+  const PatchShape speck = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(speck, LinearPressure::fromLoads(speck, {1.106355352524917e+74, 1e-08, 5075.75}), 1e-8,
+                            1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-08, 0.5, 1.130272745509552e+74);
+  in.L = 1e-8;
+  in.K = Mat3::Constant(3.0000000000000004e-16);
+  in.K.diagonal().setConstant(1.00000003e-08);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+  ASSERT_FALSE(r.sticking);
+  // the ellipsoidal set |lambda| <= L |Pi|_F and the law q = -Pi s^, to the
+  // round-off of a few 3x3 products (1e-12)
+  constexpr double kTol = 1e-12;
+  EXPECT_LE(r.impulse.norm(), in.L * patch.Pi().norm() * (1.0 + kTol));
+  EXPECT_LT((r.impulse / in.L - patch.unitQ(Model::Ellipsoidal, r.slip)).norm(), kTol * patch.Pi().norm());
+}
+
+// Sticks with an ill-conditioned K return lambda = -K^-1 b from a pivoted
+// solve: b + K lambda is then round-off of |K| |lambda|. The adjugate
+// (ellipsoidal) and the cofactor inverse (exact) left it at cond eps, 1e-8 of
+// the scale, and for K = 0.75 (1 1^T) + 1e-8 I against b = 0.5 (1, 1, 1) the
+// exact block stuck with lambda = 0 (found by fuzzing).
+TEST(CoreBadInput, FrictionBlockSticksWithBEqualToMinusKLambda) {
+  // backward-stable 3x3 solves: a few ulps of |K| |lambda| (and of |b|)
+  constexpr double kResidualTol = 1e-13;
+  auto checkStick = [&](const FrictionPatch& patch, Model model, const FrictionBlockInput& in) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, in);
+    if (r.sticking) {
+      EXPECT_LT((in.b + in.K * r.impulse).norm(), kResidualTol * (in.b.norm() + in.K.norm() * r.impulse.norm()));
+    } else {
+      // a slip is the law at its slip
+      const Vec3 q = patch.unitQ(model, r.slip);
+      EXPECT_LT((r.impulse / in.L - q).norm(), 1e-6 * q.norm());
+    }
+    return r.sticking;
+  };
+  const PatchShape sliver =
+      PatchShape::polygon({{7.500000000000001e-09, -0.24999999000000006}, {1.7500000000000001e-08, -0.24999998999999995},
+                           {1.2500000000000003e-08, 0.25000001000000005}, {2.5000000000000001e-09, 0.25000000999999994}});
+  const FrictionPatch thin(
+      sliver, LinearPressure::fromLoads(sliver, {7.566666666666056e-07, -7.566666647221408e-15, 8.8277777777770622e-15}),
+      0.5, -1.0);
+  FrictionBlockInput a;
+  a.b = Vec3(1e-08, 1e-08, 1e-08);
+  a.L = 0.5;
+  a.K = Mat3::Constant(19822410.75);
+  a.K.diagonal().setConstant(19824981.25);
+  a.warmSlip = Vec3(-13578.5, 1e-08, 1e-08);
+  EXPECT_TRUE(checkStick(thin, Model::Ellipsoidal, a));
+
+  const PatchShape speck = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
+  const FrictionPatch heavy(
+      speck, LinearPressure::fromLoads(speck, {2.2967985926923795e+81, -2.1002768830563735e+73, 2.8363210237402899e+73}),
+      1.0, 1e-8);
+  FrictionBlockInput e;
+  e.b = Vec3(1e-08, 1e-08, 1e-08);
+  e.L = 1e-8;
+  e.K << 2273843767050240.0, 2273843734555192.0, 2273843734555192.0, 2273843734555192.0, 3410765633716224.0,
+      3410765599997952.0, 2273843734555192.0, 3410765599997952.0, 3410765633716224.0;
+  e.warmSlip = Vec3(-33718272.0, -33718272.0, -311623680.0);
+  EXPECT_TRUE(checkStick(heavy, Model::Exact, e));
+
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  const FrictionPatch tipped(
+      disk, LinearPressure::fromLoads(disk, {1.0000000000000001e+300, 1e-08, 7.8861841068295186e+146}),
+      0.00021254271268844604, 0.5);
+  FrictionBlockInput z;
+  z.b = Vec3(0.5, 0.5, 0.5);
+  z.L = 0.5;
+  z.K = Mat3::Constant(0.75);
+  z.K.diagonal().setConstant(0.75000001000000005);
+  z.warmSlip = Vec3(0.5, 0.5, 0.5);
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) checkStick(tipped, model, z);
+}
+
+// A body whose centre of mass is 9e117 m off O (Jz = 1.9e215, m = 8.6e9):
+// its mass exponents kept it at its own scale, where the limit field
+// overflows, and a direction came back with rate inf (found by fuzzing the
+// limits target). Now an Error, or finite output.
+TEST(CoreBadInput, LimitDirectionsOfAnOverflowingFieldAtItsOwnScale) {
+  FlatBody body;
+  body.shape = PatchShape::polygon(
+      {{0.52408846025116795, 0.51315958581171628}, {0.51428142560970502, 0.52344076574181153},
+       {0.50064769450935642, 0.5274410114214213},  {0.48684041418828378, 0.52408846025116795},
+       {0.47655923425818847, 0.51428142560970502}, {0.47255898857857875, 0.50064769450935642},
+       {0.47591153974883205, 0.48684041418828378}, {0.48571857439029498, 0.47655923425818847},
+       {0.49935230549064352, 0.47255898857857875}, {0.51315958581171628, 0.47591153974883205},
+       {0.52344076574181153, 0.48571857439029498}, {0.5274410114214213, 0.49935230549064352}});
+  body.mass = 8647606272.0;
+  body.Jz = 1.9010683772582826e+215;
+  body.com = Vec3(-8.9595518175365068e+117, 1.0, 1.0);
+  body.mu = 1.0;
+  body.g = 1.0;
+  for (bool sphere : {false, true}) {
+    SCOPED_TRACE(sphere ? "sphere solver" : "linear solver");
+    LimitOptions options;
+    options.seeds = 20;
+    options.sphereSolver = sphere;
+    try {
+      const LimitAnalysis result = findLimitDirections(FlatBodyModel(body, Model::Exact), options);
+      for (const LimitDirection& d : result.directions) {
+        EXPECT_TRUE(std::isfinite(d.rdot));
+        EXPECT_TRUE(std::isfinite(d.residual));
+        EXPECT_TRUE(d.eigenvalues.allFinite());
+      }
+      for (const LimitContinuum& c : result.continua) EXPECT_TRUE(std::isfinite(c.rdot));
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("overflows"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// b = DBL_MIN against an ellipsoidal Pi of ~1e281 (mu = 1.5e10 and a couple
+// of 4.4e262 on a 0.5 m disk): at unit scale L K Pi was 1e301 and the block
+// was refused as overflowing, while -K^-1 b is 1e-292 against a set of
+// L |Pi| ~ 1e-27 (found by fuzzing). The unit scale now counts Pi's size when
+// it clamps L: the block is solved, b + K lambda = 0 to round-off.
+TEST(CoreBadInput, EllipsoidalBlockWithHugePiAndTinyB) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(1.0, 0.0));
+  const double tiny = std::numeric_limits<double>::min();
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {1e-08, 4.4207816532197203e+262, tiny}),
+                            14821621760.0, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(tiny, tiny, tiny);
+  in.L = tiny;
+  in.K << 36917776.0, 4.508515560323756e-225, -9.3386817376370605e-309, 4.508515560323756e-225,
+      1.5246092141020473e+20, 123.47506688, -9.3386817376370605e-309, 123.47506688, 2.0000000000000002e-16;
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
+  ASSERT_TRUE(r.impulse.allFinite());
+  ASSERT_TRUE(r.sticking);
+  // a backward-stable solve: a few ulps of |K| |lambda| and of |b|, plus
+  // lambda's rounding to the denormal grid (half a step per entry) through K
+  constexpr double kResidualTol = 1e-13;
+  const double denormals = 4.0 * std::numeric_limits<double>::denorm_min() * in.K.stableNorm();
+  EXPECT_LT((in.b + in.K * r.impulse).stableNorm(),
+            kResidualTol * (in.b.stableNorm() + in.K.stableNorm() * r.impulse.stableNorm()) + denormals);
+}
+
 }  // namespace
 }  // namespace patchspin

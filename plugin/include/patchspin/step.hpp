@@ -39,7 +39,8 @@ struct FrictionBlockResult {
 };
 
 // Solves the block for `patch` (its Pi or its exact law; its Pz only sets the
-// scale of q). Throws Error for non-finite input or a K that is not SPD.
+// scale of q). Throws Error for non-finite input or a K that is not SPD (symmetric to
+// 1e-10 of its largest entry).
 // The block is homogeneous in (K, b, L); far from unit scale it is solved at
 // |K| ~ |b| ~ 1 (powers of two), so b and K of 1e-300 or 1e300 are fine.
 // It also refuses a K that is numerically singular: condition number above
