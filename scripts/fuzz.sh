@@ -12,7 +12,12 @@
 # ./build-fuzz, ./build-fuzz-fast in the fast mode), FUZZ_MAX_TIME (seconds
 # per target, a guard; default 14400), FUZZ_OUT (work dir, default
 # $FUZZ_BUILD_DIR/fuzz-out: crash-* files and logs land there), FUZZ_NICE
-# (niceness of the fuzzer processes, default 10; one runs at a time).
+# (niceness of the fuzzer processes, default 10; one runs at a time),
+# FUZZ_KEEP_GOING (1: libFuzzer's fork mode with one job at a time,
+# -fork=1 -ignore_crashes=1: a failure, a timeout or an OOM is saved as
+# crash-*/timeout-*/oom-* in FUZZ_OUT and the run goes on until RUNS inputs;
+# the count is the parent's last "#N: cov: ..." line, the sum of the jobs'
+# stat::number_of_executed_units. Default 0: stop at the first failure).
 # Installs clang and libclang-rt-14-dev (libFuzzer) with apt-get if missing.
 set -euo pipefail
 
@@ -70,12 +75,26 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$work"
   echo "== $t: $runs inputs (at most ${max_time}s), corpus $corpus"
   # fuzz in a scratch copy of the corpus, then merge only what adds coverage
+  fork=()
+  if [[ ${FUZZ_KEEP_GOING:-0} == 1 ]]; then
+    fork=(-fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+  fi
   set +e
-  nice -n "$niceness" "$build/fuzz/${t}_fuzz" -runs="$runs" -max_total_time="$max_time" -timeout=10 -rss_limit_mb=2048 \
-    -max_len=512 -artifact_prefix="$out/$t-" -print_final_stats=1 "$work" "$corpus" >"$out/$t.log" 2>&1
+  nice -n "$niceness" "$build/fuzz/${t}_fuzz" "${fork[@]}" -runs="$runs" -max_total_time="$max_time" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=512 -artifact_prefix="$out/$t-" -print_final_stats=1 "$work" "$corpus" \
+    >"$out/$t.log" 2>&1
   rc=$?
   set -e
-  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec" "$out/$t.log" | sed "s/^/   /"
+  if ((${#fork[@]})); then
+    # fork mode: the parent's last progress line counts every job's inputs
+    grep -E "^#[0-9]+: cov:" "$out/$t.log" | tail -1 | sed "s/^/   /"
+    grep -E "INFO: fuzzed for|INFO: exiting" "$out/$t.log" | sed "s/^/   /"
+    n=$(ls "$out" | grep -c "^$t-\(crash\|timeout\|oom\)-" || true)
+    echo "   failure files: $n ($out/$t-crash-*, -timeout-*, -oom-*)"
+    ((n == 0)) || status=1
+    rc=0
+  fi
+  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec" "$out/$t.log" | sed "s/^/   /" || true
   if ((rc != 0)); then
     echo "   FAILED (exit $rc): see $out/$t.log and $out/$t-crash-*" >&2
     grep -m1 "patchspin fuzz check failed\|ERROR:" "$out/$t.log" >&2 || true
