@@ -267,7 +267,8 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
   }
 }
 
-std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint) {
+std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint,
+                                        const DetectedPatch* overlap) {
   DetectedPatch patch;
   const btVector3 n = b.normal.normalized();
   patch.normal = n;
@@ -288,6 +289,12 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   patch.gap = gap;
   // rotation that takes -a.normal onto n (small angle): theta = u x n
   patch.tilt = (-a.normal).cross(n);
+  if (overlap) {
+    patch.outline = overlap->outline;
+    patch.centre = overlap->centre;
+    patch.origin = base + ex * btScalar(patch.centre.x()) + ey * btScalar(patch.centre.y());
+    return patch;
+  }
 
   auto polygonOf = [&](const Face& f) {
     std::vector<Vec2> pts;
@@ -355,6 +362,7 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   patch.outline.disk = disk;
   patch.outline.radius = radius;
   patch.outline.vertices = std::move(poly);
+  patch.centre = centre;
   patch.origin = base + ex * btScalar(centre.x()) + ey * btScalar(centre.y());
   return patch;
 }

@@ -50,6 +50,7 @@ struct DetectedPatch {
   btVector3 xAxis{1, 0, 0};           // in-plane axes
   btVector3 yAxis{0, 1, 0};
   PatchOutline outline;               // overlap, patch frame about O
+  Vec2 centre = Vec2::Zero();         // O in the plane frame about a's projected face centre
   double gap = 0.0;                   // signed distance of a's face centre above b's plane [m]
   btVector3 tilt{0, 0, 0};            // small rotation of a that makes it flat on b [rad]
 };
@@ -57,6 +58,11 @@ struct DetectedPatch {
 // Builds the overlap of the two faces (a disk stays a disk while it lies
 // fully inside the other face; otherwise a polygon). `xHint` is an in-plane
 // direction for the x axis. nullopt if the overlap is empty or degenerate.
-std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint);
+// With `overlap`, its outline and centre are taken instead of clipping the
+// faces again (the caller's judgement: the two bodies have not moved
+// relative to each other since it was built); the frame, gap and tilt are
+// always computed from the faces.
+std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint,
+                                        const DetectedPatch* overlap = nullptr);
 
 }  // namespace patchspin::bullet::internal
