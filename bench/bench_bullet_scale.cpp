@@ -25,7 +25,13 @@
 // Each variant then starts a fresh world from the saved state, takes
 // kWarmSteps untimed steps (contacts and warm starts rebuilt), and is timed
 // per step (CPU time of the stepping thread), restoring the saved state every
-// kRestoreEvery[phase] steps so that it stays in its phase.
+// kRestoreEvery[phase] steps so that it stays in its phase. Every
+// measurement is repeated kRepetitions times, the repetitions of all
+// variants interleaved in random order (Google Benchmark's random
+// interleaving), and the fastest repetition is reported: the work is
+// deterministic, so what varies between repetitions is the machine (a single
+// pass measured 'none opted in', which runs stock Bullet's code, at 1.11x
+// stock for N = 10000).
 //
 // Output: Google Benchmark's table; then per phase a table of ms per step,
 // steps per second and the ratio to stock per N, the fitted exponent b of
@@ -80,6 +86,7 @@ constexpr int kCoinGroup = 1 << 6, kBoxGroup = 1 << 7, kPlaneGroup = 1 << 8, kFl
               kWallGroup = 1 << 10;
 constexpr double kSaveAt[2] = {0.25, 2.0};        // [s] impact, rest
 constexpr int kWarmSteps = 3;
+constexpr int kRepetitions = 3;
 constexpr int kRestoreEvery[2] = {60, 240};       // steps: 0.25 s, 1 s
 constexpr int kSizes[4] = {10, 100, 1000, 10000};
 // a body counts as moving above these: 1 cm/s, 0.5 rad/s
@@ -294,8 +301,12 @@ class CapturingReporter : public benchmark::ConsoleReporter {
     for (const Run& r : runs) {
       if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
       auto it = gRows.find(r.run_name.function_name);
-      if (it != gRows.end())
-        it->second.msPerStep = r.GetAdjustedCPUTime() * 1e3 / benchmark::GetTimeUnitMultiplier(r.time_unit);
+      if (it != gRows.end()) {
+        // the fastest repetition (see the head comment)
+        const double ms =
+            r.GetAdjustedCPUTime() * 1e3 / benchmark::GetTimeUnitMultiplier(r.time_unit);
+        if (it->second.msPerStep <= 0 || ms < it->second.msPerStep) it->second.msPerStep = ms;
+      }
     }
     ConsoleReporter::ReportRuns(runs);
   }
@@ -327,10 +338,15 @@ double fittedExponent(Phase p, Variant v) {
 int main(int argc, char** argv) {
   std::string csvPath;
   std::vector<char*> args;
+  bool interleavingGiven = false;
   for (int i = 0; i < argc; ++i) {
     if (std::strncmp(argv[i], "--csv=", 6) == 0) csvPath = argv[i] + 6;
     else args.push_back(argv[i]);
+    if (std::strncmp(argv[i], "--benchmark_enable_random_interleaving", 38) == 0)
+      interleavingGiven = true;
   }
+  static char interleave[] = "--benchmark_enable_random_interleaving=true";
+  if (!interleavingGiven) args.push_back(interleave);
   int nArgs = int(args.size());
   benchmark::Initialize(&nArgs, args.data());
   if (benchmark::ReportUnrecognizedArguments(nArgs, args.data())) return 1;
@@ -343,8 +359,10 @@ int main(int argc, char** argv) {
       for (Variant v : {kStock, kNoneOptedIn, kEllipsoidal, kExact}) {
         const std::string key = std::string("BM_Scale/") + kPhaseNames[phase] + "/N:" + std::to_string(n) + "/" +
                                 std::to_string(int(v));
-        benchmark::RegisterBenchmark(key.c_str(), [=](benchmark::State& st) { BM_Scale(st, n, v, phase, key); })
+        benchmark::RegisterBenchmark(key.c_str(),
+                                     [=](benchmark::State& st) { BM_Scale(st, n, v, phase, key); })
             ->Iterations(timedSteps(n))
+            ->Repetitions(kRepetitions)
             ->Unit(benchmark::kMillisecond);
       }
     }
@@ -352,10 +370,14 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
 
-  std::printf("\nWorld scale: coins and boxes rained into a box; CPU time per world step (dt 1/240 s, %d solver\n"
-              "iterations, all bodies awake, all opted in for the patch variants). Goals: ellipsoidal <= 1.2x,\n"
-              "exact <= 2x, none opted in 1.00x stock.\n",
-              kIterations);
+  std::printf(
+      "\nWorld scale: coins and boxes rained into a box; CPU time per world step (dt 1/240 s, %d "
+      "solver\n"
+      "iterations, all bodies awake, all opted in for the patch variants), the fastest of %d "
+      "repetitions\n"
+      "interleaved in random order. Goals: ellipsoidal <= 1.2x, exact <= 2x, none opted in 1.00x "
+      "stock.\n",
+      kIterations, kRepetitions);
   std::ofstream csv;
   if (!csvPath.empty()) {
     csv.open(csvPath);
