@@ -39,6 +39,9 @@ struct PatchOutline {
   std::vector<Vec2> vertices;    // polygon, counter-clockwise, centroid at O [m]
   // Same outline up to `tol` [m] in every coordinate.
   bool matches(const PatchOutline& other, double tol) const;
+  // Its size for relative tolerances [m]: the radius, or the distance of the
+  // first vertex from O (0 for an empty outline).
+  double size() const { return disk ? radius : (vertices.empty() ? 0.0 : vertices[0].norm()); }
   // Throws Error for a degenerate polygon.
   PatchShape toShape() const;
 };

@@ -847,13 +847,10 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // the same outline, and its cached shape, in this frame
       if (flat) {
         const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
-        const internal::PatchOutline& last = st.geometry.outline;
-        const double lastSize =
-            last.disk ? last.radius : (last.vertices.empty() ? 0.0 : last.vertices[0].norm());
         bool keep = wasFlat && st.overlapValid && faceA->kind == st.overlapKinds[0] &&
                     faceB->kind == st.overlapKinds[1] &&
                     double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
-                        kOverlapRelTol * lastSize;
+                        kOverlapRelTol * st.geometry.outline.size();
         for (int row = 0; keep && row < 3; ++row)
           keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
                  kOverlapRelTol;
@@ -887,8 +884,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
     // shape and friction law: rebuilt only when the outline changes
     const internal::PatchOutline& outline = st.geometry.outline;
-    const double size = outline.disk ? outline.radius
-                                     : (outline.vertices.empty() ? 0.0 : outline.vertices[0].norm());
+    const double size = outline.size();
     if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
         (opt.rho && st.friction->rho() != *opt.rho)) {
       try {
