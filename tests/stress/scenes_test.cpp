@@ -4,18 +4,20 @@
 // a patch shrinking to a point. Each scene also runs with stock Bullet (no
 // body opted in) and prints its figure beside ours; only the patch runs are
 // asserted. Full-size pour behind PATCHSPIN_STRESS_FULL=1.
+#include "stress_scenes.hpp"
+
+#include <closed_forms.hpp>
+
+#include <patchspin/models.hpp>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <closed_forms.hpp>
 #include <cmath>
 #include <cstdio>
-#include <patchspin/models.hpp>
 #include <random>
 #include <string>
 #include <vector>
-
-#include "stress_scenes.hpp"
 
 namespace patchspin::bullet::stress {
 namespace {
