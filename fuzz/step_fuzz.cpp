@@ -86,13 +86,17 @@ void run(ByteReader& in) {
   input.L = in.number();
   input.K = takeK(in);
   if (mode & 4) input.warmSlip = in.vec3();
+  // (read last: the corpus's earlier inputs keep their meaning)
+  if (mode & 8) input.warmGauge = in.vec3();
   const bool finite = input.b.allFinite() && std::isfinite(input.L) && input.K.allFinite() &&
-                      input.warmSlip.allFinite();
+                      input.warmSlip.allFinite() && input.warmGauge.allFinite();
 
   note("mu %.17g, rho %.17g, loads (%.17g %.17g %.17g)", mu, rho, loads.Pz, loads.Tx, loads.Ty);
   note("%s, b (%.17g %.17g %.17g), L %.17g, warm (%.17g %.17g %.17g)", toString(model), input.b.x(),
        input.b.y(), input.b.z(), input.L, input.warmSlip.x(), input.warmSlip.y(), input.warmSlip.z());
   for (int i = 0; i < 3; ++i) note("K (%.17g %.17g %.17g)", input.K(i, 0), input.K(i, 1), input.K(i, 2));
+  note("warm gauge (%.17g %.17g %.17g)", input.warmGauge.x(), input.warmGauge.y(),
+       input.warmGauge.z());
   FrictionBlockResult out;
   try {
     out = solveFrictionBlock(patch, model, input);
@@ -126,6 +130,11 @@ void run(ByteReader& in) {
   note("impulse (%.17g %.17g %.17g), slip (%.17g %.17g %.17g), sticking %d", out.impulse.x(),
        out.impulse.y(), out.impulse.z(), out.slip.x(), out.slip.y(), out.slip.z(), int(out.sticking));
   if (out.sticking && !out.slip.isZero(0.0)) fail("sticking with nonzero slip");
+  // the stick test's boundary point, where located: a unit slip and a finite law value
+  if (!out.gaugeSlip.isZero(0.0)) {
+    checkFinite(out.gaugeValue, "gauge value");
+    if (!(std::abs(out.gaugeSlip.norm() - 1.0) < 1e-12)) fail("gauge slip not a unit vector");
+  }
 
   // slip = b + K impulse
   // (plus the rounding of slip and impulse to the denormal grid, half a step

@@ -21,6 +21,7 @@ constexpr int kMaxIterations = 100;
 void validate(const FrictionBlockInput& in) {
   internal::requireFinite(in.b, "friction block free slip b");
   internal::requireFinite(in.warmSlip, "friction block warm-start slip");
+  internal::requireFinite(in.warmGauge, "friction block warm-start gauge slip");
   if (!in.K.allFinite()) throw Error("friction block matrix K must be finite");
   // K symmetric (SPD, as documented), to kSymmetryTol of its largest entry:
   // both blocks work with its symmetric part, so an asymmetric K stuck with
@@ -323,7 +324,16 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   Vec3 e2 = l.cross(e1);
   Vec3 w = -l;
   if (!slipProven) {
-    w = -(patch.Pi().fullPivLu().solve(l));  // ellipsoidal: q = -Pi w
+    // from the caller's previous boundary point (inside solver iterations
+    // lambda0 turns little between visits), else the ellipsoidal estimate
+    // (scaled by its largest entry: only its direction counts, and its norm
+    // may under- or overflow)
+    const double warmMax = in.warmGauge.cwiseAbs().maxCoeff();
+    if (warmMax > 0.0) {
+      w = in.warmGauge / warmMax;
+    } else {
+      w = -(patch.Pi().fullPivLu().solve(l));  // ellipsoidal: q = -Pi w
+    }
     if (!(w.norm() > 0.0) || !w.allFinite()) w = -l;
     w.normalize();
   }
@@ -335,6 +345,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
     if (res.norm() <= tol * q.norm() && q.dot(l) > 0.0) {
       gaugeFound = true;
+      out.gaugeSlip = w, out.gaugeValue = q;
       break;
     }
     // tangent basis at w and the 2x2 Newton system

@@ -269,6 +269,71 @@ TEST(FrictionBlockTest, CoarserToleranceStaysClose) {
   }
 }
 
+// The exact block's stick test locates the limit set's boundary along
+// lambda0 = -K^-1 b and returns it (gaugeSlip w, gaugeValue q): q must be the
+// law at w, parallel to lambda0, and the maximum-dissipation point of E for
+// w (q.w <= q(u).w for every sampled law value q(u): E's support, computed
+// without the solver). The blocks are built near the boundary: lambda0 = f L
+// q(u) for a random u, so the block sticks iff f <= 1 (q(u) is on the
+// boundary: f is known without the solver). Started there again (warmGauge,
+// as a caller does in its next solver iteration), or from a direction turned
+// by kTurn, the block must decide and return the same, and a converged start
+// must cost at most one Newton step.
+TEST(FrictionBlockTest, ExactGaugeIsTheBoundaryPointAndWarmStartsTheStickTest) {
+  // the law's round-off (~1e-13 of |q|) against sampled exact values
+  constexpr double kSupportSlack = 1e-12;
+  // the gauge's own tolerance (1e-14 relative), amplified by the 2x2 solve
+  constexpr double kParallelTol = 1e-10;
+  constexpr double kTurn = 0.05;  // rad: a warm start from a neighbouring visit
+  // the value and the Jacobian evaluations of the law (dual numbers) agree to
+  // its accuracy, ~1e-13 relative
+  constexpr double kLawTol = 1e-13;
+  for (const FrictionPatch& patch : {tiltedRectangle(), tiltedDisk()}) {
+    std::mt19937 rng(31);
+    std::vector<Vec3> surface;
+    for (int i = 0; i < 2000; ++i) surface.push_back(patch.unitQ(Model::Exact, randomUnit(rng)));
+    int located = 0, sticks = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+      FrictionBlockInput in;
+      in.K = randomSpd(rng, 0.2, 5.0);
+      in.L = 0.5;
+      const double f = std::uniform_real_distribution<double>(0.95, 1.05)(rng);
+      in.b = -in.K * (f * in.L * patch.unitQ(Model::Exact, randomUnit(rng)));
+      const FrictionBlockResult cold = solveFrictionBlock(patch, Model::Exact, in);
+      // (1e-9: the decision's own resolution, far above its tolerance)
+      if (std::abs(f - 1.0) > 1e-9) {
+        EXPECT_EQ(cold.sticking, f < 1.0) << f;
+      }
+      if (cold.gaugeSlip.isZero(0.0)) continue;
+      ++located;
+      sticks += cold.sticking;
+      const Vec3 w = cold.gaugeSlip, q = cold.gaugeValue;
+      EXPECT_NEAR(w.norm(), 1.0, 1e-15);
+      EXPECT_LT((q - patch.unitQ(Model::Exact, w)).norm(), kLawTol * q.norm());
+      const Vec3 lambda0 = -in.K.inverse() * in.b;
+      EXPECT_LT(q.normalized().cross(lambda0.normalized()).norm(), kParallelTol);
+      EXPECT_GT(q.dot(lambda0), 0.0);
+      for (const Vec3& p : surface) EXPECT_LE(q.dot(w), p.dot(w) + kSupportSlack * q.norm());
+
+      for (const bool turned : {false, true}) {
+        FrictionBlockInput warm = in;
+        warm.warmGauge = turned ? Vec3(w + kTurn * w.unitOrthogonal()).normalized() : w;
+        const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, warm);
+        EXPECT_EQ(r.sticking, cold.sticking) << turned;
+        EXPECT_LT((r.impulse - cold.impulse).norm(), kSolveTol * (1.0 + cold.impulse.norm()))
+            << turned;
+        // (one step at most: the start is renormalised, and a residual at
+        // the tolerance may then be an ulp above it)
+        if (!turned && cold.sticking) {
+          EXPECT_LE(r.iterations, 1);
+        }
+      }
+    }
+    EXPECT_GE(located, 50);
+    EXPECT_GE(sticks, 20);
+  }
+}
+
 TEST(FrictionBlockTest, RejectsBadInput) {
   const FrictionPatch patch = tiltedDisk();
   FrictionBlockInput in;

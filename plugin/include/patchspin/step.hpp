@@ -25,6 +25,10 @@ struct FrictionBlockInput {
   Mat3 K = Mat3::Identity();    // slip change per unit impulse, SPD [1/(kg)]
   double L = 0.0;               // mu * normal impulse [N s], >= 0
   Vec3 warmSlip = Vec3::Zero(); // previous solution's slip, or zero
+  // Exact law only: where the stick test's search for the limit set's
+  // boundary along -K^-1 b starts, a previous result's gaugeSlip, or zero
+  // (then from the ellipsoidal estimate). Only its direction is used.
+  Vec3 warmGauge = Vec3::Zero();
   // Relative residual at which the iterations stop, in [0, 1); 0 selects the
   // default 1e-14 (~100 ulps of double). A caller whose inputs carry less
   // precision (single-precision Bullet: ~6e-8) may stop earlier.
@@ -36,6 +40,13 @@ struct FrictionBlockResult {
   Vec3 slip = Vec3::Zero();     // s = b + K lambda [m/s]
   bool sticking = false;
   int iterations = 0;
+  // Exact law, where the stick test located the boundary of the unit limit
+  // set E along lambda0 = -K^-1 b: the slip direction w (unit) and the law
+  // value q(w) there, a point of E's boundary whose direction is within the
+  // block's tolerance of that ray. Zero when the test did not locate it (a
+  // slip proven first, the ellipsoidal law).
+  Vec3 gaugeSlip = Vec3::Zero();
+  Vec3 gaugeValue = Vec3::Zero();
 };
 
 // Solves the block for `patch` (its Pi or its exact law; its Pz only sets the
