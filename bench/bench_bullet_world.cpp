@@ -141,7 +141,8 @@ BENCHMARK(BM_BulletWorldStep)
 // rules switched off one at a time: 0 default, 1 no skipping of settled
 // patches, 2 Pi refreshed on every change of the centre of pressure, 3 both,
 // 4 one refresh tolerance for every visit (no larger tolerance for a
-// second refresh in the same step), 5 no quick stick test.
+// second refresh in the same step), 5 no quick stick test, 6 no deferred
+// refreshes while sticking.
 void BM_SkipRules(benchmark::State& state) {
   SceneOptions opt;
   const int rules = int(state.range(0));
@@ -149,6 +150,7 @@ void BM_SkipRules(benchmark::State& state) {
   if (rules & 2) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
   if (rules == 4) opt.settings.pressureLagTolerance = opt.settings.pressureRefreshTolerance;
   if (rules == 5) opt.settings.quickStick = false;
+  if (rules == 6) opt.settings.deferStickingRefresh = false;
   World w(1000, kEllipsoidal, opt);
   long k = 0;
   for (auto _ : state) {
@@ -156,11 +158,15 @@ void BM_SkipRules(benchmark::State& state) {
     w.world->stepSimulation(btScalar(kDt), 0);
   }
   addSolverCounters(state, *w.patchSolver());
-  state.SetLabel(rules == 0 ? "default" : rules == 1 ? "no settled-patch skipping"
-                 : rules == 2 ? "Pi refreshed on every change" : rules == 3 ? "neither"
-                 : rules == 4 ? "no second tolerance per step" : "no quick stick test");
+  state.SetLabel(rules == 0   ? "default"
+                 : rules == 1 ? "no settled-patch skipping"
+                 : rules == 2 ? "Pi refreshed on every change"
+                 : rules == 3 ? "neither"
+                 : rules == 4 ? "no second tolerance per step"
+                 : rules == 5 ? "no quick stick test"
+                              : "no deferred refreshes while sticking");
 }
-BENCHMARK(BM_SkipRules)->DenseRange(0, 5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SkipRules)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
 
 // 1000 coins at rest on the plane (uniform pressure: Pi = I, never
 // refreshed), awake: patch ellipsoidal / exact against stock; and the same

@@ -121,6 +121,15 @@ struct PatchSolverSettings {
   // instead of plain Gauss-Seidel over the two, which converges like the
   // mass ratio.
   bool supportedStacks = true;
+  // A refresh that falls due while the patch sticks (at its last visit or
+  // at the end of the last step) with its stick impulse inside half of the
+  // quick test's set, and with the centre of pressure within 1e-2 of the
+  // diameter of the last refresh's, is deferred: the stick impulse does not
+  // depend on the law, and a move that small changes Pi by a few percent
+  // at most, so the stick test decides as with the refreshed law. Such a
+  // patch's law lags its centre of pressure by up to 1e-2 of the diameter
+  // while it sticks (maxPressureLag).
+  bool deferStickingRefresh = true;
 };
 
 // What the solver did in the last step (all islands), for profiling.
@@ -130,6 +139,7 @@ struct PatchSolverStats {
   long skippedVisits = 0;    // visits skipped (settled patch, bodies untouched)
   long blockSolves = 0;      // friction block solves (others reused the last solution)
   long pressureRefreshes = 0;  // Pi / exact-law pressure refreshes
+  long deferredRefreshes = 0;  // visits whose due refresh was deferred (deferStickingRefresh)
   long quickSticks = 0;        // friction visits that stuck by the quick test (no block solve)
   long shapeRebuilds = 0;      // patch shapes and friction laws built anew (outline changed)
   // friction visits whose law or block refused its input (patchspin::Error);
