@@ -32,6 +32,23 @@ void validate(const FrictionBlockInput& in) {
   constexpr double kSymmetryTol = 1e-10;
   if (!((in.K - in.K.transpose()).cwiseAbs().maxCoeff() <= kSymmetryTol * in.K.cwiseAbs().maxCoeff()))
     throw Error("friction block matrix K must be symmetric (positive definite)");
+  // K's diagonal spanning at most kMaxDiagonalSpan: beyond ~1e36 both blocks
+  // lose every digit (measured: 1000 blocks per two decades, K = D^1/2 C
+  // D^1/2 with C unit-diagonal and well conditioned, b at each row's own
+  // scale; the law at the slip to 1e-14 up to a span of 1e34, then 0.8 to
+  // 1.2 of the set off it from 1e36 on, both laws; the fuzz target found
+  // such errors from 2e82). K's diagonal holds the slip mobilities of the
+  // force rows (1/m and r^2/I terms) and of the spin row (rho^2/I terms) of
+  // the same two bodies, so its span is a ratio of lengths squared: within
+  // the lever domain (step.hpp) it stays below ~1e20 even for a body 1e5
+  // times larger than its patch. 1e30 leaves a margin of 1e6 below the
+  // measured onset. (Non-positive diagonals are left to the positive
+  // definiteness checks.)
+  constexpr double kMaxDiagonalSpan = 1e30;
+  const Vec3 kd = in.K.diagonal();
+  if (kd.minCoeff() > 0.0 && !(kd.maxCoeff() <= kMaxDiagonalSpan * kd.minCoeff()))
+    throw Error("friction block out of range: the diagonal of K spans more than 1e30 (" +
+                internal::formatDouble(kd.minCoeff()) + " to " + internal::formatDouble(kd.maxCoeff()) + ")");
   internal::requireFinite(in.L, "friction block bound L");
   if (in.L < 0.0) throw Error("friction block bound L must be >= 0: got " + internal::formatDouble(in.L));
   internal::requireFinite(in.tolerance, "friction block tolerance");
@@ -58,6 +75,22 @@ void requireNotNumericallySingular(const Mat3& Ksym, const Mat3& Kinv) {
                 internal::formatDouble(cond) + " after scaling to a unit diagonal)");
 }
 void requireNotNumericallySingular(const Mat3& Ksym) { requireNotNumericallySingular(Ksym, Ksym.inverse()); }
+
+// A stick's impulse must stop the slip, b + K lambda = 0, to the round-off
+// of a backward-stable solve (a few eps of |b| + |K| |lambda|; kStickResidual
+// leaves 1e5 of room). A K that passed the cheaper singularity tests but is
+// singular to round-off misses it by far (found by fuzzing: K with entries
+// 1.6e20 to 2.2e20 whose unit-diagonal form has an off-diagonal 1 - 1e-16,
+// positive leading minors by round-off: the ellipsoidal block stuck with
+// b + K lambda = 0.7 against |b| = 0.7): refused as numerically singular.
+constexpr double kStickResidual = 1e-10;
+Vec3 requireStopsTheSlip(const Mat3& K, const Vec3& b, const Vec3& lambda) {
+  const double residual = (b + K * lambda).stableNorm();
+  if (!(residual <= kStickResidual * (b.stableNorm() + K.stableNorm() * lambda.stableNorm())))
+    throw Error("friction block matrix K is numerically singular (a stick leaves b + K lambda = " +
+                internal::formatDouble(residual) + " against |b| = " + internal::formatDouble(b.stableNorm()) + ")");
+  return lambda;
+}
 
 // Ellipsoidal law q(w) = -Pi w. With A = L K Pi the slip s = b - A w must
 // equal r w: w = (r I + A)^-1 b with |w| = 1, a scalar root in r > 0.
@@ -152,7 +185,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   }
   if (stick) {
     out.sticking = true;
-    out.impulse = lambda0;
+    out.impulse = requireStopsTheSlip(in.K, in.b, lambda0);
     out.slip.setZero();
     return out;
   }
@@ -254,7 +287,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // (found by fuzzing)
   auto stickImpulse = [&] {
     const Vec3 solved = -in.K.partialPivLu().solve(in.b);
-    return solved.allFinite() ? solved : lambda0;
+    return requireStopsTheSlip(in.K, in.b, solved.allFinite() ? solved : lambda0);
   };
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {
@@ -557,16 +590,21 @@ FrictionBlockResult requireFiniteResult(const FrictionBlockResult& r) {
 }  // namespace
 
 namespace {
+// K positive definite: the leading minors of its symmetric part (Sylvester),
+// as the exact path checks.
+void requirePositiveDefinite(const Mat3& K) {
+  const Mat3 Ksym = 0.5 * (K + K.transpose());
+  const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
+  if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
+    throw Error("friction block matrix K is not positive definite");
+}
+
 // The block after validation, at the scale it is given.
 FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const FrictionBlockInput& input) {
   if (model == Model::Ellipsoidal) {
     // K positive definite, as documented and as the exact path checks
-    // (leading minors of its symmetric part; found by fuzzing: an
-    // indefinite K gave a NaN impulse here)
-    const Mat3 Ksym = 0.5 * (input.K + input.K.transpose());
-    const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
-    if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
-      throw Error("friction block matrix K is not positive definite");
+    // (found by fuzzing: an indefinite K gave a NaN impulse here)
+    requirePositiveDefinite(input.K);
     return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
   }
   return requireFiniteResult(solveExact(patch, input));
@@ -574,9 +612,82 @@ FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const Fr
 
 }  // namespace
 
+namespace {
+
+// The block's domain in the patch (step.hpp), both laws; a patch outside it
+// is refused whatever b, K and L are.
+//  * pressure >= 0 on the patch, to kNegativePressureTol of the mean
+//    pressure Pz / A: both blocks rest on a convex limit set (the exact one
+//    on maximum dissipation, the ellipsoidal one on an SPD Pi), which a
+//    pressure with negative parts does not give (found by fuzzing: a sliver
+//    with Tx = 1 against Pz = 1e-8, min p = -1e8 of the mean, returned a
+//    torque 1e18 times outside its bound; couples of 1e147 and more against
+//    Pz = 1e-8 made Pi ~ 1e150 and overflowed the ellipsoidal L K Pi).
+//    1e-6 is nearestAdmissibleLoads' own acceptance of its projection (its
+//    results are ~1e-12 off in normal cases), so every pressure it returns,
+//    the Bullet integration's, is inside.
+//  * lever max|r| / rho within [kMinLever, kMaxLever]: the law turns from
+//    force to torque across |w_z| / |w_xy| ~ 1 / lever, which the blocks
+//    resolve to ~1e-14 lever (long) and ~1e-13 / lever (short) of the set,
+//    measured over hard blocks (slip near that turn): at most 6e-10 of the
+//    set at 1e5 and 8e-9 at 1e-5, with errors of the whole set beyond
+//    (fuzzing: the exact block from 2.3e5 and below 1.6e-6; the same sweep
+//    put the ellipsoidal block 0.9 of the set off from 3e7). Eq. (11) gives 1 to ~3; rho is a coordinate scale that
+//    does not change the physics, so only a rho chosen more than 1e5 times
+//    off the patch's size is refused.
+constexpr double kNegativePressureTol = 1e-6;
+constexpr double kMinLever = 1e-5, kMaxLever = 1e5;
+
+// The exact law sums the pressure's terms about O, each up to A |c_k|
+// max|r|^k / Pz of the unit law, over kernel integrals that cancel by
+// diameter^2 / A on a sliver: its round-off is ~kTermsUlps eps times
+// max(1, diameter^2 / A) times those terms (the fuzz targets' model; found
+// up to ~90 ulps there). Where that reaches kLawNoDigits of the unit force
+// the law has lost its digits, and the block's answer with it (found by
+// fuzzing: a 1e-8 m x 0.5 m sliver with cy = -2.75e16 against Pz = 0.32
+// gave a unit law whose torque reached 288 where its bound is 1, and the
+// block torques 100 times outside the set). Ordinary patches are ~1e4 and
+// more below it (a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10).
+constexpr double kTermsUlps = 64.0, kLawNoDigits = 1e-6;
+void requireExactLawDigits(const FrictionPatch& patch) {
+  const PatchShape& shape = patch.shape();
+  const LinearPressure& p = patch.pressure();
+  const double rmax = shape.maxDistanceFromOrigin();
+  const double terms = shape.area() * (std::abs(p.p0) + (std::abs(p.cx) + std::abs(p.cy)) * rmax) / patch.Pz();
+  const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
+  const double roundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * terms;
+  if (!(roundOff <= kLawNoDigits)) {
+    throw Error("friction block: the exact law has no digits for this pressure and patch (round-off ~" +
+                internal::formatDouble(roundOff) + " of its force: terms about O " + internal::formatDouble(terms) +
+                " times Pz on a patch of diameter^2 / area " + internal::formatDouble(sliver) + ")");
+  }
+}
+
+void requireBlockDomain(const FrictionPatch& patch, Model model) {
+  const PatchShape& shape = patch.shape();
+  const double lever = shape.maxDistanceFromOrigin() / patch.rho();
+  if (!(lever >= kMinLever && lever <= kMaxLever)) {
+    throw Error("friction block out of range: the patch's lever max|r| / rho = " + internal::formatDouble(lever) +
+                " lies outside [1e-5, 1e5] (rho = " + internal::formatDouble(patch.rho()) +
+                " m); choose rho within 1e5 of the patch's size (default: Eq. (11))");
+  }
+  if (patch.isHertz()) return;  // the Hertz pressure (57) is >= 0
+  const double meanPressure = patch.Pz() / shape.area();
+  const double lowest = minPressure(shape, patch.pressure());
+  if (!(lowest >= -kNegativePressureTol * meanPressure)) {
+    throw Error("friction block: the pressure is negative on the patch (min p = " + internal::formatDouble(lowest) +
+                " Pa against a mean of " + internal::formatDouble(meanPressure) +
+                " Pa); the block needs p >= 0 (use nearestAdmissibleLoads)");
+  }
+  if (model == Model::Exact) requireExactLawDigits(patch);
+}
+
+}  // namespace
+
 FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
                                        const FrictionBlockInput& input) {
   validate(input);
+  requireBlockDomain(patch, model);
   FrictionBlockResult out;
   if (input.L == 0.0) {  // no normal impulse: no friction
     out.slip = input.b;
@@ -643,6 +754,10 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
         // by one ulp and -K^-1 b is far outside L E, so the block slips
         // along b with the law there (found by fuzzing: |b| = 1e300 against
         // L |K| = 2e-9 kept the warm start's q, 0.77 of the set off the law)
+        // (K must still be positive definite, as on every other path: found
+        // by fuzzing, K = diag(-0.099, -0.071, 6.8e-4) against L = 5e-324 was
+        // accepted here; checked at unit scale, where its minors are in range)
+        requirePositiveDefinite(unit.K);
         FrictionBlockResult r;
         r.impulse = input.L * patch.unitQ(model, unit.b);
         r.slip = input.b + input.K * r.impulse;

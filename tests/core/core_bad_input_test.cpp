@@ -17,6 +17,7 @@
 #include <complex>
 #include <functional>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -263,6 +264,9 @@ TEST(CoreBadInput, FrictionBlock) {
 // step used to linearise q with a huge Jacobian, and the impulse left the
 // limit set (found by fuzzing: |impulse_xy| = 1.28 L). The impulse must be
 // L q(s^) of the law itself, whose force part is at most L (p >= 0).
+// Fifth round: outside the block's domain (lever max|r| / rho in [1e-5,
+// 1e5], step.hpp), where the block is not accurate: now refused, naming the
+// lever.
 TEST(CoreBadInput, ExactBlockWithLongLever) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const PatchLoads loads{2.271553102614555e-08, 2.0077880525071972e-09, 2.0077884542030355e-09};
@@ -272,16 +276,7 @@ TEST(CoreBadInput, ExactBlockWithLongLever) {
   in.b = Vec3(0.5, -524288.0, 1e-8);
   in.L = 1e-8;
   in.K = Vec3(1e-8, 1e-8, 0.5).asDiagonal();
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
-  ASSERT_FALSE(r.sticking);
-  // round-off of L q: a few ulps
-  constexpr double kRoundOff = 1e-12;
-  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * (1.0 + kRoundOff));
-  // the law at the returned slip, to the solver's convergence (the slip's
-  // direction is known to 1e-14 of the scale |b| over |s| ~ |b|): 1e-6 of L
-  constexpr double kLawTol = 1e-6;
-  const Vec3 q = patch.unitQ(Model::Exact, r.slip);
-  EXPECT_LT((r.impulse - in.L * q).norm(), kLawTol * in.L);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"lever"}));
 }
 
 // Ellipsoidal block with a long lever (rho = 1e-8 on a 0.5 m disk), a
@@ -295,6 +290,9 @@ TEST(CoreBadInput, ExactBlockWithLongLever) {
 // can resolve here: the slip b + K impulse is a difference of terms of size
 // |b| + L |K| |Pi| (4e7 here), so its direction, and the law at it, are
 // known to eps (|b| + L |K| |Pi|) / |s| relative to L |Pi|.
+// Fifth round: outside the block's domain (lever max|r| / rho in [1e-5,
+// 1e5], step.hpp), where the block is not accurate: now refused, naming the
+// lever.
 TEST(CoreBadInput, EllipsoidalBlockWithLongLever) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {0.5, 0.5, 0.5}), 1e-8, 1e-8);
@@ -302,19 +300,7 @@ TEST(CoreBadInput, EllipsoidalBlockWithLongLever) {
   in.b = Vec3(1e-8, 1e-8, -1.0);
   in.L = 1e-8;
   in.K = Vec3(1e-8, 0.5, 28835840.0).asDiagonal();
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
-  ASSERT_FALSE(r.sticking);
-  const double s = r.slip.norm();
-  ASSERT_GT(s, 0.0);
-  // a few roundings of the slip's largest terms
-  constexpr double kConditionUlps = 4.0;
-  const double eps = std::numeric_limits<double>::epsilon();
-  const double lawScale = in.L * patch.Pi().norm();
-  const double resolvable =
-      kConditionUlps * eps * (in.b.norm() + in.L * in.K.norm() * patch.Pi().norm()) / s;
-  const Vec3 q = patch.unitQ(Model::Ellipsoidal, r.slip);
-  EXPECT_LT((r.impulse - in.L * q).norm(), resolvable * lawScale);
-  EXPECT_LT(resolvable, 1.0);  // the check above says something
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"lever"}));
 }
 
 // Exact block with a long lever (max|r| / rho = 1e8, O on the rim): the
@@ -324,32 +310,30 @@ TEST(CoreBadInput, EllipsoidalBlockWithLongLever) {
 // and every slip candidate tried had a torque part. The block stuck with an
 // impulse 2.8 times the largest friction force L ∫|p| / Pz. Checked against
 // the limit set's force bound and the law at the returned slip.
+// Fifth round: outside the block's domain (lever max|r| / rho in [1e-5,
+// 1e5], step.hpp), where the block is not accurate: now refused, naming the
+// lever.
 TEST(CoreBadInput, ExactBlockWithLongLeverDoesNotStickOutsideTheSet) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(0.5, 1e-8));
   const FrictionPatch patch(disk,
                             LinearPressure::fromLoads(disk, {0.34742866443796361, -9.2650840233638689e-10,
                                                              0.13028574916423646}),
                             1e-8, 1e-8);
-  ASSERT_GE(minPressure(disk, patch.pressure()), 0.0);  // so ∫|p| = Pz
+  ASSERT_GE(minPressure(disk, patch.pressure()), 0.0);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 1e-8);
   in.L = 1e-8;
   in.K = Vec3(0.5, 0.5, 9701425152.0).asDiagonal();
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
-  // |impulse_xy| <= L ∫|p| / Pz = L, to round-off of L q
-  constexpr double kRoundOff = 1e-12;
-  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * (1.0 + kRoundOff));
-  // -K^-1 b has force 2.8 L: it is outside L E, the block must slip
-  EXPECT_FALSE(r.sticking);
-  // (the law at the returned slip is not checked: the slip's spin part is
-  // b_z + K_zz impulse_z with K_zz = 1e10 and impulse_z a difference of
-  // 4.5e7-sized torques, so double cannot resolve it; open, fuzz/README.md)
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"lever"}));
 }
 
 // A second false stick with a long lever (5e7): lambda0 = -K^-1 b =
 // (-1, -1, -1) against L = 0.5, force 1.4 > L. Every separating direction
 // lies in the force plane (any torque part meets E's 2.5e7 torque extent),
 // and no candidate tried was there.
+// Fifth round: outside the block's domain (lever max|r| / rho in [1e-5,
+// 1e5], step.hpp), where the block is not accurate: now refused, naming the
+// lever.
 TEST(CoreBadInput, ExactBlockWithLongLeverSlipsInTheForcePlane) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(
@@ -360,15 +344,7 @@ TEST(CoreBadInput, ExactBlockWithLongLeverSlipsInTheForcePlane) {
   in.L = 0.5;
   in.K = Vec3(1e-8, 1e-8, 1e-8).asDiagonal();
   in.warmSlip = Vec3(0.5, 0.5, 0.5);
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
-  // the force part of L E is at most L ∫|p| / Pz (round-off of L q: 1e-12)
-  constexpr double kRoundOff = 1e-12;
-  const double absRatio = minPressure(disk, patch.pressure()) >= 0.0
-                              ? 1.0
-                              : std::numeric_limits<double>::infinity();
-  ASSERT_EQ(absRatio, 1.0);
-  EXPECT_FALSE(r.sticking);
-  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * absRatio * (1.0 + kRoundOff));
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"lever"}));
 }
 
 // Ellipsoidal block with an ill-conditioned K (entries 0.5 to 9.5e19): the
@@ -409,9 +385,12 @@ TEST(CoreBadInput, EllipsoidalBlockWithIllConditionedK) {
 // makes them consistent. Checked against the law at the returned slip.
 TEST(CoreBadInput, ExactBlockWithHugeFreeSlipIsTheLawAtItsSlip) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
+  // (fifth round: the fuzz input's rho = 1e-8, a lever of 5e7, is outside
+  // the block's domain now; the longest lever inside it, 1e5, instead)
+  const double kRhoAtMaxLever = disk.maxDistanceFromOrigin() / 1e5;
   const FrictionPatch patch(
       disk, LinearPressure::fromLoads(disk, {9.860043733131926e+299, -3.0247296913024801e+297, 1.2321343576385495e+299}),
-      0.5, 1e-8);
+      0.5, kRhoAtMaxLever);
   FrictionBlockInput in;
   in.b = Vec3(1e-08, 8.0428159874152501e+230, 0.5);
   in.L = 0.5;
@@ -470,7 +449,11 @@ TEST(CoreBadInput, ExactBlockWithNumericallySingularK) {
     const double setSize = 1.0 + shape.maxDistanceFromOrigin() / patch.rho();
     EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * setSize);
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+    // (fifth round: this K's diagonal spans 6e33, refused as out of range
+    // before its condition is looked at)
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("singular") != std::string::npos || what.find("diagonal of K spans") != std::string::npos)
+        << what;
   }
 
   // the ellipsoidal block with K of entries 3e-16 to 9.9e19, whose y-z block
@@ -492,7 +475,10 @@ TEST(CoreBadInput, ExactBlockWithNumericallySingularK) {
     ASSERT_FALSE(r.sticking);
     EXPECT_LT((r.impulse - ell.L * small.unitQ(Model::Ellipsoidal, r.slip)).norm(), kLawTol * ell.L * small.Pi().norm());
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+    // (fifth round: this K's diagonal spans 3e35, refused as out of range)
+    const std::string what = e.what();
+    EXPECT_TRUE(what.find("singular") != std::string::npos || what.find("diagonal of K spans") != std::string::npos)
+        << what;
   }
 }
 
@@ -507,6 +493,10 @@ TEST(CoreBadInput, ExactBlockWithNumericallySingularK) {
 // returned slip, to what double resolves there: s_xy = b_xy + K_xy L q_xy
 // carries eps |K| L |q| of round-off, so the slip's direction, and the law
 // at it, are known to kResolutionUlps eps |K| L set / |s| (relative to set).
+// Fifth round: a diagonal spanning more than 1e30 is out of range
+// (step.hpp; this one spans 6.6e138): refused now, naming K's diagonal; the
+// same block with K_zz = 2.3e-19 (a span of 6.6e28, inside) still takes
+// the badly scaled path (spans above 1e8) and is checked as before.
 TEST(CoreBadInput, ExactBlockWithBadlyScaledK) {
   const PatchShape disk = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(
@@ -517,6 +507,8 @@ TEST(CoreBadInput, ExactBlockWithBadlyScaledK) {
   in.L = 0.5;
   in.K = Vec3(9701425152.0, 14943780864.0, 2.2739476699754749e-129).asDiagonal();
   in.warmSlip = Vec3(0.0, -0.0, 0.5);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"diagonal of K spans"}));
+  in.K(2, 2) = 2.2739476699754749e-19;
   const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
   ASSERT_FALSE(r.sticking);
   const double set = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
@@ -553,6 +545,9 @@ TEST(CoreBadInput, ExactBlockWithBadlyScaledK) {
 // target does: where the slip is long enough for its direction to be
 // resolved (|s| > 1e-2 of the slip scale |b| + L |K| set), the impulse is
 // the law at it.
+// Fifth round: outside the block's domain (lever max|r| / rho in [1e-5,
+// 1e5], step.hpp), where the block is not accurate: now refused, naming the
+// lever.
 TEST(CoreBadInput, ExactBlockWithLongLeverAndStiffSpin) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {0.5, 0.5, 0.5}), 1e-8, 1e-8);
@@ -561,15 +556,7 @@ TEST(CoreBadInput, ExactBlockWithLongLeverAndStiffSpin) {
   in.L = 1e-8;
   in.K = Vec3(1e-8, 0.5, 7410810880.0).asDiagonal();
   in.warmSlip = Vec3(1e-8, 0.0, 0.0);
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
-  const double set = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
-  const double slipScale = in.b.norm() + in.L * in.K.norm() * set;
-  // the fuzz target's kLawSlack and its resolvability threshold 1e4 kLawSlack
-  constexpr double kLawTol = 1e-6;
-  if (!r.sticking && r.slip.norm() > 1e4 * kLawTol * slipScale) {
-    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * set);
-  }
-  EXPECT_LT((r.slip - in.b - in.K * r.impulse).norm(), 1e-9 * slipScale);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"lever"}));
 }
 
 // Exact block on a 0.5 m disk with a couple of 6e228 (its pressure, hence
@@ -577,24 +564,21 @@ TEST(CoreBadInput, ExactBlockWithLongLeverAndStiffSpin) {
 // range): the block was refused because its ellipsoidal slip candidate
 // was (found by fuzzing). Now solved: a stick has b + K lambda = 0 and a
 // force inside L ∫|p| / Pz (brute-force quadrature of |p|).
+// Fifth round: that pressure is almost all negative (min p = -6e229 against
+// a mean of 3e3), outside the block's domain (p >= 0 to 1e-6 of the mean,
+// step.hpp): both laws now refuse it, naming the pressure.
 TEST(CoreBadInput, ExactBlockDoesNotInheritTheEllipsoidalRefusal) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const LinearPressure pressure = LinearPressure::fromLoads(disk, {0.5, -14630256640.0, 5.9567624915341203e+228});
   const FrictionPatch patch(disk, pressure, 2.2204460492503131e-16, 0.0);
+  ASSERT_LT(minPressure(disk, pressure), 0.0);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 1e-8);
   in.L = 1e-8;
   in.K = Vec3(0.5, 220.71875, 1e-8).asDiagonal();
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
-  // the quadrature's accuracy; the force bound to it and a few 3x3
-  // round-offs; b + K lambda to round-off; the law as the fuzz target checks
-  constexpr double kOracleTol = 1e-10, kBoundTol = 1e-9, kSlipTol = 1e-12, kLawTol = 1e-6;
-  const double absP = testing::bruteForceIntegral(disk, [&](const Vec2& p) { return std::abs(pressure.at(p)); }, kOracleTol);
-  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), in.L * absP / patch.Pz() * (1.0 + kBoundTol));
-  if (r.sticking) {
-    EXPECT_LT((in.b + in.K * r.impulse).norm(), kSlipTol * in.b.norm());
-  } else {
-    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * r.impulse.norm());
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"pressure is negative"}));
   }
 }
 
@@ -641,8 +625,10 @@ TEST(CoreBadInput, FrictionBlockFarFromUnitScale) {
   // (L K Pi overflowed: refused before; at unit scale with L clamped to keep
   // |L K Pi| in range, b first underflowed to 0 and the block stuck with a
   // zero impulse, found by fuzzing the unit-scale path)
-  const PatchShape speck = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
-  const FrictionPatch lever(speck, LinearPressure::fromLoads(speck, {0.5, 1e-8, -1.0}), 1e-8, 1e-8);
+  // (fifth round: on the uniform disk; the fuzz input's patch, rho = 1e-8
+  // on a 0.5 m disk with a negative couple, is outside the block's domain
+  // now, and the bug was in the scale of b, K and L)
+  const FrictionPatch& lever = patch;
   FrictionBlockInput stiff;
   stiff.b = Vec3(1e-8, 0.5, 1e-300);
   stiff.L = 1e300;
@@ -691,7 +677,9 @@ TEST(CoreBadInput, FrictionBlockFarFromUnitScale) {
   // r = 1e-88, where |N(r)| underflowed, and returned a zero impulse (found
   // by fuzzing the unit-scale path). Slips with the law at its slip.
   const PatchShape offset = PatchShape::disk(1.0, Vec2(1.0, 1.0));
-  const FrictionPatch tilted(offset, LinearPressure::fromLoads(offset, {0.5, 0.5, 0.5}), 0.5, 0.5);
+  // (fifth round: the uniform pressure; the fuzz input's loads (0.5, 0.5,
+  // 0.5) are negative on part of the disk, outside the block's domain now)
+  const FrictionPatch tilted(offset, LinearPressure::fromLoads(offset, {0.5, -0.5, 0.5}), 0.5, 0.5);
   FrictionBlockInput far;
   far.b = Vec3(8.2454865162493023e+136, 8.8001147761699866e+223, 1.0);
   far.L = 1.0;
@@ -1030,7 +1018,11 @@ TEST(CoreBadInput, FuzzFindingsAtTheEndsOfDoublesRange) {
 // began only at 1e100). Both laws: slip = b + K lambda and lambda = L q(s^).
 TEST(CoreBadInput, FrictionBlockWithHugeFreeSlipBelowTheOldUnitScale) {
   const PatchShape disk = PatchShape::disk(1.0, Vec2(1.0, 1.0));
-  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {1.0, 1.0, 1.0}), 1.0, 1.0);
+  // (fifth round: the uniform pressure, Tx = -Pz y_c, Ty = Pz x_c; the
+  // fuzz input's loads (1, 1, 1) are negative on part of the disk, outside
+  // the block's domain now, and the bug was in the scale of b)
+  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {1.0, -1.0, 1.0}), 1.0, 1.0);
+  ASSERT_GE(minPressure(disk, patch.pressure()), 0.0);
   FrictionBlockInput in;
   in.b = Vec3(184.71875, 1.106409418319547e+74, 0.5);
   in.L = 0.5;
@@ -1091,8 +1083,12 @@ TEST(CoreBadInput, FrictionBlockRefusesAnAsymmetricK) {
 // scale was widened to 1e40). The block slips with lambda = L q(s^).
 TEST(CoreBadInput, EllipsoidalBlockAtUnitScaleWithTinyLDoesNotStick) {
   const PatchShape speck = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
-  const FrictionPatch patch(speck, LinearPressure::fromLoads(speck, {1.106355352524917e+74, 1e-08, 5075.75}), 1e-8,
-                            1e-8);
+  // (fifth round: the uniform pressure of the fuzz input's Pz; its couple
+  // left p negative on part of the speck, outside the block's domain now,
+  // and the bug was in the scale of L)
+  const double Pz = 1.106355352524917e+74;
+  const FrictionPatch patch(speck, LinearPressure::fromLoads(speck, {Pz, -Pz * 1e-8, Pz * 1e-8}), 1e-8, 1e-8);
+  ASSERT_GE(minPressure(speck, patch.pressure()), 0.0);
   FrictionBlockInput in;
   in.b = Vec3(1e-08, 0.5, 1.130272745509552e+74);
   in.L = 1e-8;
@@ -1208,6 +1204,11 @@ TEST(CoreBadInput, LimitDirectionsOfAnOverflowingFieldAtItsOwnScale) {
 // was refused as overflowing, while -K^-1 b is 1e-292 against a set of
 // L |Pi| ~ 1e-27 (found by fuzzing). The unit scale now counts Pi's size when
 // it clamps L: the block is solved, b + K lambda = 0 to round-off.
+// Fifth round: a Pi of 1e281 needs a pressure that is almost all negative
+// (and this one has a lever of 1.5e8, and K's diagonal spans 8e35):
+// outside the block's domain
+// (step.hpp), now refused. Within it Pi is at most ~lever^2 <= 1e10, so the
+// clamp that counts Pi's exponent stays on the path, for smaller exponents.
 TEST(CoreBadInput, EllipsoidalBlockWithHugePiAndTinyB) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1.0, 0.0));
   const double tiny = std::numeric_limits<double>::min();
@@ -1218,15 +1219,307 @@ TEST(CoreBadInput, EllipsoidalBlockWithHugePiAndTinyB) {
   in.L = tiny;
   in.K << 36917776.0, 4.508515560323756e-225, -9.3386817376370605e-309, 4.508515560323756e-225,
       1.5246092141020473e+20, 123.47506688, -9.3386817376370605e-309, 123.47506688, 2.0000000000000002e-16;
-  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
-  ASSERT_TRUE(r.impulse.allFinite());
-  ASSERT_TRUE(r.sticking);
-  // a backward-stable solve: a few ulps of |K| |lambda| and of |b|, plus
-  // lambda's rounding to the denormal grid (half a step per entry) through K
-  constexpr double kResidualTol = 1e-13;
-  const double denormals = 4.0 * std::numeric_limits<double>::denorm_min() * in.K.stableNorm();
-  EXPECT_LT((in.b + in.K * r.impulse).stableNorm(),
-            kResidualTol * (in.b.stableNorm() + in.K.stableNorm() * r.impulse.stableNorm()) + denormals);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); },
+                          {"lever", "pressure", "diagonal of K spans"}));
+}
+
+
+// ---- fifth fuzzing round: the block's domain (step.hpp) ----------------------
+
+// A pressure with negative parts: a 1e-8 m x 0.5 m sliver with Tx = 1
+// against Pz = 1e-8 (min p = -6e16 of the mean). Neither law is maximum
+// dissipation there (the exact block returned a torque 1e18 times outside
+// its bound; fuzz/known_failures/step_exact_negative_pressure_torque_outside,
+// now in the step corpus). Both laws now refuse it, naming the pressure; at
+// the domain's edge (min p = -1e-6 of the mean) a pressure just inside is
+// solved and one just outside refused; and every pressure
+// nearestAdmissibleLoads returns (the Bullet integration's) is inside.
+TEST(CoreBadInput, FrictionBlockRefusesANegativePressure) {
+  const PatchShape sliver = PatchShape::polygon({{-2.5000000000000001e-09, -0.24999999000000006},
+                                                 {7.500000000000001e-09, -0.24999998999999995},
+                                                 {2.5000000000000001e-09, 0.25000001000000005},
+                                                 {-7.500000000000001e-09, 0.25000000999999994}});
+  const FrictionPatch tipped(sliver, LinearPressure::fromLoads(sliver, {1e-8, 4.9406564584124654e-324, 1.0}), 1e-8,
+                             0.5);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-8, 1e-8, 1e-8);
+  in.L = 0.5;
+  in.K = Vec3(1e-8, 456416.0, 0.5).asDiagonal();
+  in.warmSlip = Vec3(1e-8, 4.9406564584124654e-324, 0.0);
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(tipped, model, in); }, {"pressure is negative"}));
+  }
+  // the edge, on a unit disk at O: p = p0 + cx x has its minimum p0 - cx
+  // (R = 1) by construction, mean p0 = Pz / A
+  const PatchShape disk = PatchShape::disk(1.0);
+  const double p0 = 1.0 / kPi;
+  auto withMinimum = [&](double relative) {  // min p = relative * p0
+    return FrictionPatch(disk, LinearPressure{p0, p0 * (1.0 - relative), 0.0}, 0.5, 0.0);
+  };
+  FrictionBlockInput ordinary;
+  ordinary.b = Vec3(1.0, 0.5, 0.25);
+  ordinary.L = 0.5;
+  constexpr double kJustInside = -0.5e-6, kJustOutside = -2e-6;  // the domain's edge is -1e-6
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_NO_THROW(solveFrictionBlock(withMinimum(kJustInside), model, ordinary));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(withMinimum(kJustOutside), model, ordinary); },
+                             {"pressure is negative"}));
+  }
+  // nearestAdmissibleLoads' projections, of loads tipping far out, on a disk
+  // and on a polygon (deterministic angles)
+  const PatchShape hexagon = PatchShape::regularPolygon(6, 0.3, Vec2(0.1, -0.05));
+  for (const PatchShape& shape : {disk, hexagon}) {
+    for (int i = 0; i < 24; ++i) {
+      // centre of pressure 0.3 to 1.2 times max|r| from O: mostly outside
+      // the kern (a quarter of the radius on the disk)
+      const double angle = 2.0 * kPi * i / 24.0, reach = 0.3 * (1 + i % 4) * shape.maxDistanceFromOrigin();
+      const PatchLoads raw{1.0, -reach * std::sin(angle), reach * std::cos(angle)};
+      const PatchLoads loads = nearestAdmissibleLoads(shape, raw, shape.defaultRho());
+      ASSERT_GT(loads.Pz, 0.0);
+      const FrictionPatch patch(shape, LinearPressure::fromLoads(shape, loads), 0.5, 0.0);
+      for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+        EXPECT_NO_THROW(solveFrictionBlock(patch, model, ordinary)) << "loads " << i << " " << toString(model);
+      }
+    }
+  }
+}
+
+// A lever max|r| / rho outside [1e-5, 1e5]: the block cannot resolve the
+// law's turn from force to torque there (fuzz/known_failures/
+// step_exact_long_lever_torque_outside: rho = 1e-8 on a 0.5 m triangle,
+// lever 5e7, returned a torque 1e8 times its bound; and
+// step_exact_short_lever_spin_kink: a 1e-8 m disk with rho = 0.5, lever
+// 4e-8, 0.5 of the set off the law). Both laws now refuse it, naming the
+// lever; the edges (rho = max|r| / 1e5 and max|r| / 1e-5, 1% inside) are
+// solved.
+TEST(CoreBadInput, FrictionBlockRefusesALeverOutsideItsDomain) {
+  const PatchShape triangle = PatchShape::polygon({{0.0, 1e-8}, {1e-8, 1e-8}, {1e-8, 0.5}});
+  const FrictionPatch longLever(
+      triangle, LinearPressure::fromLoads(triangle, {1.5039998458623872e-07, -1.8799999201279856e-08, 1.1279998843967906e-15}),
+      0.5, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(2.2250738585072014e-308, 1e-08, 27.607421875);
+  in.L = 0.5;
+  // (the fuzz input's K, whose diagonal spans 1e36, is refused for that
+  // first now; any K will do here: the lever alone is refused)
+  in.K = Mat3::Identity();
+  const PatchShape speck = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
+  const FrictionPatch shortLever(speck, LinearPressure::fromLoads(speck, {0.082551611533770858, -6.680727410960975e-10,
+                                                                          9.5894732401865139e-10}),
+                                 0.5, 0.5);
+  FrictionBlockInput kink;
+  kink.b = Vec3(1e-08, 0.5, 0.5);
+  kink.L = 1e-8;
+  kink.K << 7633478.7669410771, 7633578.4965439122, 3284467.8871689122, 7633578.4965439122, 22900435.296875,
+      18551324.1875, 3284467.8871689122, 18551324.1875, 16680083.59375;
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(longLever, model, in); }, {"lever"}));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(shortLever, model, kink); }, {"lever"}));
+  }
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(0.1, 0.0));
+  FrictionBlockInput ordinary;
+  ordinary.b = Vec3(1.0, 0.5, 0.25);
+  ordinary.L = 0.5;
+  constexpr double kInside = 0.99;
+  for (double lever : {1e5 * kInside, 1e-5 / kInside}) {
+    const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.5, disk.maxDistanceFromOrigin() / lever);
+    for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+      EXPECT_NO_THROW(solveFrictionBlock(patch, model, ordinary)) << "lever " << lever << " " << toString(model);
+    }
+  }
+}
+
+// Inside the lever domain the block is the law at its slip. Hard blocks:
+// the slip mostly translation with its spin part near the law's turn from
+// force to torque, |w_z| / |w_xy| ~ 1 / lever, and a torque capacity L K
+// lever comparable to the slip (deterministic seed; K = I or a random SPD
+// A A^T + 0.3 I; three patches, tipped pressures from nearestAdmissibleLoads).
+// Measured (this sweep, exact law): at most 8e-9 of the set at 1e-5 and
+// 6e-10 at 1e5, 1e-13 around lever 1, growing as ~1e-13 / lever and
+// ~1e-14 lever; beyond the domain, errors of the whole set (1e-7: 2.0;
+// 1e9: 1.0). Checked against the law itself at the returned slip, where the
+// slip is long enough for its direction to be resolved (|s| > 1e-2 of the
+// slip scale |b| + L |K| (1 + lever), as the fuzz target checks), to the
+// fuzz target's kLawSlack.
+TEST(CoreBadInput, FrictionBlockIsTheLawAtItsSlipAcrossTheLeverDomain) {
+  constexpr double kLawSlack = 1e-6;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const std::vector<PatchShape> shapes = {PatchShape::disk(0.5), PatchShape::disk(0.5, Vec2(0.3, -0.2)),
+                                          PatchShape::rectangle(1.0, 0.2)};
+  int checked = 0;
+  // (the domain's edges 1% inside: rho = max|r| / 1e5 rounds to a lever
+  // of 1e5 (1 + 1e-16), refused)
+  for (double lever : {1.01e-5, 1e-3, 1.0, 1e3, 0.99e5}) {
+    for (int k = 0; k < 60; ++k) {
+      const PatchShape& shape = shapes[k % 3];
+      const PatchLoads loads =
+          nearestAdmissibleLoads(shape, {1.0, 0.3 * uniform(rng), 0.3 * uniform(rng)}, shape.defaultRho());
+      const FrictionPatch patch(shape, LinearPressure::fromLoads(shape, loads), 0.5,
+                                shape.maxDistanceFromOrigin() / lever);
+      Mat3 A;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) A(i, j) = uniform(rng);
+      FrictionBlockInput in;
+      in.K = k % 2 ? Mat3(A * A.transpose() + 0.3 * Mat3::Identity()) : Mat3(Mat3::Identity());
+      in.L = std::pow(10.0, -4.0 + 3.0 * (1.0 + uniform(rng))) / lever;
+      const double spin = std::pow(10.0, -3.0 + 3.0 * (1.0 + uniform(rng))) / lever;
+      const double angle = kPi * uniform(rng);
+      in.b = Vec3(std::cos(angle), std::sin(angle), uniform(rng) > 0.0 ? spin : -spin);
+      for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+        const FrictionBlockResult r = solveFrictionBlock(patch, model, in);
+        const double set = model == Model::Exact ? 1.0 + lever : patch.Pi().norm();
+        const double slipScale = in.b.norm() + in.L * in.K.norm() * set;
+        if (r.sticking || !(r.slip.norm() > 1e-2 * slipScale)) continue;
+        ++checked;
+        EXPECT_LT((r.impulse - in.L * patch.unitQ(model, r.slip)).norm(), kLawSlack * in.L * set)
+            << "lever " << lever << ", block " << k << ", " << toString(model);
+      }
+    }
+  }
+  EXPECT_GT(checked, 300);  // the checks above say something
+}
+
+// Negligible friction (L |K| below 2^-1022 of |b|) took a shortcut that did
+// not check K: K = diag(-0.099, -0.071, 6.8e-4) against L = 5e-324 was
+// accepted (found by fuzzing). K must be positive definite on every path.
+TEST(CoreBadInput, FrictionBlockWithNegligibleFrictionRefusesAnIndefiniteK) {
+  const PatchShape disk = PatchShape::disk(1.6624690033495426e-06, Vec2(1e-8, 1e-8));
+  const FrictionPatch patch(
+      disk, LinearPressure::fromLoads(disk, {0.0041942096751453693, 1.1958354410194534e-09, 1.2693800097189958e-09}),
+      0.5, 1e-8);
+  FrictionBlockInput in;
+  in.b = Vec3(1e-08, 0.023433685302734375, 2.8527919536056827e+180);
+  in.L = 4.9406564584124654e-324;
+  in.K = Vec3(-0.09902191162109375, -0.07080841064453125, 0.00067901611328125).asDiagonal();
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"positive definite"}));
+  }
+}
+
+// K's diagonal spanning more than 1e30: both blocks lost every digit from a
+// span of ~1e36 on (a sweep of K = D^1/2 C D^1/2 with C well conditioned:
+// 0.8 to 1.2 of the set off the law; e.g. the ellipsoidal block below, at a
+// span of 1e38, slipped at (9.8e-6, 3.8e-8, 4.3e12) with an impulse 0.51 of
+// L |Pi| off the law there; the fuzz target found the exact block off by
+// up to 1.5 of the set at spans from 2e82). Both laws now refuse it, naming
+// K's diagonal; a span just inside (0.99e30) is solved, to the law.
+TEST(CoreBadInput, FrictionBlockRefusesAKDiagonalSpanningMoreThan1e30) {
+  const PatchShape disk = PatchShape::disk(0.5, Vec2(0.3, -0.2));
+  const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.5, 0.0);
+  FrictionBlockInput in;
+  in.b = Vec3(-8.8212188532448897e-10, 1.790965336840594e-11, -66485.869428073769);
+  in.L = 1.7318663946363179e-05;
+  in.K << 1.6397902928135056e-14, 2.3559521313631101e-18, 22.498146681802975, 2.3559521313631101e-18,
+      9.9999999999999998e-20, 0.087759323871331368, 22.498146681802975, 0.087759323871331368, 1.0000000000000002e+19;
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"diagonal of K spans"}));
+  }
+  // just inside: K = diag(1, 1, 0.99e30)^(1/2) C diag(...)^(1/2) with C's
+  // off-diagonals 0.3 and 0.2
+  const Vec3 root(1.0, 1.0, std::sqrt(0.99e30));
+  Mat3 C = Mat3::Identity();
+  C(0, 2) = C(2, 0) = 0.3;
+  C(0, 1) = C(1, 0) = 0.2;
+  FrictionBlockInput inside;
+  inside.K = root.asDiagonal() * C * root.asDiagonal();
+  inside.b = Vec3(1.0, -0.5, 1e31);  // (a free spin slip beyond L K_zz set: slips)
+  inside.L = 0.3;
+  constexpr double kLawSlack = 1e-6;  // the fuzz target's
+  for (Model model : {Model::Exact, Model::Ellipsoidal}) {
+    SCOPED_TRACE(toString(model));
+    const FrictionBlockResult r = solveFrictionBlock(patch, model, inside);
+    const double set = model == Model::Exact ? 1.0 + disk.maxDistanceFromOrigin() / patch.rho() : patch.Pi().norm();
+    // (a slip long enough for its direction to be resolved, as the fuzz
+    // target checks: |s| > 1e-2 of the slip scale |b| + L |K| set)
+    ASSERT_FALSE(r.sticking);
+    ASSERT_GT(r.slip.norm(), 1e-2 * (inside.b.norm() + inside.L * inside.K.norm() * set));
+    EXPECT_LT((r.impulse - inside.L * patch.unitQ(model, r.slip)).norm(), kLawSlack * inside.L * set);
+  }
+}
+
+// A K singular to round-off that passed the cheaper tests: entries 1.6e20
+// to 2.2e20 whose unit-diagonal form has an off-diagonal of 1 - 1e-16 (its
+// leading minors came out positive by round-off; |K| |K^-1| is not formed on
+// the ellipsoidal path while L K Pi looks well conditioned). The ellipsoidal
+// block stuck with b + K lambda = 0.7 against |b| = 0.7 (found by fuzzing).
+// Every stick now verifies b + K lambda = 0 to 1e-10 of |b| + |K| |lambda|
+// (a backward-stable solve meets it by 1e5) and refuses K as numerically
+// singular otherwise; checked here against that residual, computed anew.
+TEST(CoreBadInput, FrictionBlockStickVerifiesThatItStopsTheSlip) {
+  const PatchShape triangle =
+      PatchShape::polygon({{-74743808.000000015, 119242751.99999999}, {0.49999999000000001, -74743808.000000015},
+                           {0.0, 116387839.99999999}});
+  const FrictionPatch patch(
+      triangle, LinearPressure::fromLoads(triangle, {8.2967671213372529e-09, -0.17867705275273596, -0.15503299011029428}),
+      1e-8, 0.0);
+  FrictionBlockInput in;
+  in.b = Vec3(0.0, 0.5, 0.5);
+  in.L = 1e-8;
+  in.K << 2.196804715965055e+20, -7770798429306880.0, 1.5980646969869599e+20, -7770798429306880.0, 274877906948.37549,
+      -5652864156303360.0, 1.5980646969869599e+20, -5652864156303360.0, 1.162511513743786e+20;
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"singular"}));
+  // the exact block: refused as well, or a stick that stops the slip
+  constexpr double kResidual = 1e-10;
+  try {
+    const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
+    if (r.sticking) {
+      EXPECT_LE((in.b + in.K * r.impulse).norm(), kResidual * (in.b.norm() + in.K.norm() * r.impulse.norm()));
+    }
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+  }
+}
+
+// An exact law without digits: a 1e-8 m x 0.5 m sliver whose pressure
+// terms about O cancel (cy = -2.75e16 against Pz = 0.32): the unit law's
+// torque reaches 288 (sampled over the sphere) where the limit set bounds
+// it by ∫|p| max|r| / (Pz rho) = 1 (p >= 0 here, so ∫|p| = Pz), and the
+// block returned a torque of 100 L (found by fuzzing, fifth round). The
+// exact block now refuses a law whose round-off model (64 eps max(1,
+// diameter^2 / A) A (|p0| + (|cx| + |cy|) max|r|) / Pz, here 51) exceeds
+// 1e-6; a 1 m x 1 mm face under a tipped admissible pressure (model ~1e-10)
+// is solved. The ellipsoidal block (moments, not this sum) is not affected.
+TEST(CoreBadInput, ExactBlockRefusesALawWithoutDigits) {
+  const PatchShape sliver =
+      PatchShape::polygon({{-5.00585889346894e-09, -5.4910742118954658e-09},
+                           {-3.1943728212127098e-09, -5.4910742300103267e-09},
+                           {0.49999999680574098, 1.3205255290824883e-09},
+                           {4.8521548660111215e-10, 6.3205254922877428e-09}});
+  const FrictionPatch noisy(
+      sliver, LinearPressure::fromLoads(sliver, {0.32000003110670083, 2.6728782502318121e-10, 0.040000002870676614}),
+      1e-8, 0.5);
+  // the law is noise: some direction's unit torque exceeds ten times its bound
+  const double torqueBound = sliver.maxDistanceFromOrigin() / noisy.rho();
+  ASSERT_GE(minPressure(sliver, noisy.pressure()), -1e-6 * noisy.Pz() / sliver.area());  // inside the p >= 0 domain
+  double largest = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / 2000.0, r = std::sqrt(1.0 - z * z), phi = 2.39996322972865332 * i;
+    largest = std::max(largest, std::abs(noisy.unitQ(Model::Exact, Vec3(r * std::cos(phi), r * std::sin(phi), z)).z()));
+  }
+  EXPECT_GT(largest, 10.0 * torqueBound);
+  FrictionBlockInput in;
+  in.b = Vec3(0.5, 0.5, 0.5);
+  in.L = 0.5;
+  in.K << 29359104.75, 0.50000000080302698, 0.25000000500000003, 0.50000000080302698, 29359104.5,
+      5.8030269782466349e-09, 0.25000000500000003, 5.8030269782466349e-09, 29359104.25;
+  in.warmSlip = Vec3(12674138112.0, 0.5, 0.5);
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(noisy, Model::Exact, in); }, {"no digits"}));
+  EXPECT_NO_THROW(solveFrictionBlock(noisy, Model::Ellipsoidal, in));
+  // an ordinary long face, 1 m x 1 mm, with its centre of pressure moved
+  // to the end of the kern and beyond (then projected)
+  const PatchShape face = PatchShape::rectangle(1.0, 1e-3, Vec2(0.2, 0.0));
+  const PatchLoads tipped = nearestAdmissibleLoads(face, {1.0, -0.3e-3, 0.5}, face.defaultRho());
+  const FrictionPatch ordinary(face, LinearPressure::fromLoads(face, tipped), 0.5, 0.0);
+  FrictionBlockInput slide;
+  slide.b = Vec3(1.0, 0.5, 0.25);
+  slide.L = 0.5;
+  EXPECT_NO_THROW(solveFrictionBlock(ordinary, Model::Exact, slide));
 }
 
 }  // namespace

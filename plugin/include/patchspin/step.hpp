@@ -59,6 +59,23 @@ struct FrictionBlockResult {
 // ellipsoidal one when L K Pi is ill-conditioned), and the exact law a K
 // whose diagonal spans more than 1e200 or whose determinant overflows: its
 // slip potential needs K^-1.
+// Both laws also refuse a K whose diagonal spans more than 1e30 (both
+// blocks lose every digit from ~1e36 on; a physical K, the slip mobilities
+// of the two bodies' force and spin rows, spans a ratio of lengths
+// squared).
+// Domain in the patch (both laws; Error outside it, whatever b, K and L):
+//  * the pressure is >= 0 on the patch, to 1e-6 of the mean pressure Pz / A
+//    (both laws' blocks need a convex limit set; nearestAdmissibleLoads
+//    returns such pressures, and a Hertz pressure always is one);
+//  * the lever max|r| / rho (farthest patch point from O over rho) lies in
+//    [1e-5, 1e5]. Eq. (11)'s rho gives 1 to ~3; rho only scales the spin
+//    coordinate, so this refuses only a rho set more than 1e5 times off the
+//    patch's size. Within it the block is accurate to ~1e-14 lever (long)
+//    and ~1e-13 / lever (short) of the limit set; beyond it, to nothing;
+//  * exact law: its round-off, 64 eps max(1, diameter^2 / A) times the
+//    pressure's terms about O over Pz, A (|p0| + (|cx| + |cy|) max|r|) / Pz,
+//    stays below 1e-6 (a sliver with a pressure whose terms cancel has no
+//    digits left; a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10).
 FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
                                        const FrictionBlockInput& input);
 
