@@ -1522,5 +1522,43 @@ TEST(CoreBadInput, ExactBlockRefusesALawWithoutDigits) {
   EXPECT_NO_THROW(solveFrictionBlock(ordinary, Model::Exact, slide));
 }
 
+// A K singular to round-off in two 2x2 minors (K_xx K_yy = K_xy^2 and
+// K_xx K_zz = K_xz^2 to 1e-16) passed the exact block's singularity test,
+// |K| |K^-1| with a cofactor inverse that had no digits; the stick was
+// decided with that inverse's lambda0, and the pivoted solve returned a
+// force of 4.6e15 against L = 1e-8, 1.5e23 times outside the set (found by
+// fuzzing, fifth round). Where the two solutions disagree (beyond 1e-4),
+// K's condition is now tested with the pivoted inverse: refused as
+// numerically singular. A K inside the condition limit keeps its stick,
+// K = 3 (1 1^T) + 1e-8 I (cond 9e8, its cofactors the noisy side for b
+// along (1, 1, 1)): checked against b + K lambda = 0.
+TEST(CoreBadInput, ExactBlockStickWithCofactorsWithoutDigits) {
+  const PatchShape quad = PatchShape::polygon({{-6.7766371900790209e-09, -9.9999999322336289e-09},
+                                               {-1.0000000000000001e-16, -1e-08},
+                                               {0.038782114750976461, 0.4999999896121789},
+                                               {4.9999999000000001e-09, 0.49999999000000001}});
+  const FrictionPatch patch(
+      quad, LinearPressure::fromLoads(quad, {851722772.11537802, -212930647.22235772, 8257900.7497947859}), 1e-8, 0.5);
+  FrictionBlockInput in;
+  in.b = Vec3(-281018368.0, 0.5, 0.5);
+  in.L = 1e-8;
+  in.warmSlip = Vec3(2.2204460492503131e-16, 0.0, 0.0);
+  in.K << 2.2269023871737371e+20, 7461404672.0, 3.9979872811923538e+18, 7461404672.0, 0.25000000000000011,
+      133955584.0, 3.9979872811923538e+18, 133955584.0, 71776393939124224.0;
+  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"singular"}));
+
+  const PatchShape disk = PatchShape::disk(0.5);
+  const FrictionPatch uniform(disk, LinearPressure::uniform(disk, 1.0), 0.5, 0.0);
+  FrictionBlockInput inside;
+  inside.b = Vec3(1.0, 1.0, 1.0);
+  inside.L = 1.0;
+  inside.K = 3.0 * Mat3::Ones() + 1e-8 * Mat3::Identity();
+  const FrictionBlockResult r = solveFrictionBlock(uniform, Model::Exact, inside);
+  // -K^-1 b = -b / 9 is well inside L E (force 0.16 of L): a stick
+  ASSERT_TRUE(r.sticking);
+  constexpr double kResidual = 1e-12;  // a backward-stable solve: a few ulps
+  EXPECT_LT((inside.b + inside.K * r.impulse).norm(), kResidual * (inside.b.norm() + inside.K.norm() * r.impulse.norm()));
+}
+
 }  // namespace
 }  // namespace patchspin
