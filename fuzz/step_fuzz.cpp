@@ -2,7 +2,10 @@
 // both laws, with any patch, free slip b, matrix K, bound L and warm start.
 //
 // Contract: a patchspin::Error (non-finite input, L < 0, K not positive
-// definite), or finite impulse and slip with
+// definite; a block outside its domain, step.hpp: pressure negative beyond
+// 1e-6 of the mean, lever max|r| / rho outside [1e-5, 1e5], K's diagonal
+// spanning more than 1e30, an exact law whose round-off model exceeds 1e-6,
+// which must be refused), or finite impulse and slip with
 //  * slip = b + K impulse, and slip = 0 when sticking;
 //  * the impulse inside the limit set L E:
 //      ellipsoidal |impulse| <= L ||Pi||_F,
@@ -97,6 +100,65 @@ void run(ByteReader& in) {
   for (int i = 0; i < 3; ++i) note("K (%.17g %.17g %.17g)", input.K(i, 0), input.K(i, 1), input.K(i, 2));
   note("warm gauge (%.17g %.17g %.17g)", input.warmGauge.x(), input.warmGauge.y(),
        input.warmGauge.z());
+  // the block's features, for triage: min p over the mean pressure, the
+  // lever max|r| / rho, the spread of K's diagonal, K's unit-diagonal cond
+  {
+    const double meanP = patch.Pz() / shape.area();
+    const Vec3 kd = input.K.diagonal().cwiseAbs();
+    double minP = std::numeric_limits<double>::quiet_NaN();
+    try {
+      minP = minPressure(shape, patch.pressure());
+    } catch (const Error&) {
+    }
+    note("features: minp/mean %.3g, lever %.3g, K spread %.3g, K cond %.3g", minP / meanP,
+         shape.maxDistanceFromOrigin() / patch.rho(),
+         kd.maxCoeff() / kd.minCoeff(), isSpd(input.K) ? scaledCondition(input.K) : -1.0);
+  }
+  // the block's domain in the patch (step.hpp): pressure >= 0 to 1e-6 of
+  // the mean, lever max|r| / rho in [1e-5, 1e5]. Outside it (beyond
+  // kDomainMargin, room for the round-off of min p and of the lever) the
+  // block must refuse; inside it (by the margin) it must not refuse for it.
+  // min p is recomputed here in long double at the vertices, or as
+  // p(C) - R |grad p| on a disk, not taken from the core.
+  constexpr double kDomainMargin = 1.01;
+  constexpr double kNegativePressureTol = 1e-6, kMinLever = 1e-5, kMaxLever = 1e5;
+  const double lever = shape.maxDistanceFromOrigin() / patch.rho();
+  const double meanPressure = patch.Pz() / shape.area();
+  const double lowest = [&] {
+    const LinearPressure& p = patch.pressure();
+    auto at = [&](const Vec2& v) {
+      return double((long double)p.p0 + (long double)p.cx * v.x() + (long double)p.cy * v.y());
+    };
+    if (shape.isDisk()) return at(shape.centre()) - shape.radius() * std::hypot(p.cx, p.cy);
+    double m = std::numeric_limits<double>::infinity();
+    for (const Vec2& v : shape.vertices()) m = std::min(m, at(v));
+    return m;
+  }();
+  // and, exact law, its round-off model (below: forceRoundOff) at most
+  // 1e-6 of the unit force
+  constexpr double kLawNoDigits = 1e-6;
+  const double lawNoise = [&] {
+    if (model != Model::Exact) return 0.0;
+    const LinearPressure& pq = patch.pressure();
+    const double rm = shape.maxDistanceFromOrigin();
+    const double terms = shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rm);
+    const double sliverRatio = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
+    return 64.0 * std::numeric_limits<double>::epsilon() * sliverRatio * terms / std::abs(patch.Pz());
+  }();
+  // and K's diagonal spanning at most 1e30, where it is positive (a K with
+  // a diagonal entry <= 0 is not positive definite: refused for that)
+  constexpr double kMaxDiagonalSpan = 1e30;
+  const Vec3 kDiagonal = input.K.diagonal();
+  const double span = kDiagonal.minCoeff() > 0.0 ? kDiagonal.maxCoeff() / kDiagonal.minCoeff() : 1.0;
+  // (the Hertz pressure is not fuzzed here: every patch has a linear one)
+  const bool outsideDomain = lever > kMaxLever * kDomainMargin || lever < kMinLever / kDomainMargin ||
+                             lowest < -kNegativePressureTol * kDomainMargin * meanPressure ||
+                             span > kMaxDiagonalSpan * kDomainMargin || lawNoise > kLawNoDigits * kDomainMargin;
+  const bool nearDomainEdge = !outsideDomain && (lever > kMaxLever / kDomainMargin ||
+                                                 lever < kMinLever * kDomainMargin ||
+                                                 lowest < -kNegativePressureTol / kDomainMargin * meanPressure ||
+                                                 span > kMaxDiagonalSpan / kDomainMargin ||
+                                                 lawNoise > kLawNoDigits / kDomainMargin);
   FrictionBlockResult out;
   try {
     out = solveFrictionBlock(patch, model, input);
@@ -118,12 +180,33 @@ void run(ByteReader& in) {
                                  (1.0 + shape.maxDistanceFromOrigin() / patch.rho());
     const bool hugePressure = !(pressureTerms < std::numeric_limits<double>::max() / 1e8);
     const bool singular = isSpd(input.K) && scaledCondition(input.K) >= kSingularCondition;
-    if (finite && moderate && !hugePressure && !singular && input.L >= 0.0 && isSpd(input.K)) {
+    if (finite && moderate && !hugePressure && !singular && !outsideDomain && !nearDomainEdge && input.L >= 0.0 &&
+        isSpd(input.K)) {
       fail("valid block refused (%s): %s", toString(model), e.what());
     }
     return;
   }
   if (!finite) fail("non-finite block input accepted");
+  // K positive definite (step.hpp), on every path: its symmetric part at a
+  // unit largest entry, with room for the round-off of a nearly singular K
+  // (the core decides by leading minors, this by eigenvalues)
+  {
+    const double kMax = input.K.cwiseAbs().maxCoeff();
+    if (kMax > 0.0 && std::isfinite(kMax)) {
+      const Mat3 sym = 0.5 * (input.K + input.K.transpose()) / kMax;
+      const Eigen::SelfAdjointEigenSolver<Mat3> es(sym);
+      constexpr double kIndefinite = 1e-12;
+      if (es.eigenvalues().minCoeff() < -kIndefinite * es.eigenvalues().cwiseAbs().maxCoeff() &&
+          input.L > 0.0 && !input.b.isZero(0.0)) {
+        fail("K not positive definite accepted (eigenvalues %.3g %.3g %.3g of the unit-scaled K)",
+             es.eigenvalues()(0), es.eigenvalues()(1), es.eigenvalues()(2));
+      }
+    }
+  }
+  if (outsideDomain && finite) {
+    fail("block outside the domain accepted: lever %.17g, min p %.17g of the mean, K's diagonal spans %.17g, "
+         "law round-off %.3g", lever, lowest / meanPressure, span, lawNoise);
+  }
   if (input.L < 0.0) fail("L = %.17g accepted", input.L);
   checkFinite(out.impulse, "block impulse");
   checkFinite(out.slip, "block slip");
@@ -172,6 +255,7 @@ void run(ByteReader& in) {
   const double forceRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA /
                                std::abs(patch.Pz());
   const double lawRoundOff = forceRoundOff * (1.0 + rmax / patch.rho());
+  note("law round-off model: %.3g of the set", lawRoundOff / unitScale);
   // (plus the rounding of the impulse to the denormal grid: each of its
   // three entries, and of L q, is off by up to half a denormal step; found,
   // L = 5e-324 gave a law error of 1 denormal against 3, and a torque of 1
@@ -187,8 +271,12 @@ void run(ByteReader& in) {
       fail("exact impulse force %.17g outside L ∫|p|/Pz = %.17g",
            std::hypot(out.impulse.x(), out.impulse.y()), L * absRatio);
     }
-    if (std::abs(out.impulse.z()) > L * absRatio * rmax / patch.rho() * (1.0 + kBoundSlack) +
-                                        kBoundSlack * L * unitScale + L * forceRoundOff * rmax / patch.rho() +
+    // (the unit bounds first, then times L: with a denormal L, L ∫|p|/Pz
+    // times max|r| lost every digit or underflowed to 0 before the lever
+    // was applied; found, L = 1.9e-317 on a 1e-8 m patch with rho = 1e-8,
+    // where the core's torque L q_z = 0.18 L was inside the set)
+    if (std::abs(out.impulse.z()) > L * (absRatio * lever) * (1.0 + kBoundSlack) +
+                                        kBoundSlack * L * unitScale + L * (forceRoundOff * lever) +
                                         denormalRounding) {
       fail("exact impulse torque %.17g outside its bound", std::abs(out.impulse.z()));
     }
@@ -199,7 +287,12 @@ void run(ByteReader& in) {
   const double scale = input.b.stableNorm() + L * input.K.stableNorm() * unitScale;
   // where the law itself has digits (lawRoundOff above)
   const bool lawHasDigits = model == Model::Ellipsoidal || lawRoundOff < kLawSlack / 100.0 * unitScale;
-  if (!out.sticking && s > 1e4 * kLawSlack * scale && isSpd(input.K) && lawHasDigits) {
+  // (and where the slip's direction survives its rounding to the denormal
+  // grid, half a step per entry: found, b and K of denorm_min against L =
+  // 0.5 solve at unit scale to a slip (1, 1, 0.4), which rounds to (1, 1, 0)
+  // denormal steps; its direction, and the law at it, are lost)
+  const bool slipResolved = std::numeric_limits<double>::denorm_min() < kLawSlack / 100.0 * s;
+  if (!out.sticking && s > 1e4 * kLawSlack * scale && slipResolved && isSpd(input.K) && lawHasDigits) {
     const Vec3 q = patch.unitQ(model, out.slip);
     if ((out.impulse - L * q).stableNorm() > kLawSlack * L * unitScale + denormalRounding) {
       fail("%s slip: impulse != L q(s^), error %.3g of %.3g", toString(model),
