@@ -2,6 +2,7 @@
 // external wrench (79), (89) and the pressure coupling (94)-(97), Sect. 5.6.
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 #include <patchspin/analysis.hpp>
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/pressure.hpp>
@@ -41,6 +42,16 @@ FlatBodyModel::FlatBodyModel(const FlatBody& body, Model model) : body_(body), m
   internal::requireFinite(body.com, "centre of mass r_c");
   requireNonNegative(body.mu, "friction coefficient mu");
   internal::requirePositive(body.g, "gravity g");
+  // denormal mu or g: fewer than 53 bits, and m g, mu m g round to the
+  // denormal grid before the limit solver's unit scale can help (found by
+  // fuzzing: mu = 2.7e-310, or g = 1.8e-322 against mu = 2.6e256, gave
+  // limit directions 1e-3 to 6e-2 of the field off the fixed point)
+  constexpr double kSmallest = std::numeric_limits<double>::min();
+  if (body.mu > 0.0 && body.mu < kSmallest)
+    throw Error("friction coefficient mu = " + internal::formatDouble(body.mu) +
+                " is denormal (below 2.2e-308): use 0 or a normal double");
+  if (body.g < kSmallest)
+    throw Error("gravity g = " + internal::formatDouble(body.g) + " m/s^2 is denormal (below 2.2e-308)");
   internal::requireFinite(body.force, "force");
   internal::requireFinite(body.torque, "torque");
   internal::requireFinite(body.rho, "length scale rho");

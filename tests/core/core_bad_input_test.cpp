@@ -1560,5 +1560,38 @@ TEST(CoreBadInput, ExactBlockStickWithCofactorsWithoutDigits) {
   EXPECT_LT((inside.b + inside.K * r.impulse).norm(), kResidual * (inside.b.norm() + inside.K.norm() * r.impulse.norm()));
 }
 
+// A denormal mu or g: the limit field was built from loads rounded to the
+// denormal grid, and the directions were 1e-3 to 6e-2 of the field off the
+// fixed point (fuzz/known_failures/limits_denormal_mu_not_fixed_point: mu =
+// 2.7e-310; limits_huge_mu_not_fixed_point: g = 1.8e-322 against mu =
+// 2.6e256; 13 of the fourth round's 18 open limits crash files). Both are
+// now refused by FlatBodyModel, naming the parameter; mu = 0 and the
+// smallest normal mu and g are accepted.
+TEST(CoreBadInput, FlatBodyRefusesADenormalMuOrG) {
+  FlatBody body;
+  body.shape = PatchShape::disk(0.5, Vec2(0.5, 1.0));
+  body.mass = 0.5;
+  body.Jz = 0.5;
+  body.com = Vec3(5928648704.0, 6.5947378298252455e-96, 6.5947378298252455e-96);
+  body.mu = 2.7421503123034312e-310;
+  body.g = 8496.0;
+  body.force = Vec2(2.5303451915533642e-306, 0.0);
+  EXPECT_TRUE(throwsNaming([&] { FlatBodyModel(body, Model::Exact); }, {"mu"}));
+  FlatBody heavy;
+  heavy.shape = PatchShape::disk(0.5, Vec2(1.0, 1.0));
+  heavy.mass = 0.5;
+  heavy.Jz = 16911433728.0;
+  heavy.com = Vec3(0.0, -1.0, 0.0);
+  heavy.mu = 2.627630884498734e+256;
+  heavy.g = 1.8280428896126122e-322;
+  EXPECT_TRUE(throwsNaming([&] { FlatBodyModel(heavy, Model::Ellipsoidal); }, {"gravity"}));
+  FlatBody edge;
+  edge.mu = 0.0;
+  EXPECT_NO_THROW(FlatBodyModel(edge, Model::Ellipsoidal));
+  edge.mu = std::numeric_limits<double>::min();
+  edge.g = std::numeric_limits<double>::min();
+  EXPECT_NO_THROW(FlatBodyModel(edge, Model::Ellipsoidal));
+}
+
 }  // namespace
 }  // namespace patchspin
