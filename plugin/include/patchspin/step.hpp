@@ -58,7 +58,8 @@ struct FrictionBlockResult {
 // 1e10 once scaled to a unit diagonal (the exact law always checks; the
 // ellipsoidal one when L K Pi is ill-conditioned), and the exact law a K
 // whose diagonal spans more than 1e200 or whose determinant overflows: its
-// slip potential needs K^-1.
+// slip potential needs K^-1. Every stick verifies b + K lambda = 0 (to 1e-10
+// of |b| + |K| |lambda|) and refuses K as numerically singular otherwise.
 // Both laws also refuse a K whose diagonal spans more than 1e30 (both
 // blocks lose every digit from ~1e36 on; a physical K, the slip mobilities
 // of the two bodies' force and spin rows, spans a ratio of lengths
