@@ -146,8 +146,9 @@ BENCHMARK(BM_BulletWorldStep)
 void BM_SkipRules(benchmark::State& state) {
   SceneOptions opt;
   const int rules = int(state.range(0));
-  opt.settings.skipSettledPatches = !(rules & 1);
-  if (rules & 2) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
+  // (1 and 2 combine into 3; 4, 5 and 6 are single rules)
+  opt.settings.skipSettledPatches = !(rules == 1 || rules == 3);
+  if (rules == 2 || rules == 3) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
   if (rules == 4) opt.settings.pressureLagTolerance = opt.settings.pressureRefreshTolerance;
   if (rules == 5) opt.settings.quickStick = false;
   if (rules == 6) opt.settings.deferStickingRefresh = false;
