@@ -54,7 +54,10 @@ struct PatchOptions {
   // Friction coefficient [-]; default: Bullet's combined friction of the pair.
   std::optional<double> mu;
   // Length scale rho [m] of the slip state (u_x, u_y, rho w_z); default
-  // Eq. (11) about O (mean distance of the patch from O).
+  // Eq. (11) about O (mean distance of the patch from O). The friction block
+  // accepts a lever max|r| / rho in [1e-5, 1e5] only (step.hpp): a patch
+  // whose rho is set beyond that from its size goes to Bullet's point
+  // contacts, counted in stats().blockErrors.
   std::optional<double> rho;
   // Faces count as parallel (a flat patch) once the angle between them falls
   // below this [rad]; they stay a patch until it exceeds twice this
