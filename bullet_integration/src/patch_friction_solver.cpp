@@ -63,9 +63,6 @@ constexpr double kOverlapRelTol = 1e-5;
 // by less than this, relative, since its last solve keeps that solution: the
 // solve would return it up to round-off (float: velocities carry ~6e-8).
 constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-6;
-// Relative residual at which a friction block solve stops: far below the
-// precision of the velocities it is computed from (single precision carries
-// ~6e-8), instead of the core's default 1e-14.
 // A pressure refresh that falls due while the patch sticks deep inside its
 // limit set is deferred: the stick impulse -K^-1 b does not depend on the
 // law, only the stick test does, and with the centre of pressure moved by at
@@ -78,6 +75,9 @@ constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-
 // between Gauss-Seidel iterations by more than pressureLagTolerance.
 constexpr double kDeferMove = 1e-2;
 constexpr double kDeferStick = 0.5;
+// Relative residual at which a friction block solve stops: far below the
+// precision of the velocities it is computed from (single precision carries
+// ~6e-8), instead of the core's default 1e-14.
 constexpr double kBlockRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-9;
 // Warm start of the patch blocks: the full impulses of the last step, not
 // Bullet's m_warmstartingFactor (0.85 by default), which damps its scalar
@@ -1144,12 +1144,15 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
                                   : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
           return lambda0.allFinite() && unitLoad.allFinite() ? size : INFINITY;
         };
+        // (computed once per visit unless a refresh changes Pi in between)
+        Vec3 lambda0;
+        double size = NAN;
         bool refreshDue = moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance
                                                      : settings.pressureLagTolerance);
         if (refreshDue && settings.deferStickingRefresh && moved <= kDeferMove &&
             (pc.state->sticking || (pc.haveLast && pc.last.sticking))) {
-          Vec3 lambda0;
-          if (stickSize(lambda0) <= kDeferStick * L) {
+          size = stickSize(lambda0);
+          if (size <= kDeferStick * L) {
             refreshDue = false;
             ++stats.deferredRefreshes;
           }
@@ -1171,6 +1174,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           pc.state->hullValid = false;
           pc.state->fanValid = false;
           refreshed = true;
+          size = NAN;
         }
         // quick stick: the impulse that stops the slip, lambda0 = -K^-1 b,
         // with z = Pi^-1 lambda0, inside L times the ellipsoid Pi B (the
@@ -1184,8 +1188,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         bool quick = false;
         if (settings.quickStick) {
           PatchState& st = *pc.state;
-          Vec3 lambda0;
-          const double size = stickSize(lambda0);
+          if (std::isnan(size)) size = stickSize(lambda0);
           const bool stuckBefore = st.sticking || (pc.haveLast && pc.last.sticking);
           if (std::isfinite(size) &&
               (size <= L || (pc.model == Model::Exact && stuckBefore &&
