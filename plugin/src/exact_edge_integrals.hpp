@@ -1,55 +1,13 @@
 // Closed-form edge integrals of the exact model, Eq. (16), over the signed
-// triangle (c, edge) for linear pressure basis functions (DESIGN item 3).
-// Internal to exact_polygon.cpp; templated on the scalar so that the same
-// code gives values (double) and derivatives with respect to the ICR c
-// (Dual2, forward mode with two partials).
+// triangle (c, edge) for linear pressure basis functions (DESIGN item 3), and
+// the edge's part of their derivative with respect to the ICR c (a boundary
+// integral over the same closed forms, see addSignedTriangle).
+// Internal to exact_polygon.cpp.
 #pragma once
 
 #include <cmath>
 
 namespace patchspin::internal {
-
-// ---- forward-mode dual number with two partials (d/dc_x, d/dc_y) ----
-
-struct Dual2 {
-  double v = 0.0;  // value
-  double d0 = 0.0;  // d value / d c_x
-  double d1 = 0.0;  // d value / d c_y
-  Dual2() = default;
-  Dual2(double value) : v(value) {}  // NOLINT: implicit constant
-  Dual2(double value, double g0, double g1) : v(value), d0(g0), d1(g1) {}
-};
-
-inline Dual2 operator+(const Dual2& a, const Dual2& b) { return {a.v + b.v, a.d0 + b.d0, a.d1 + b.d1}; }
-inline Dual2 operator-(const Dual2& a, const Dual2& b) { return {a.v - b.v, a.d0 - b.d0, a.d1 - b.d1}; }
-inline Dual2 operator-(const Dual2& a) { return {-a.v, -a.d0, -a.d1}; }
-inline Dual2 operator*(const Dual2& a, const Dual2& b) {
-  return {a.v * b.v, a.d0 * b.v + a.v * b.d0, a.d1 * b.v + a.v * b.d1};
-}
-inline Dual2 operator*(double s, const Dual2& a) { return {s * a.v, s * a.d0, s * a.d1}; }
-inline Dual2 operator*(const Dual2& a, double s) { return {s * a.v, s * a.d0, s * a.d1}; }
-inline Dual2 operator/(const Dual2& a, const Dual2& b) {
-  const double q = a.v / b.v;
-  return {q, (a.d0 - q * b.d0) / b.v, (a.d1 - q * b.d1) / b.v};
-}
-inline Dual2 operator/(const Dual2& a, double s) { return {a.v / s, a.d0 / s, a.d1 / s}; }
-inline Dual2& operator+=(Dual2& a, const Dual2& b) { return a = a + b; }
-
-inline double valueOf(double x) { return x; }
-inline double valueOf(const Dual2& x) { return x.v; }
-
-// chain rule helper: f(a) with f'(a) = slope
-inline Dual2 applyChain(const Dual2& a, double f, double slope) {
-  return {f, slope * a.d0, slope * a.d1};
-}
-// |r| is not differentiable at 0; there it only ever multiplies delta = 0
-// (c on the edge's line), so any finite slope gives the right total.
-inline Dual2 sqrt(const Dual2& a) {
-  const double s = std::sqrt(a.v);
-  return applyChain(a, s, s > 0.0 ? 0.5 / s : 0.0);
-}
-inline Dual2 log(const Dual2& a) { return applyChain(a, std::log(a.v), 1.0 / a.v); }
-inline Dual2 log1p(const Dual2& a) { return applyChain(a, std::log1p(a.v), 1.0 / (1.0 + a.v)); }
 
 // ---- J0 = asinh(tb / d) - asinh(ta / d), d = |delta| > 0, ta < tb ----
 //
@@ -62,28 +20,28 @@ inline Dual2 log1p(const Dual2& a) { return applyChain(a, std::log1p(a.v), 1.0 /
 //     N = (tb + Rb)(Ra - ta) - d^2 = tb Ra - ta Rb - ta tb + (Ra Rb - d^2),
 //     Ra Rb - d^2 = (ta^2 tb^2 + d^2 (ta^2 + tb^2)) / (Ra Rb + d^2),
 //   every term >= 0; if N / d^2 overflows, J0 = log((tb + Rb)(Ra - ta)) - 2 log d.
-template <class T>
-T asinhDifference(const T& ta, const T& tb, const T& Ra, const T& Rb, const T& J1,
-                  const T& delta, double L) {
-  using std::log;
-  using std::log1p;
-  if (valueOf(ta) >= 0.0) return log1p((L + J1) / (ta + Ra));
-  if (valueOf(tb) <= 0.0) return log1p((L - J1) / (Rb - tb));
-  const T d2 = delta * delta;
-  const T ta2 = ta * ta, tb2 = tb * tb, RaRb = Ra * Rb;
-  const T N = tb * Ra - ta * Rb - ta * tb + (ta2 * tb2 + d2 * (ta2 + tb2)) / (RaRb + d2);
-  if (valueOf(d2) > 0.0 && valueOf(N) < 1e290 * valueOf(d2)) return log1p(N / d2);
-  const T d = valueOf(delta) > 0.0 ? delta : -delta;
-  return log((tb + Rb) * (Ra - ta)) - 2.0 * log(d);
+inline double asinhDifference(double ta, double tb, double Ra, double Rb, double J1, double delta,
+                              double L) {
+  if (ta >= 0.0) return std::log1p((L + J1) / (ta + Ra));
+  if (tb <= 0.0) return std::log1p((L - J1) / (Rb - tb));
+  const double d2 = delta * delta;
+  const double ta2 = ta * ta, tb2 = tb * tb, RaRb = Ra * Rb;
+  const double N = tb * Ra - ta * Rb - ta * tb + (ta2 * tb2 + d2 * (ta2 + tb2)) / (RaRb + d2);
+  if (d2 > 0.0 && N < 1e290 * d2) return std::log1p(N / d2);
+  return std::log((tb + Rb) * (Ra - ta)) - 2.0 * std::log(std::abs(delta));
 }
 
 constexpr double kThird = 1.0 / 3.0;
 
 // Per-edge accumulators: force (x, y) and torque times rho for the pressure
 // basis (1, x, y) in the frame where c is given.
-template <class T>
 struct EdgeSums {
-  T fx[3], fy[3], tz[3];
+  double fx[3], fy[3], tz[3];
+};
+
+// Boundary part of d(EdgeSums)/dc: [k][j] = d/dc_j of basis k's sums.
+struct EdgeSumsGradient {
+  double fx[3][2], fy[3][2], tz[3][2];
 };
 
 // ---- signed triangle (c, a, b), polar about c ----
@@ -105,47 +63,62 @@ struct EdgeSums {
 //   J2 = int tau^2/R = (T - d^2 J0)/2           K0 = int R = (T + d^2 J0)/2
 //   K1 = int tau R = (Rb^3 - Ra^3)/3,           T = tb Rb - ta Ra.
 // Every J0 carries a factor delta (force) or delta^2 in the bracket, so at
-// delta = 0 (c on the edge's line) the terms delta J0, delta^2 J0 are 0 with
-// zero derivative; the rest of the bracket stays and gives the derivative of
-// the sliver triangle's contribution.
+// delta = 0 (c on the edge's line) the terms delta J0, delta^2 J0 are 0.
+//
+// Derivative in c (`gradient` not null). With the kernel kappa(c; P) =
+// (perp(u), P.u) (k without sgn(w3) and 1/rho) and G = int_A phi kappa dA,
+// substituting r = P - c gives an integral over A - c of phi(c + r)
+// kappa(r, c + r), whose domain moves with -c and whose integrand depends
+// on c through phi and through the torque's P.u only:
+//   dG/dc_j = sum_edges n_j int_edge phi kappa d tau           (A - c moves)
+//           + (d phi/dc_j) int_A kappa dA                      (phi(c + r))
+//           + (0, 0, int_A phi u_j dA)                         (P.u = c.u + R)
+// (n = perp(e) is the inward normal of a counter-clockwise edge). The last
+// term is G's own force: perp(u) = (-u_y, u_x), so int phi u = (G_y, -G_x);
+// the middle one is the phi = 1 column for phi = x, y. Both are added by the
+// caller; here the edge term, with phi = A0 + A1 tau (A0 = phi_c - delta gn,
+// A1 = ge), kappa = ((tau n + delta e) / R, (tau ce - delta cn + R^2) / R):
+//   force   n (A0 J1 + A1 J2) + e (A0 delta J0 + A1 delta J1)
+//   torque  ce (A0 J1 + A1 J2) - cn (A0 delta J0 + A1 delta J1) + A0 K0 + A1 K1
+// Its integrand is bounded (|kappa| <= 1 + |P|), so the formula holds for c
+// on the edge or a vertex too (there delta J0 = 0).
 // L = |b - a| > 0 and deltaZero are given by the caller.
-template <class T>
-void addSignedTriangle(double ax, double ay, double bx, double by, double L, const T& cx,
-                       const T& cy, const T& Ra, const T& Rb, double deltaZero,
-                       EdgeSums<T>& sums) {
+inline void addSignedTriangle(double ax, double ay, double bx, double by, double L, double cx,
+                              double cy, double Ra, double Rb, double deltaZero, EdgeSums& sums,
+                              EdgeSumsGradient* gradient) {
   const double Lx = bx - ax, Ly = by - ay;
   const double invL = 1.0 / L;
   const double ex = Lx * invL, ey = Ly * invL;
   const double nx = -ey, ny = ex;
-  const T rax = ax - cx, ray = ay - cy;
-  const T ta = rax * ex + ray * ey;
-  const T tb = ta + L;
-  T delta = rax * ey - ray * ex;
+  const double rax = ax - cx, ray = ay - cy;
+  const double ta = rax * ex + ray * ey;
+  const double tb = ta + L;
+  double delta = rax * ey - ray * ex;
 
   // J1 = Rb - Ra = L (ta + tb) / (Ra + Rb) without cancellation
-  const T J1 = L * (ta + tb) / (Ra + Rb);
+  const double J1 = L * (ta + tb) / (Ra + Rb);
 
   // J0 terms; delta below deltaZero (rounding level) counts as c on the line
-  T deltaJ0 = 0.0, delta2J0 = 0.0;
-  if (std::abs(valueOf(delta)) > deltaZero) {
+  double deltaJ0 = 0.0, delta2J0 = 0.0;
+  if (std::abs(delta) > deltaZero) {
     deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, J1, delta, L);
     delta2J0 = delta * deltaJ0;
   } else {
-    delta = T(delta) - valueOf(delta);  // value 0, keep the derivative
+    delta = 0.0;
   }
   // T = tb Rb - ta Ra = L Rb + ta J1 (all terms one sign when ta, tb are)
-  const T Tq = (valueOf(ta) >= 0.0 || valueOf(tb) <= 0.0) ? L * Rb + ta * J1 : tb * Rb - ta * Ra;
-  const T J2 = 0.5 * (Tq - delta2J0);
-  const T K0 = 0.5 * (Tq + delta2J0);
-  const T K1 = J1 * (Ra * Ra + Ra * Rb + Rb * Rb) * kThird;
-  const T ce = cx * ex + cy * ey;
-  const T cn = cx * nx + cy * ny;
+  const double Tq = (ta >= 0.0 || tb <= 0.0) ? L * Rb + ta * J1 : tb * Rb - ta * Ra;
+  const double J2 = 0.5 * (Tq - delta2J0);
+  const double K0 = 0.5 * (Tq + delta2J0);
+  const double K1 = J1 * (Ra * Ra + Ra * Rb + Rb * Rb) * kThird;
+  const double ce = cx * ex + cy * ey;
+  const double cn = cx * nx + cy * ny;
 
   // basis phi = 1 (phi_c = 1, g = 0)
   //   F_xy = delta (n J1 + e delta J0) / 2
   //   Tz   = delta [ (ce J1 - cn delta J0) / 2 + K0 / 3 ]
-  const T halfForceN = 0.5 * J1, halfForceE = 0.5 * deltaJ0;
-  const T torque0 = 0.5 * (ce * J1 - cn * deltaJ0) + K0 * kThird;
+  const double halfForceN = 0.5 * J1, halfForceE = 0.5 * deltaJ0;
+  const double torque0 = 0.5 * (ce * J1 - cn * deltaJ0) + K0 * kThird;
   sums.fx[0] += delta * (halfForceN * nx + halfForceE * ex);
   sums.fy[0] += delta * (halfForceN * ny + halfForceE * ey);
   sums.tz[0] += delta * torque0;
@@ -156,19 +129,36 @@ void addSignedTriangle(double ax, double ay, double bx, double by, double L, con
   //   Tz   = delta [ phi_c ((ce J1 - cn delta J0)/2 + K0/3)
   //                + (ge ce J2 - delta (ge cn + gn ce) J1 + gn cn delta^2 J0) / 3
   //                + (ge K1 - delta gn K0) / 4 ]
-  const T deltaJ1 = delta * J1;
+  const double deltaJ1 = delta * J1;
   for (int k = 1; k < 3; ++k) {
-    const T& pc = k == 1 ? cx : cy;
+    const double pc = k == 1 ? cx : cy;
     const double ge = k == 1 ? ex : ey;
     const double gn = k == 1 ? nx : ny;
-    const T an = (pc * halfForceN) + (ge * J2 - gn * deltaJ1) * kThird;       // along n
-    const T ae = (pc * halfForceE) + (ge * deltaJ1 - gn * delta2J0) * kThird;  // along e
-    const T tq = pc * torque0 +
-                 (ge * (ce * J2) - (ge * cn + gn * ce) * deltaJ1 + gn * (cn * delta2J0)) * kThird +
-                 (ge * K1 - gn * (delta * K0)) * 0.25;
+    const double an = (pc * halfForceN) + (ge * J2 - gn * deltaJ1) * kThird;       // along n
+    const double ae = (pc * halfForceE) + (ge * deltaJ1 - gn * delta2J0) * kThird;  // along e
+    const double tq = pc * torque0 +
+                      (ge * (ce * J2) - (ge * cn + gn * ce) * deltaJ1 + gn * (cn * delta2J0)) * kThird +
+                      (ge * K1 - gn * (delta * K0)) * 0.25;
     sums.fx[k] += delta * (an * nx + ae * ex);
     sums.fy[k] += delta * (an * ny + ae * ey);
     sums.tz[k] += delta * tq;
+  }
+
+  if (gradient == nullptr) return;
+  // edge term of dG/dc (see above), basis k: A0 = phi_c - delta gn, A1 = ge
+  for (int k = 0; k < 3; ++k) {
+    const double pc = k == 0 ? 1.0 : k == 1 ? cx : cy;
+    const double ge = k == 0 ? 0.0 : k == 1 ? ex : ey;
+    const double gn = k == 0 ? 0.0 : k == 1 ? nx : ny;
+    const double A0 = pc - delta * gn;
+    const double alongN = A0 * J1 + ge * J2;
+    const double alongE = A0 * deltaJ0 + ge * deltaJ1;
+    const double fx = alongN * nx + alongE * ex;
+    const double fy = alongN * ny + alongE * ey;
+    const double tz = ce * alongN - cn * alongE + A0 * K0 + ge * K1;
+    gradient->fx[k][0] += nx * fx, gradient->fx[k][1] += ny * fx;
+    gradient->fy[k][0] += nx * fy, gradient->fy[k][1] += ny * fy;
+    gradient->tz[k][0] += nx * tz, gradient->tz[k][1] += ny * tz;
   }
 }
 
