@@ -386,6 +386,18 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   Vec3 q;
   Mat3 J;
   bool gaugeFound = false;
+  // The law's own round-off is ~1e-14 (rms) to ~5e-13 (worst) of |q| (second
+  // differences of q along w, measured on the step tests' patches), so a
+  // residual near the tolerance can be noise: once it grows back from an
+  // iterate already below kGaugeNoise |q|, the Newton steps only move w
+  // within that noise, and the smaller of the two is the boundary point
+  // (its q off lambda0 by that residual: the stick decision, |lambda0|
+  // against L |q(w)|, moves by its square). (Found by a warm start at the
+  // converged gauge point that, renormalised, sat 1.06e-14 off and took four
+  // steps of 5e-14 rad, residuals 1.1e-14 to 2.1e-14.)
+  constexpr double kGaugeNoise = 1e-12;
+  Vec3 prevW = w, prevQ = Vec3::Zero();
+  double prevRes = INFINITY;
   for (int it = 0; it < kMaxIterations && !slipProven; ++it) {
     q = patch.unitQ(Model::Exact, w, &J);
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
@@ -394,6 +406,13 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       out.gaugeSlip = w, out.gaugeValue = q;
       break;
     }
+    if (res.norm() >= prevRes && prevRes <= kGaugeNoise * prevQ.norm() && prevQ.dot(l) > 0.0) {
+      gaugeFound = true;
+      w = prevW, q = prevQ;
+      out.gaugeSlip = w, out.gaugeValue = q;
+      break;
+    }
+    prevW = w, prevQ = q, prevRes = res.norm();
     // tangent basis at w and the 2x2 Newton system
     const Vec3 t1 = w.unitOrthogonal(), t2 = w.cross(t1);
     Eigen::Matrix2d Jr;
