@@ -33,15 +33,26 @@ inline double asinhDifference(double ta, double tb, double Ra, double Rb, double
 
 constexpr double kThird = 1.0 / 3.0;
 
-// Per-edge accumulators: force (x, y) and torque times rho for the pressure
-// basis (1, x, y) in the frame where c is given.
-struct EdgeSums {
-  double fx[3], fy[3], tz[3];
+// Linear functions phi integrated at once: column 0 is phi = 1, columns
+// 1..E-1 are phi_k(P) = pc[k] + g[k].(P - c) (pc = phi_k(c), g = grad phi_k
+// = (gx, gy)), all in the frame where c is given. The pressure basis
+// (1, x, y) is E = 3 with pc = (c_x, c_y), g the unit vectors; one linear
+// pressure is E = 2.
+template <int E>
+struct LinearFunctions {
+  double pc[E], gx[E], gy[E];  // entries 0 unused (phi = 1)
 };
 
-// Boundary part of d(EdgeSums)/dc: [k][j] = d/dc_j of basis k's sums.
+// Per-edge accumulators: force (x, y) and torque times rho per function.
+template <int E>
+struct EdgeSums {
+  double fx[E], fy[E], tz[E];
+};
+
+// Boundary part of d(EdgeSums)/dc: [k][j] = d/dc_j of function k's sums.
+template <int E>
 struct EdgeSumsGradient {
-  double fx[3][2], fy[3][2], tz[3][2];
+  double fx[E][2], fy[E][2], tz[E][2];
 };
 
 // ---- signed triangle (c, a, b), polar about c ----
@@ -76,16 +87,18 @@ struct EdgeSumsGradient {
 // (n = perp(e) is the inward normal of a counter-clockwise edge). The last
 // term is G's own force: perp(u) = (-u_y, u_x), so int phi u = (G_y, -G_x);
 // the middle one is the phi = 1 column for phi = x, y. Both are added by the
-// caller; here the edge term, with phi = A0 + A1 tau (A0 = phi_c - delta gn,
+// caller; here the edge term (for functions firstGradient..E-1: the law of
+// one pressure needs it for that pressure only), with phi = A0 + A1 tau (A0 = phi_c - delta gn,
 // A1 = ge), kappa = ((tau n + delta e) / R, (tau ce - delta cn + R^2) / R):
 //   force   n (A0 J1 + A1 J2) + e (A0 delta J0 + A1 delta J1)
 //   torque  ce (A0 J1 + A1 J2) - cn (A0 delta J0 + A1 delta J1) + A0 K0 + A1 K1
 // Its integrand is bounded (|kappa| <= 1 + |P|), so the formula holds for c
 // on the edge or a vertex too (there delta J0 = 0).
 // L = |b - a| > 0 and deltaZero are given by the caller.
-inline void addSignedTriangle(double ax, double ay, double bx, double by, double L, double cx,
-                              double cy, double Ra, double Rb, double deltaZero, EdgeSums& sums,
-                              EdgeSumsGradient* gradient) {
+template <int E>
+void addSignedTriangle(double ax, double ay, double bx, double by, double L, double cx, double cy,
+                       double Ra, double Rb, double deltaZero, const LinearFunctions<E>& phi,
+                       EdgeSums<E>& sums, EdgeSumsGradient<E>* gradient, int firstGradient) {
   const double Lx = bx - ax, Ly = by - ay;
   const double invL = 1.0 / L;
   const double ex = Lx * invL, ey = Ly * invL;
@@ -114,7 +127,7 @@ inline void addSignedTriangle(double ax, double ay, double bx, double by, double
   const double ce = cx * ex + cy * ey;
   const double cn = cx * nx + cy * ny;
 
-  // basis phi = 1 (phi_c = 1, g = 0)
+  // phi = 1 (phi_c = 1, g = 0)
   //   F_xy = delta (n J1 + e delta J0) / 2
   //   Tz   = delta [ (ce J1 - cn delta J0) / 2 + K0 / 3 ]
   const double halfForceN = 0.5 * J1, halfForceE = 0.5 * deltaJ0;
@@ -123,39 +136,38 @@ inline void addSignedTriangle(double ax, double ay, double bx, double by, double
   sums.fy[0] += delta * (halfForceN * ny + halfForceE * ey);
   sums.tz[0] += delta * torque0;
 
-  // basis phi = x, y (phi_c = c_x or c_y, g = unit x or y)
+  // linear phi (phi_c, g)
   //   F_xy = delta [ phi_c (n J1 + e delta J0)/2
   //                + (ge n J2 + delta (ge e - gn n) J1 - gn e delta^2 J0) / 3 ]
   //   Tz   = delta [ phi_c ((ce J1 - cn delta J0)/2 + K0/3)
   //                + (ge ce J2 - delta (ge cn + gn ce) J1 + gn cn delta^2 J0) / 3
   //                + (ge K1 - delta gn K0) / 4 ]
   const double deltaJ1 = delta * J1;
-  for (int k = 1; k < 3; ++k) {
-    const double pc = k == 1 ? cx : cy;
-    const double ge = k == 1 ? ex : ey;
-    const double gn = k == 1 ? nx : ny;
-    const double an = (pc * halfForceN) + (ge * J2 - gn * deltaJ1) * kThird;       // along n
-    const double ae = (pc * halfForceE) + (ge * deltaJ1 - gn * delta2J0) * kThird;  // along e
+  double ge[E], gn[E];
+  ge[0] = gn[0] = 0.0;
+  for (int k = 1; k < E; ++k) {
+    ge[k] = phi.gx[k] * ex + phi.gy[k] * ey;
+    gn[k] = phi.gx[k] * nx + phi.gy[k] * ny;
+    const double pc = phi.pc[k];
+    const double an = (pc * halfForceN) + (ge[k] * J2 - gn[k] * deltaJ1) * kThird;       // along n
+    const double ae = (pc * halfForceE) + (ge[k] * deltaJ1 - gn[k] * delta2J0) * kThird;  // along e
     const double tq = pc * torque0 +
-                      (ge * (ce * J2) - (ge * cn + gn * ce) * deltaJ1 + gn * (cn * delta2J0)) * kThird +
-                      (ge * K1 - gn * (delta * K0)) * 0.25;
+                      (ge[k] * (ce * J2) - (ge[k] * cn + gn[k] * ce) * deltaJ1 + gn[k] * (cn * delta2J0)) * kThird +
+                      (ge[k] * K1 - gn[k] * (delta * K0)) * 0.25;
     sums.fx[k] += delta * (an * nx + ae * ex);
     sums.fy[k] += delta * (an * ny + ae * ey);
     sums.tz[k] += delta * tq;
   }
 
   if (gradient == nullptr) return;
-  // edge term of dG/dc (see above), basis k: A0 = phi_c - delta gn, A1 = ge
-  for (int k = 0; k < 3; ++k) {
-    const double pc = k == 0 ? 1.0 : k == 1 ? cx : cy;
-    const double ge = k == 0 ? 0.0 : k == 1 ? ex : ey;
-    const double gn = k == 0 ? 0.0 : k == 1 ? nx : ny;
-    const double A0 = pc - delta * gn;
-    const double alongN = A0 * J1 + ge * J2;
-    const double alongE = A0 * deltaJ0 + ge * deltaJ1;
+  // edge term of dG/dc (see above): A0 = phi_c - delta gn, A1 = ge
+  for (int k = firstGradient; k < E; ++k) {
+    const double A0 = k == 0 ? 1.0 : phi.pc[k] - delta * gn[k];
+    const double alongN = A0 * J1 + ge[k] * J2;
+    const double alongE = A0 * deltaJ0 + ge[k] * deltaJ1;
     const double fx = alongN * nx + alongE * ex;
     const double fy = alongN * ny + alongE * ey;
-    const double tz = ce * alongN - cn * alongE + A0 * K0 + ge * K1;
+    const double tz = ce * alongN - cn * alongE + A0 * K0 + ge[k] * K1;
     gradient->fx[k][0] += nx * fx, gradient->fx[k][1] += ny * fx;
     gradient->fy[k][0] += nx * fy, gradient->fy[k][1] += ny * fy;
     gradient->tz[k][0] += nx * tz, gradient->tz[k][1] += ny * tz;

@@ -1,5 +1,8 @@
 // Exact model, Eq. (16), on a convex polygon with linear pressure basis
 // (1, x, y): see patchspin/internal/exact.hpp for the definitions of F, dF.
+// exactPolygonLaw integrates one linear pressure the same way, with that
+// pressure as the only function (the near branch also sums phi = 1, which
+// its derivative needs), instead of the three basis functions.
 //
 // Two branches, both evaluated in the frame centred at the vertex mean g
 // (P' = P - g), then moved to O:
@@ -88,11 +91,28 @@ const GaussTables& gaussTables() {
 
 [[noreturn]] void fail(const std::string& what) { throw Error("exactPolygonBasis: " + what); }
 
-// Accumulated F' (g-frame) and dF'/dw'.
+// Accumulated F' (g-frame) and dF'/dw', one column per integrated function:
+// the basis (1, x, y) (M = 3) or one linear pressure (M = 1).
+template <int M>
 struct Accumulator {
-  Mat3 F = Mat3::Zero();
-  std::array<Mat3, 3> dF{Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};
+  Eigen::Matrix<double, 3, M> F = Eigen::Matrix<double, 3, M>::Zero();
+  std::array<Mat3, M> dF;
+  Accumulator() {
+    for (Mat3& d : dF) d.setZero();
+  }
 };
+
+// The functions' weights at P (g-frame): the basis (1, x, y), or the linear
+// pressure p' (p0', px, py) of the g-frame.
+template <int M>
+Eigen::Matrix<double, M, 1> weightsAt(const Vec2& P, const Vec3& pressure) {
+  if constexpr (M == 3) {
+    (void)pressure;
+    return Vec3(1.0, P.x(), P.y());
+  } else {
+    return Eigen::Matrix<double, 1, 1>(pressure[0] + pressure[1] * P.x() + pressure[2] * P.y());
+  }
+}
 
 // ---- far branch ----
 //
@@ -102,9 +122,9 @@ struct Accumulator {
 // At each node, Eq. (1) and the kernel:
 //   v = M w',  M = [[1, 0, -y/rho], [0, 1, x/rho]],  k = M^T v/|v|
 //   dk/dw' = M^T (I - vv^T/|v|^2) M / |v| = m m^T / |v|,  m = M^T perp(v)/|v|.
-template <bool kJacobian>
+template <bool kJacobian, int M>
 void addQuadRule(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, int n,
-                 const Vec3& w, double rho, Accumulator& acc) {
+                 const Vec3& w, double rho, const Vec3& pressure, Accumulator<M>& acc) {
   const GaussTables& g = gaussTables();
   const double inv = 1.0 / rho;
   const Vec2 e01 = p1 - p0, e32 = p2 - p3;
@@ -122,22 +142,23 @@ void addQuadRule(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3,
       const double invV = 1.0 / std::sqrt(vx * vx + vy * vy);
       const double ux = vx * invV, uy = vy * invV;
       const Vec3 k(ux, uy, (P.x() * uy - P.y() * ux) * inv);
-      const Vec3 phi(wt, wt * P.x(), wt * P.y());
+      const Eigen::Matrix<double, M, 1> phi = wt * weightsAt<M>(P, pressure);
       acc.F.noalias() += k * phi.transpose();
       if constexpr (kJacobian) {
         const Vec3 m(-uy, ux, (P.x() * ux + P.y() * uy) * inv);
         const Mat3 mm = (invV * m) * m.transpose();
-        for (int c = 0; c < 3; ++c) acc.dF[c].noalias() += phi[c] * mm;
+        for (int c = 0; c < M; ++c) acc.dF[c].noalias() += phi[c] * mm;
       }
     }
   }
 }
 
-template <bool kJacobian>
-void farBranch(const Vec2* v, std::size_t N, const Vec3& w, double rho, int n, Accumulator& acc) {
+template <bool kJacobian, int M>
+void farBranch(const Vec2* v, std::size_t N, const Vec3& w, double rho, int n, const Vec3& pressure,
+               Accumulator<M>& acc) {
   std::size_t i = 1;
-  for (; i + 2 < N; i += 2) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[i + 2], n, w, rho, acc);
-  if (i + 1 < N) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[0], n, w, rho, acc);
+  for (; i + 2 < N; i += 2) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[i + 2], n, w, rho, pressure, acc);
+  if (i + 1 < N) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[0], n, w, rho, pressure, acc);
 }
 
 // Order n of the far rule for ICR distance ratio kappa = |c'| / Rpoly.
@@ -165,10 +186,12 @@ int farOrder(double kappaSq, double tol, bool jacobian) {
 }
 
 // ---- near branch ----
+template <int E>
 void nearBranch(const Vec2* v, std::size_t N, double cx, double cy, double deltaZeroRel,
-                EdgeSums& sums, EdgeSumsGradient* gradient) {
-  for (int k = 0; k < 3; ++k) sums.fx[k] = sums.fy[k] = sums.tz[k] = 0.0;
-  if (gradient) *gradient = EdgeSumsGradient{};
+                const LinearFunctions<E>& phi, EdgeSums<E>& sums, EdgeSumsGradient<E>* gradient,
+                int firstGradient) {
+  sums = EdgeSums<E>{};
+  if (gradient) *gradient = EdgeSumsGradient<E>{};
   auto dist = [&](const Vec2& p) {
     const double dx = p.x() - cx, dy = p.y() - cy;
     return std::sqrt(dx * dx + dy * dy);
@@ -181,16 +204,66 @@ void nearBranch(const Vec2* v, std::size_t N, double cx, double cy, double delta
     const double Rb = i + 1 == N ? R0 : dist(b);
     const double L = (b - a).norm();
     if (L > 0.0) {  // a repeated vertex adds no triangle
-      addSignedTriangle(a.x(), a.y(), b.x(), b.y(), L, cx, cy, Ra, Rb, deltaZeroRel * L, sums, gradient);
+      addSignedTriangle(a.x(), a.y(), b.x(), b.y(), L, cx, cy, Ra, Rb, deltaZeroRel * L, phi, sums, gradient,
+                        firstGradient);
     }
     Ra = Rb;
   }
 }
 
-}  // namespace
+// The near branch for M output columns: the basis (M = 3, edge functions
+// 1, x, y) or one linear pressure (M = 1, edge functions 1 and p').
+// dG/dc (exact_edge_integrals.hpp): the edge terms, d phi_k / dc_j = g_k,j
+// times the phi = 1 column, and the torque's (G_y, -G_x); then
+// dc'/dw' = (rho/w3) [[0, -1, w2/w3], [1, 0, -w1/w3]].
+template <int M>
+void nearColumns(const Vec2* v, std::size_t N, const Vec3& wl, double rho, bool wantJacobian,
+                 const Vec3& pressure, Accumulator<M>& acc) {
+  constexpr int E = M == 3 ? 3 : 2;  // edge functions
+  constexpr int kFirst = E - M;      // the first edge function that is an output column
+  const double sgn = wl.z() > 0.0 ? 1.0 : -1.0;
+  const double cx = -rho * wl.y() / wl.z(), cy = rho * wl.x() / wl.z();
+  LinearFunctions<E> phi{};
+  if constexpr (M == 3) {
+    phi.pc[1] = cx, phi.gx[1] = 1.0, phi.gy[1] = 0.0;
+    phi.pc[2] = cy, phi.gx[2] = 0.0, phi.gy[2] = 1.0;
+  } else {
+    phi.pc[1] = pressure[0] + pressure[1] * cx + pressure[2] * cy;
+    phi.gx[1] = pressure[1], phi.gy[1] = pressure[2];
+  }
+  EdgeSums<E> sums;
+  EdgeSumsGradient<E> edge;
+  nearBranch(v, N, cx, cy, kDeltaZeroRel, phi, sums, wantJacobian ? &edge : nullptr, kFirst);
+  const double scale[3] = {sgn, sgn, sgn / rho};
+  for (int k = kFirst; k < E; ++k) {
+    acc.F(0, k - kFirst) = scale[0] * sums.fx[k];
+    acc.F(1, k - kFirst) = scale[1] * sums.fy[k];
+    acc.F(2, k - kFirst) = scale[2] * sums.tz[k];
+  }
+  if (!wantJacobian) return;
+  Eigen::Matrix<double, 2, 3> dc;
+  dc << 0.0, -1.0, wl.y() / wl.z(), 1.0, 0.0, -wl.x() / wl.z();
+  dc *= rho / wl.z();
+  for (int k = kFirst; k < E; ++k) {
+    Eigen::Matrix<double, 3, 2> dGdc;
+    for (int j = 0; j < 2; ++j) {
+      const double gj = k == 0 ? 0.0 : j == 0 ? phi.gx[k] : phi.gy[k];
+      dGdc(0, j) = edge.fx[k][j] + gj * sums.fx[0];
+      dGdc(1, j) = edge.fy[k][j] + gj * sums.fy[0];
+      dGdc(2, j) = edge.tz[k][j] + gj * sums.tz[0] + (j == 0 ? sums.fy[k] : -sums.fx[k]);
+    }
+    const Eigen::Matrix<double, 3, 2> dFdc = Vec3(scale[0], scale[1], scale[2]).asDiagonal() * dGdc;
+    acc.dF[k - kFirst] = dFdc * dc;
+  }
+}
 
-void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
-                       bool wantJacobian, ExactBasis& out, double tolerance) {
+// Checks, the g-frame and both branches: F', dF' of the M columns in the
+// g-frame (pressure: the law's coefficients about O, used when M = 1), with
+// S and the w scale for the way back to O.
+template <int M>
+void evaluateInFrame(const std::vector<Vec2>& vertices, double rho, const Vec3& w, bool wantJacobian,
+                     double tolerance, const Vec3& pressure, Accumulator<M>& acc, Vec2& g, Mat3& S,
+                     double& wScale) {
   const std::size_t N = vertices.size();
   if (N < 3) fail("need at least 3 vertices, got " + std::to_string(N));
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
@@ -198,7 +271,7 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
   if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) fail("tolerance must be finite and >= 0");
 
   // centre frame: P' = P - g, w' = S w (Eq. (1) about g)
-  Vec2 g = Vec2::Zero();
+  g = Vec2::Zero();
   for (const Vec2& p : vertices) {
     if (!p.allFinite()) fail("vertices must be finite");
     g += p;
@@ -220,62 +293,45 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
     twiceArea += a.x() * b.y() - a.y() * b.x();
   }
   if (!(twiceArea > 0.0)) fail("polygon must be counter-clockwise with positive area");
+  // the pressure about g: p = p0 + px (gx + x') + py (gy + y')
+  const Vec3 localPressure(pressure[0] + pressure[1] * g.x() + pressure[2] * g.y(), pressure[1], pressure[2]);
 
   // S = [[1,0,-gy/rho],[0,1,gx/rho],[0,0,1]], w' = S w; c' = rho (-w'2, w'1) / w3
-  Mat3 S = Mat3::Identity();
+  S = Mat3::Identity();
   S(0, 2) = -g.y() / rho;
   S(1, 2) = g.x() / rho;
   // F is homogeneous of degree 0 in w: scale w to max |w_i| = 1 first (keeps
   // the squares below finite for any finite w); dF scales by 1 / wScale
-  const double wScale = w.cwiseAbs().maxCoeff();
+  wScale = w.cwiseAbs().maxCoeff();
   const Vec3 wl = S * (w / wScale);
   const double planarSq = rho * rho * (wl.x() * wl.x() + wl.y() * wl.y());
   // kappa^2 = |c'|^2 / Rpoly^2, written without dividing by w3
   const double w3Sq = wl.z() * wl.z();
   const bool far = planarSq > kFarRatio * kFarRatio * radiusSq * w3Sq;
 
-  Accumulator acc;
   if (far) {
     const double kappaSq = w3Sq > 0.0 ? planarSq / (radiusSq * w3Sq) : INFINITY;
     const double tol = tolerance > 0.0 ? std::max(tolerance, 1e-15) : kDefaultQuadratureTol;
     const int n = farOrder(kappaSq, tol, wantJacobian);
     if (wantJacobian) {
-      farBranch<true>(local, N, wl, rho, n, acc);
+      farBranch<true>(local, N, wl, rho, n, localPressure, acc);
     } else {
-      farBranch<false>(local, N, wl, rho, n, acc);
+      farBranch<false>(local, N, wl, rho, n, localPressure, acc);
     }
   } else {
-    const double sgn = wl.z() > 0.0 ? 1.0 : -1.0;
-    const double cx = -rho * wl.y() / wl.z(), cy = rho * wl.x() / wl.z();
-    EdgeSums sums;
-    EdgeSumsGradient edge;
-    nearBranch(local, N, cx, cy, kDeltaZeroRel, sums, wantJacobian ? &edge : nullptr);
-    const double scale[3] = {sgn, sgn, sgn / rho};
-    for (int k = 0; k < 3; ++k) {
-      acc.F(0, k) = scale[0] * sums.fx[k];
-      acc.F(1, k) = scale[1] * sums.fy[k];
-      acc.F(2, k) = scale[2] * sums.tz[k];
-    }
-    if (wantJacobian) {
-      // dG/dc (exact_edge_integrals.hpp): the edge terms, d phi_k / dc_j
-      // times the phi = 1 column, and the torque's (G_y, -G_x)
-      // dc'/dw' = (rho/w3) [[0, -1, w2/w3], [1, 0, -w1/w3]]
-      Eigen::Matrix<double, 2, 3> dc;
-      dc << 0.0, -1.0, wl.y() / wl.z(), 1.0, 0.0, -wl.x() / wl.z();
-      dc *= rho / wl.z();
-      for (int k = 0; k < 3; ++k) {
-        Eigen::Matrix<double, 3, 2> dGdc;
-        for (int j = 0; j < 2; ++j) {
-          const bool phiMoves = k == j + 1;  // d phi_k / dc_j = 1
-          dGdc(0, j) = edge.fx[k][j] + (phiMoves ? sums.fx[0] : 0.0);
-          dGdc(1, j) = edge.fy[k][j] + (phiMoves ? sums.fy[0] : 0.0);
-          dGdc(2, j) = edge.tz[k][j] + (phiMoves ? sums.tz[0] : 0.0) + (j == 0 ? sums.fy[k] : -sums.fx[k]);
-        }
-        const Eigen::Matrix<double, 3, 2> dFdc = Vec3(scale[0], scale[1], scale[2]).asDiagonal() * dGdc;
-        acc.dF[k] = dFdc * dc;
-      }
-    }
+    nearColumns(local, N, wl, rho, wantJacobian, localPressure, acc);
   }
+}
+
+}  // namespace
+
+void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
+                       bool wantJacobian, ExactBasis& out, double tolerance) {
+  Accumulator<3> acc;
+  Vec2 g;
+  Mat3 S;
+  double wScale = 1.0;
+  evaluateInFrame(vertices, rho, w, wantJacobian, tolerance, Vec3::Zero(), acc, g, S, wScale);
 
   // back to O: phi = (1, gx + x', gy + y'), torque about O = T k', T = S^T
   //   F.col(0) = T F'.col(0),  F.col(1) = T (gx F'.col(0) + F'.col(1)), ...
@@ -296,6 +352,20 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
   } else {
     for (Mat3& m : out.dF) m.setZero();
   }
+}
+
+Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w, const Vec3& pressure,
+                     Mat3* jacobian, double tolerance) {
+  if (!pressure.allFinite()) fail("pressure coefficients must be finite");
+  Accumulator<1> acc;
+  Vec2 g;
+  Mat3 S;
+  double wScale = 1.0;
+  evaluateInFrame(vertices, rho, w, jacobian != nullptr, tolerance, pressure, acc, g, S, wScale);
+  // back to O: torque about O = T k', T = S^T; d/dw through w' = S w / wScale
+  const Mat3 T = S.transpose();
+  if (jacobian) jacobian->noalias() = T * acc.dF[0] * (S / wScale);
+  return T * acc.F.col(0);
 }
 
 }  // namespace patchspin::internal

@@ -152,26 +152,27 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
     requireFiniteJacobian(jacobian, w);
     return scale * moments_.Pz * q;
   }
-  internal::ExactBasis basis;
-  const bool wantJacobian = jacobian != nullptr;
-  if (shape_.isDisk()) {
-    internal::exactDiskBasis(shape_.centre(), shape_.radius(), rho_, u, wantJacobian, basis,
-                             tolerance);
-  } else {
-    internal::exactPolygonBasis(shape_.vertices(), rho_, u, wantJacobian, basis, tolerance);
-  }
-  // ∫ p k dA = F (p0, cx, cy)
+  // ∫ p k dA = F (p0, cx, cy) and its Jacobian sum_k c_k dF[k] (a polygon
+  // integrates p itself in one pass)
   const Vec3 c = pressure_.coefficients();
+  Vec3 integral;
+  Mat3 sum;
+  if (shape_.isDisk()) {
+    internal::ExactBasis basis;
+    internal::exactDiskBasis(shape_.centre(), shape_.radius(), rho_, u, jacobian != nullptr, basis, tolerance);
+    if (jacobian) sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
+    integral = basis.F * c;
+  } else {
+    integral = internal::exactPolygonLaw(shape_.vertices(), rho_, u, c, jacobian ? &sum : nullptr, tolerance);
+  }
   if (jacobian) {
     // scale (-1/Pz for the unit law) times invNorm may overflow on its own
     // while the product with the sum is finite (found by fuzzing): sum first
-    const Mat3 sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
     *jacobian = scale * Mat3(invNorm * sum);
     requireFiniteJacobian(jacobian, w);
   }
   // the integral first: Eigen folds scale * (F c) into (scale F) c, which
   // underflows to 0 for a tiny mu (e.g. 1e-308) even when Q is representable
-  const Vec3 integral = basis.F * c;
   const Vec3 Q = scale * integral;
   // the up-front check bounds |Q| by mu ∫|p| (1 + max|r| / rho) < DBL_MAX,
   // but the sum's own terms may exceed that bound by a few times (found by

@@ -34,6 +34,14 @@ struct ExactBasis {
 void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
                        bool wantJacobian, ExactBasis& out, double tolerance = 0.0);
 
+// The law's integral for one linear pressure p = p0 + cx x + cy y,
+// pressure = (p0, cx, cy): returns F (p0, cx, cy)^T = ∫_A p k dA and, if
+// jacobian is not null, its d/dw = sum_k pressure_k dF[k]; the same
+// polygon, rho, w and tolerance as exactPolygonBasis, in one pass over the
+// single function p (about half the basis' work with the Jacobian).
+Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w, const Vec3& pressure,
+                     Mat3* jacobian, double tolerance = 0.0);
+
 // Disk of radius R centred at `centre` (patch frame).
 void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, bool wantJacobian,
                     ExactBasis& out, double tolerance = 0.0);
