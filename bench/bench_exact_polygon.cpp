@@ -5,6 +5,9 @@
 // the rest, ICR farther than 8 circumradii, the Gauss-Legendre branch).
 // Separate runs time each branch alone, and the tolerance knob on the far
 // branch reports its measured error against tolerance 0 next to the time.
+// BM_ExactPolygonLaw times internal::exactPolygonLaw, the one-pass integral
+// of a single linear pressure that FrictionPatch uses, on the same shapes
+// and directions (to compare with the basis, which integrates three).
 // BM_EllipsoidalReference times the ellipsoidal law (41) on the same
 // rectangle and directions, for the exact / ellipsoidal ratio.
 #include <patchspin/internal/exact.hpp>
@@ -24,6 +27,7 @@ using patchspin::Vec2;
 using patchspin::Vec3;
 using patchspin::internal::ExactBasis;
 using patchspin::internal::exactPolygonBasis;
+using patchspin::internal::exactPolygonLaw;
 
 constexpr int kDirections = 1024;
 
@@ -173,6 +177,31 @@ BENCHMARK(BM_ExactPolygonBasisFarBranch)
     ->Args({1, 0, 9})
     ->Args({1, 0, 6})
     ->Args({1, 1, 0});
+
+// One linear pressure (tilted: 1 + 0.4 x - 0.3 y, positive on both shapes)
+// in one pass. Arguments: shape (0 rectangle, 1 octagon), Jacobian (0/1).
+void BM_ExactPolygonLaw(benchmark::State& state) {
+  const std::vector<Vec2> poly = state.range(0) == 0 ? rectangle() : octagon();
+  const double rho = meanDistance(poly);
+  const std::vector<Vec3> ws = directions(poly, rho, Sample::Sphere);
+  const Vec3 pressure(1.0, 0.4, -0.3);
+  Mat3 jac;
+  Mat3* jacobian = state.range(1) != 0 ? &jac : nullptr;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    Vec3 q = exactPolygonLaw(poly, rho, ws[i], pressure, jacobian);
+    benchmark::DoNotOptimize(q);
+    benchmark::DoNotOptimize(jac);
+    i = (i + 1) % ws.size();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ExactPolygonLaw)
+    ->ArgNames({"octagon", "jacobian"})
+    ->Args({0, 0})
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1});
 
 // Reference for the ratio: the ellipsoidal law (41) of the same rectangle
 // (uniform pressure, same rho and directions) through FrictionPatch.
