@@ -37,11 +37,15 @@ double safeNorm(const Vec3& w) {
   return m > 0.0 ? m * (w / m).norm() : 0.0;
 }
 
-Vec3 unitDirection(const Vec3& w) {
+Vec3 unitDirection(const Vec3& w, double* invNorm = nullptr) {
   internal::requireFinite(w, "slip direction w");
   const double m = w.cwiseAbs().maxCoeff();
   if (!(m > 0.0)) throw Error("slip direction w must be nonzero (w = 0 is sticking)");
-  return (w / m).normalized();
+  // (w / m).normalized() and 1 / safeNorm(w), sharing m and |w / m|
+  const Vec3 scaled = w / m;
+  const double n = std::sqrt(scaled.squaredNorm());
+  if (invNorm) *invNorm = 1.0 / (m * n);
+  return scaled / n;
 }
 
 // Largest |p| of a linear pressure on the closed patch.
@@ -141,8 +145,8 @@ void requireFiniteJacobian(const Mat3* jacobian, const Vec3& w) {
 // scale * ∫ p k(w) dA: scale = -mu gives Eq. (16); -1/Pz the unit law.
 Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
                                 double tolerance) const {
-  const Vec3 u = unitDirection(w);
-  const double invNorm = 1.0 / safeNorm(w);
+  double invNorm = 0.0;
+  const Vec3 u = unitDirection(w, &invNorm);
   if (hertz_) {
     // ∫ p k dA = Pz ∫ p1 k dA, p1 the unit-load Hertz pressure (57)
     const Vec3 q =
