@@ -419,7 +419,7 @@ TEST(ExactPolygonBasis, ManyVerticesMatchOracle) {
 }
 
 // With the Jacobian requested, F must be the same numbers: the edge sum's
-// dual-number arithmetic rounds the values exactly as the plain one, and the
+// values are the same code either way (its derivative is summed apart), and the
 // far rule may use one order more (both orders' errors are <= 2e-15 of the
 // scale, measured), so kSameTol = 1e-14.
 TEST(ExactPolygonBasis, ValueIndependentOfJacobianRequest) {
@@ -550,9 +550,10 @@ TEST(ExactPolygonBasis, ContinuousAcrossPureTranslation) {
 // outside the switch (c moved by 2e-14 of its distance, so F itself moves
 // by ~1e-14), F and dF must agree to the accuracy of both branches: F to
 // kSwitchTol (measured <= 6e-13 over shapes and rho), dF to
-// kSwitchJacobianTol: the dual-number derivative of the cancelling edge sum
-// is multiplied by dc/dw ~ kappa^2 / rho, measured <= 1.4e-10 (2x0.5
-// rectangle, rho = 0.1) and ~1e-11 for the shapes here.
+// kSwitchJacobianTol: the derivative of the cancelling edge sum in c is
+// multiplied by dc/dw ~ kappa^2 / rho, measured <= 1.4e-10 with the former
+// dual-number derivative and 6.1e-11 with the boundary-integral one (2x0.5
+// rectangle, rho = 0.1, 64 directions), ~1e-11 for the shapes here.
 TEST(ExactPolygonBasis, BranchesAgreeAtTheSwitch) {
   constexpr double kSwitchTol = 1e-12;
   constexpr double kSwitchJacobianTol = 1e-10;
