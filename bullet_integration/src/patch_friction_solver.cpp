@@ -16,6 +16,7 @@
 #include <patchspin/step.hpp>
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
 #include <Eigen/Dense>
@@ -38,6 +39,20 @@ using Mat6 = Eigen::Matrix<double, 6, 6>;
 constexpr double kTipRelTol = 1e-3;
 // Steps a tipped contact stays with Bullet before it may become a patch again.
 constexpr long kTipCooldownSteps = 10;
+// A face takes part in a patch only while the contact normal is within 45
+// degrees of its normal (cosine): a contact across the face's plane is on
+// the rim or the side. Between the faces' own flatness (<= 2 x 0.02 rad by
+// default) and a rim contact (~90 degrees) any cut separates them.
+constexpr double kFacingCos = 0.70710678118654752;
+// A contact point lies on a face when it is within this many times the two
+// shapes' summed collision margins of the face's plane. Box and cylinder
+// faces include the margin: in the 100-coin pour their points lie within
+// 0.05 (float) and 0.02 (double) of the summed margins of the faces. A
+// convex hull's faces are its points and Bullet's contact lies one margin
+// outside (1.0: the ConvexHull test's prism). Off the faces, the same pour
+// has a coin's bottom rim on another's side at 1.86 and rim contacts at 4.1
+// and (two coins side by side) ~10.
+constexpr double kOnFaceMargins = 1.5;
 // Pseudo-velocity iterations of the patch position correction per step.
 constexpr int kPushIterations = 4;
 // A patch outline whose vertices (or radius) are within this fraction of its
@@ -452,6 +467,25 @@ Mat6 bodyRows(const BodyTerms& t, const Mat3& F, double rho) {
   J.block<1, 3>(2, 3) = F.col(1).transpose();
   J.block<1, 3>(5, 3) = rho * F.col(2).transpose();
   return J;
+}
+
+// Every point of the manifold lies on both faces (A's point on A's face
+// plane, B's on B's) to within kOnFaceMargins times the sum of the two
+// shapes' collision margins: a contact anywhere else (a rim, a side) is not
+// the faces touching.
+bool contactOnFaces(const btPersistentManifold& m, bool aIs0, const internal::Face& faceA,
+                    const internal::Face& faceB) {
+  const btScalar tol = btScalar(kOnFaceMargins) * (m.getBody0()->getCollisionShape()->getMargin() +
+                                                   m.getBody1()->getCollisionShape()->getMargin());
+  for (int k = 0; k < m.getNumContacts(); ++k) {
+    const btManifoldPoint& p = m.getContactPoint(k);
+    const btVector3& onA = aIs0 ? p.m_positionWorldOnA : p.m_positionWorldOnB;
+    const btVector3& onB = aIs0 ? p.m_positionWorldOnB : p.m_positionWorldOnA;
+    if (btFabs(faceA.normal.dot(onA - faceA.centre)) > tol ||
+        btFabs(faceB.normal.dot(onB - faceB.centre)) > tol)
+      return false;
+  }
+  return true;
 }
 
 // A patch holds its body flat: the tilt rates it leaves are round-off crumbs
@@ -881,7 +915,12 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
       const double angle = std::acos(c);
       const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
-      flat = angle < tol && im.step - st.tipStep > kTipCooldownSteps;
+      // the faces must also face the contact, and the contact must be on
+      // them: two coins side by side touch rim to rim, with a normal across
+      // their (parallel) faces or, from Bullet's convex test near the rim,
+      // along them at a point one coin thickness off the other's face
+      flat = angle < tol && cosA >= kFacingCos && cosB >= kFacingCos &&
+             im.step - st.tipStep > kTipCooldownSteps && contactOnFaces(*m, aIs0, *faceA, *faceB);
       // x axis fixed in the moving body: a box spinning on a plane keeps
       // the same outline, and its cached shape, in this frame
       if (flat) {

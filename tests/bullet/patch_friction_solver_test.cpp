@@ -11,6 +11,7 @@
 #include <limits>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace patchspin::bullet {
 namespace {
@@ -319,6 +320,57 @@ TEST(PatchFrictionSolver, BoxOnOffsetBoxPatchIsTheFaceOverlap) {
   EXPECT_NEAR(top->shape->area(), 0.15 * 0.17, 1e-6);
   EXPECT_NEAR(top->loads.Pz, 1.0 * kG, 1e-3 * kG);
   EXPECT_NEAR(std::hypot(top->loads.Tx, top->loads.Ty), kG * std::hypot(0.025, 0.015), 1e-3 * kG * 0.03);
+}
+
+// Two coins lying side by side touch rim to rim: their faces are parallel
+// (both flat on the floor) but the contact normal runs across them, so the
+// pair is not a patch; each coin stands on its floor patch and rests. Before
+// the faces had to face the contact (kFacingCos), the rim contact became a
+// patch between one coin's bottom and the other's top, a "gap" of -H that
+// its position correction pushed apart (the hovering coin of the pour).
+// Rows of three coins, 0.5 mm overlap (Bullet's rim contact pushes them
+// apart), tilted about the row by 0 and 0.01 rad (inside the flatness
+// tolerance). Bounds: at rest, |v| + R |w| below 1 mm/s after 1 s (the
+// rim contacts' push ends within ~0.2 s); heights within 0.5 mm of H/2
+// (the coins' 0.5 mm margin: a hop as in the pour lifted a coin 0.25 mm
+// per hop and let it fall at g dt).
+constexpr double kSideBySideRestSpeed = 1e-3;
+constexpr double kSideBySideHeightTol = 5e-4;
+
+TEST(PatchFrictionSolver, CoinsSideBySideTouchRimToRimAndAreNoPatch) {
+  for (double tilt : {0.0, 0.01}) {
+    Scene scene(kG);
+    scene.addGroundPlane(1.0);
+    std::vector<btRigidBody*> coins;
+    for (int i = 0; i < 3; ++i) {
+      const double x = (i - 1) * (2 * kR - 5e-4);
+      btRigidBody* c =
+          scene.addCylinder(kR, kH, kMass, btVector3(btScalar(x), 0, btScalar(kH / 2)), kMu, 5e-4);
+      btTransform t = c->getWorldTransform();
+      t.setRotation(btQuaternion(btVector3(1, 0, 0), btScalar(tilt)));
+      c->setWorldTransform(t);
+      scene.solver().enablePatchFriction(c, {i == 1 ? Model::Exact : Model::Ellipsoidal});
+      coins.push_back(c);
+    }
+    auto isCoin = [&](const btCollisionObject* o) {
+      return std::find(coins.begin(), coins.end(), o) != coins.end();
+    };
+    int coinPatches = 0;
+    for (int k = 0; k < 240; ++k) {
+      scene.step(kDt);
+      for (const PatchReport& r : scene.solver().patchReports())
+        if (isCoin(r.body) && isCoin(r.other)) ++coinPatches;
+    }
+    EXPECT_EQ(coinPatches, 0) << "tilt " << tilt;
+    for (btRigidBody* c : coins) {
+      const double speed =
+          double(c->getLinearVelocity().length()) + kR * double(c->getAngularVelocity().length());
+      EXPECT_LT(speed, kSideBySideRestSpeed) << "tilt " << tilt;
+      EXPECT_NEAR(double(c->getWorldTransform().getOrigin().z()), kH / 2, kSideBySideHeightTol)
+          << "tilt " << tilt;
+      EXPECT_NE(scene.solver().findPatchReport(c), nullptr) << "tilt " << tilt;
+    }
+  }
 }
 
 // The shape and friction law of a patch are rebuilt only when its outline

@@ -143,11 +143,10 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // at landing, 0.11 at 1.6 s, 0.055 at 3.9 s, precessing at 10-16 rad/s,
 // the same in all three models: it is on Bullet's point contacts) lies flat
 // at ~5 s; 4 s, the first choice, caught it mid-roll. After 8 s both patch
-// models are at rest in float (largest speed 5.6e-5 m/s; also at 6 and 10
-// s), while stock Bullet's float pour is not: its flat coins keep wobbling
-// on their point contacts (1-5 cm/s at 6, 8 and 10 s). In double, stock and
-// the ellipsoidal pour are at rest; the exact pour is not (known defect,
-// below).
+// models are at rest, every coin on a patch (largest speed 2.3e-5 m/s in
+// float, 1e-27 in double), while stock Bullet's float pour is not: its flat
+// coins keep wobbling on their point contacts (1-5 cm/s at 6, 8 and 10 s).
+// In double, stock is at rest too.
 constexpr double kPourR = 0.02, kPourH = 0.005, kPourMass = 0.01;
 constexpr double kBoxHalf = 0.3, kWallH = 0.5;
 constexpr double kPourTime = 8.0;
@@ -226,7 +225,7 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // it is still moving in every model (largest speed, |v| + R |omega|:
     // stock 0.89 m/s, ellipsoidal 0.92, exact 1.0; 4 s: stock 1.7), coins
     // on patches included (0.37-0.46 m/s), so it is reported with the rest
-    if (!stressFull() && !(kDouble && m == Friction::Exact)) {
+    if (!stressFull()) {
       EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
     } else if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed) {
       defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
@@ -237,16 +236,15 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
                  fmt("%.0f", kPourTime) + " s";
   }
   table.emit();
-  // Known defect (reported), double precision, exact pour: one coin (53)
-  // tilted 0.014 rad, inside the flatness tolerance, stands on a floor patch
-  // whose gap is measured at the face's centre, 0.28 mm above the floor,
-  // while its rim touches: the patch lets it approach at up to gap / dt, so
-  // it falls at g dt = 4.1 cm/s in every step with no normal impulse (Pz =
-  // 0), and the split impulse's position correction holds it up (its
-  // position is the same at 8 and 10 s). Tried: the gap at the face's
-  // lowest point instead; it fixes this coin, but in float a coin tilted
-  // 0.029 rad then hovers the same way between the approach target and the
-  // tilt correction (2.96e-2 m/s at 8 s), so it is not in.
+  // Fixed defect: in the double build's exact pour one coin (53), flat on a
+  // floor patch, hovered, falling at g dt in every step with Pz = 0 while
+  // something pushed it back up. The push came from a second "patch" with
+  // its neighbour: the two coins touched rim to rim, their faces were
+  // parallel, and the pair was taken for a face contact between one coin's
+  // bottom and the other's top, gap -5.4 mm, whose position correction
+  // lifted the coin 0.25 mm every few steps. Faces now have to face the
+  // contact and hold its points (kFacingCos, kOnFaceMargins in the solver;
+  // PatchFrictionSolver.CoinsSideBySideTouchRimToRimAndAreNoPatch).
   // Before: with 4 s, the pour was not at rest in any model (coins still
   // rolling on their rims, above). The 1000-coin pile (PATCHSPIN_STRESS_FULL=1, float, ellipsoidal)
   // also ends with one coin 2.1 mm under the floor, beyond kPourSinkTol:
@@ -260,7 +258,7 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   // reported a floor patch were being knocked over by falling coins (tilted
   // 0.12-0.17 rad within that step; the next step hands them to Bullet).
   // The coins standing on a patch at the end are at rest (asserted above:
-  // 5.6e-5 m/s in the 100-coin pour); the moving ones are on Bullet's point
+  // 2.3e-5 m/s in the 100-coin pour); the moving ones are on Bullet's point
   // contacts, which do not dissipate a wobble on the rim (rolling without
   // slip loses no energy). Tried: Bullet's rolling and spinning friction
   // (1e-3 m) on the coins brings stock's 100-coin pour to rest but not the
