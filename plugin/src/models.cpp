@@ -103,8 +103,8 @@ FrictionPatch::FrictionPatch(const PatchShape& disk, const HertzPressure& pressu
 }
 
 void FrictionPatch::setPressure(const LinearPressure& pressure) {
-  internal::requireFinite(pressure.coefficients(), "pressure (p0, cx, cy)");
   // both may throw: update nothing until both succeed
+  // (piMoments first requires the coefficients finite, with the same message)
   const PiMoments moments = patchspin::piMoments(shape_, pressure);  // throws if Pz <= 0
   const Mat3 Pi = ellipsoidalPi(moments, rho_);
   requireFiniteScale(mu_, shape_.area() * maxAbsPressure(shape_, pressure), moments.Pz, Pi,

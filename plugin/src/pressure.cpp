@@ -26,7 +26,12 @@ double planarNorm(double x, double y) {
   return std::hypot(x, y);
 }
 
+// (each visit of a patch refreshes its pressure: the common, finite case
+// tests inline and calls out only to name the offending value)
+bool finite3(double a, double b, double c) { return std::isfinite(a) && std::isfinite(b) && std::isfinite(c); }
+
 void requireFiniteLoads(const PatchLoads& loads) {
+  if (finite3(loads.Pz, loads.Tx, loads.Ty)) return;
   internal::requireFinite(loads.Pz, "normal force Pz");
   internal::requireFinite(loads.Tx, "tipping torque Tx");
   internal::requireFinite(loads.Ty, "tipping torque Ty");
@@ -263,7 +268,8 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
 }  // namespace
 
 PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
-  internal::requireFinite(pressure.coefficients(), "pressure (p0, cx, cy)");
+  if (!finite3(pressure.p0, pressure.cx, pressure.cy))
+    internal::requireFinite(pressure.coefficients(), "pressure (p0, cx, cy)");
   // every integral of Eq. (36) is m.row(f) (p0, cx, cy) (DESIGN item 1)
   const Eigen::Matrix<double, 6, 1> v = shape.momentTable().m * pressure.coefficients();
   PiMoments out;
@@ -293,7 +299,7 @@ PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
 }
 
 Mat3 ellipsoidalPi(const PiMoments& m, double rho) {
-  internal::requirePositive(rho, "length scale rho");
+  if (!(rho > 0.0 && rho <= std::numeric_limits<double>::max())) internal::requirePositive(rho, "length scale rho");
   // Eq. (40) without the factor -mu Pz
   Mat3 Pi;
   Pi << 1.0, 0.0, -m.pi_y0,  //
