@@ -2,10 +2,12 @@
 // both laws, with any patch, free slip b, matrix K, bound L and warm start.
 //
 // Contract: a patchspin::Error (non-finite input, L < 0, K not positive
-// definite; a block outside its domain, step.hpp: pressure negative beyond
-// 1e-6 of the mean, lever max|r| / rho outside [1e-5, 1e5], K's diagonal
-// spanning more than 1e30, an exact law whose round-off model exceeds 1e-6,
-// which must be refused), or finite impulse and slip with
+// definite; the exact block with K's plain condition number (times the
+// lever's distance from 1) 1e5 or more,
+// where it may refuse a slip it cannot verify; a block outside its domain, step.hpp: pressure
+// negative beyond 1e-6 of the mean, lever max|r| / rho outside [1e-5, 1e5], K's diagonal spanning
+// more than 1e30, an exact law whose round-off model exceeds 1e-6, which must be refused), or
+// finite impulse and slip with
 //  * slip = b + K impulse, and slip = 0 when sticking;
 //  * the impulse inside the limit set L E:
 //      ellipsoidal |impulse| <= L ||Pi||_F,
@@ -73,6 +75,17 @@ double scaledCondition(const Mat3& K) {
   return lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
 }
 constexpr double kSingularCondition = 1e10 / 3.0;
+
+// K's plain condition number (2-norm, symmetric part): the exact block may
+// refuse a K at or above 1e5 in |K|_F |K^-1|_F (at most 3 times this) times
+// max(1, lever, 1 / lever) when it cannot verify its slip against the law
+// (step.cpp, requireVerifiedExactSlip); below that it must solve
+double plainCondition(const Mat3& K) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(0.5 * (K + K.transpose()));
+  const double lo = es.eigenvalues().minCoeff(), hi = es.eigenvalues().maxCoeff();
+  return lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
+}
+constexpr double kUnverifiedCondition = 1e5 / 3.0;
 
 void run(ByteReader& in) {
   const PatchShape shape = takeShape(in);
@@ -180,8 +193,11 @@ void run(ByteReader& in) {
                                  (1.0 + shape.maxDistanceFromOrigin() / patch.rho());
     const bool hugePressure = !(pressureTerms < std::numeric_limits<double>::max() / 1e8);
     const bool singular = isSpd(input.K) && scaledCondition(input.K) >= kSingularCondition;
-    if (finite && moderate && !hugePressure && !singular && !outsideDomain && !nearDomainEdge && input.L >= 0.0 &&
-        isSpd(input.K)) {
+    const bool unverified =
+        model == Model::Exact && isSpd(input.K) &&
+        plainCondition(input.K) * std::max({1.0, lever, 1.0 / lever}) >= kUnverifiedCondition;
+    if (finite && moderate && !hugePressure && !singular && !unverified && !outsideDomain &&
+        !nearDomainEdge && input.L >= 0.0 && isSpd(input.K)) {
       fail("valid block refused (%s): %s", toString(model), e.what());
     }
     return;

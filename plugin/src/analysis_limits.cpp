@@ -538,7 +538,29 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
 
 }  // namespace
 
+namespace {
+// A body whose centre of mass lies more than kMaxComOffset radii of
+// gyration sqrt(Jz / m) from O, horizontally, has a mass matrix (91),
+// M = W^T diag(m, m, Jz) W, with a unit-diagonal condition of ~4 (1 + m
+// (xc^2 + yc^2) / Jz): from 1e5 (cond 4e10) its inverse has no digits and
+// neither has the limit field, which acts through it (found by fuzzing:
+// com 1.3e5 to 1.7e10 m from a 0.5 m disk with Jz = 0.5 kg m^2, tiny mu:
+// directions 1e-3 to 1 of the field off the fixed point). A physical body
+// touches the ground within its own size, a few radii of gyration.
+constexpr double kMaxComOffset = 1e5;
+void requireResolvableMassMatrix(const FlatBody& body) {
+  const double offset = std::hypot(body.com.x(), body.com.y());
+  const double gyration = std::sqrt(body.Jz) / std::sqrt(body.mass);
+  if (!(offset <= kMaxComOffset * gyration)) {
+    throw Error("limit directions: the centre of mass lies " + internal::formatDouble(offset) +
+                " m from O, more than 1e5 radii of gyration (" + internal::formatDouble(gyration) +
+                " m): the mass matrix is numerically singular");
+  }
+}
+}  // namespace
+
 LimitAnalysis findLimitDirections(const FlatBodyModel& model, const LimitOptions& options) {
+  requireResolvableMassMatrix(model.body());
   return solveNormalised(model, options);
 }
 

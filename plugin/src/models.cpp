@@ -167,6 +167,31 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
     requireFiniteJacobian(jacobian, w);
     return scale * moments_.Pz * q;
   }
+  // the law's digits: it sums the pressure's terms about O, each up to
+  // A |c_k| max|r|^k, over kernel integrals that cancel by diameter^2 / A on
+  // a sliver, so its round-off is ~kTermsUlps eps max(1, diameter^2 / A)
+  // times those terms (measured up to 26 ulps by the friction_q target).
+  // Where that reaches kLawNoDigits of Pz the law is noise: refused, as the
+  // exact friction block refuses it (found by fuzzing: Pz = 1.2e-5 from
+  // terms of 2.5e5 on a triangle with diameter^2 / A = 4e10 gave |(Px, Py)|
+  // = 0.51 against mu ∫|p| = 5.9e-6). An ordinary patch is ~1e4 and more
+  // below it (a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10).
+  {
+    constexpr double kTermsUlps = 64.0, kLawNoDigits = 1e-6;
+    const double terms = shape_.area() * (std::abs(pressure_.p0) +
+                                          (std::abs(pressure_.cx) + std::abs(pressure_.cy)) *
+                                              shape_.maxDistanceFromOrigin());
+    const double sliver = std::max(1.0, shape_.diameter() / shape_.area() * shape_.diameter());
+    const double roundOff =
+        kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * (terms / moments_.Pz);
+    if (!(roundOff <= kLawNoDigits)) {
+      throw Error("exact law: no digits for this pressure and patch (round-off ~" +
+                  internal::formatDouble(roundOff) + " of Pz: terms about O " +
+                  internal::formatDouble(terms / moments_.Pz) +
+                  " times Pz on a patch of diameter^2 / area " + internal::formatDouble(sliver) +
+                  ")");
+    }
+  }
   // ∫ p k dA = F (p0, cx, cy) and its Jacobian sum_k c_k dF[k] (a polygon
   // integrates p itself in one pass)
   const Vec3 c = pressure_.coefficients();

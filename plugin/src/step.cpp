@@ -88,7 +88,44 @@ void requireNotNumericallySingular(const Mat3& Ksym, const Mat3& Kinv) {
     throw Error("friction block matrix K is numerically singular (condition number " +
                 internal::formatDouble(cond) + " after scaling to a unit diagonal)");
 }
-void requireNotNumericallySingular(const Mat3& Ksym) { requireNotNumericallySingular(Ksym, Ksym.inverse()); }
+
+// K's symmetric part factored by Cholesky (LLT): the positive definiteness
+// test and K^-1 of both blocks. Cholesky succeeds, and its solves are
+// accurate, to the condition number of K scaled to a unit diagonal (van der
+// Sluis, Demmel), whatever the diagonal's spread. The leading minors
+// (Sylvester) and the cofactor inverse are not: their products cancel at
+// eps |K|^2 and eps |K|^3 (found by fuzzing: K = a 1 1^T + delta I with a =
+// 1.7e16 and delta = 7.5e7, unit-diagonal cond 6.7e8, whose computed
+// determinant came out negative: refused as not positive definite).
+Eigen::LLT<Mat3> requirePositiveDefiniteFactor(const Mat3& Ksym) {
+  Eigen::LLT<Mat3> llt(Ksym);
+  if (!(llt.info() == Eigen::Success && Ksym.diagonal().minCoeff() > 0.0 &&
+        llt.matrixLLT().allFinite()))
+    throw Error(
+        "friction block matrix K is not positive definite (or singular to round-off: its Cholesky "
+        "factorisation fails)");
+  return llt;
+}
+Mat3 inverseOf(const Eigen::LLT<Mat3>& llt) {
+  const Mat3 inv = llt.solve(Mat3::Identity());
+  return 0.5 * (inv + inv.transpose());
+}
+void requireNotNumericallySingular(const Mat3& Ksym) {
+  requireNotNumericallySingular(Ksym, inverseOf(requirePositiveDefiniteFactor(Ksym)));
+}
+
+// -K^-1 b, a stick's impulse: by K's Cholesky factor, then one step of
+// refinement with K itself (its symmetric part was factored; K may be
+// asymmetric to 1e-10). Partial pivoting is not invariant under K's
+// diagonal scaling: with K = diag-heavy (K_zz = 2e12 against K_xx = 1.5e-6
+// and K_xz = -0.014) it pivoted on the z row, and the solve returned a
+// force of 1.6e-8 where -K^-1 b has 5.8e-12 (found by fuzzing: a stick 1.65
+// times outside L E).
+Vec3 stickSolve(const Mat3& K, const Eigen::LLT<Mat3>& llt, const Vec3& b) {
+  const Vec3 lambda = -llt.solve(b);
+  const Vec3 refined = lambda - llt.solve(b + K * lambda);
+  return refined.allFinite() ? refined : lambda;
+}
 
 // A stick's impulse must stop the slip, b + K lambda = 0, to the round-off
 // of a backward-stable solve (a few eps of |b| + |K| |lambda|; kStickResidual
@@ -175,6 +212,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   // and |n0|^2 underflowed to 0 <= d, a false stick with lambda = -K^-1 b
   // 1e90 times outside the set; found by fuzzing, b = 1e74 against L = 1e-8)
   const double n0Norm = rangeSafeNorm(n0);
+  bool pivoted = !wellConditioned;
   if (wellConditioned) {
     stick = n0Norm <= d;
     // the impulse -K^-1 b by a pivoted solve with K itself (backward
@@ -182,18 +220,32 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     // from the adjugate left b + K lambda at cond(A) eps, 1e-8 of the scale
     // for a K with eigenvalues 5.9e7 and 2.6e3 (found by fuzzing). Sticks
     // only.
+    // (where the two differ by more than kStickAgreement, the stick is
+    // decided again by pivoted solves below: d is a cancelled cubic in A's
+    // entries, and for a K singular to round-off it is noise while the
+    // condition test on it still passes; found by fuzzing, K with entries
+    // 1.6e20 whose unit-diagonal form is indefinite at round-off stuck with
+    // an impulse 9.6 times outside L |Pi|)
+    constexpr double kStickAgreement = 1e-4;
     if (stick) {
-      lambda0 = -in.K.partialPivLu().solve(in.b);
-      if (!lambda0.allFinite()) lambda0 = -in.L * (Pi * (n0 / d));
+      lambda0 =
+          stickSolve(in.K, requirePositiveDefiniteFactor(0.5 * (in.K + in.K.transpose())), in.b);
+      if (!lambda0.allFinite())
+        lambda0 = -in.L * (Pi * (n0 / d));
+      else if (!((lambda0 + in.L * (Pi * (n0 / d))).stableNorm() <=
+                 kStickAgreement * lambda0.stableNorm()))
+        pivoted = true;
     }
-  } else {
+  }
+  if (pivoted) {
     // (an ill-conditioned A only: a numerically singular K, as the exact
     // block refuses it, has no digits in this answer either; found by
     // fuzzing: K with entries 3e-16 to 9.9e19 whose y-z block is singular
     // once scaled to a unit diagonal returned a slip of 1.4e19 driven by the
     // impulse, 1.07 of L |Pi| off the law)
-    requireNotNumericallySingular(0.5 * (in.K + in.K.transpose()));
-    lambda0 = -in.K.partialPivLu().solve(in.b);
+    const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
+    requireNotNumericallySingular(Ksym);
+    lambda0 = stickSolve(in.K, requirePositiveDefiniteFactor(Ksym), in.b);
     const Vec3 w0 = -Pi.partialPivLu().solve(lambda0) / in.L;
     stick = lambda0.allFinite() && w0.allFinite() ? w0.norm() <= 1.0 : d > 0.0 && n0Norm <= d;
   }
@@ -241,9 +293,85 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     }
     r = next;
   }
-  const Vec3 w = N.normalized();
+  Vec3 w = N.normalized();
   out.impulse = -in.L * (Pi * w);
   out.slip = in.b + in.K * out.impulse;
+  // Backward error: the impulse -L Pi w with |w| = 1 is the exact solution
+  // of the block with b - e, e = s - (s.w) w, if s.w >= 0. A root r off by
+  // the tolerance leaves |e| ~ tol |A| (w = N / |N| is the normalised
+  // (rI + A)^-1 b); past kBackwardErrorUlps that (kMinBackwardError for the
+  // default tolerance) the Cayley-Hamilton sums have no digits: p(r) and
+  // N(r) hold det A and adj A, cubic and quadratic in A's entries, which
+  // cancel to noise for a K near singular (found by fuzzing: K = 0.75 1 1^T
+  // + 1e-8 I, unit-diagonal cond 2.3e8, slipped with |s| = 0.19 where the
+  // true slip is 1.1e-9: the impulse 1.28 of L |Pi| off the law at its
+  // slip). There the root is found again with (rI + A)^-1 b by pivoted
+  // solves (backward stable, whatever A's conditioning).
+  constexpr double kBackwardErrorUlps = 100.0, kMinBackwardError = 1e-10;
+  const double backwardTol = std::max(kBackwardErrorUlps * tol, kMinBackwardError) * scale;
+  auto backwardError = [&] {
+    const double along = out.slip.dot(w);
+    return (out.slip - std::max(along, 0.0) * w).stableNorm();
+  };
+  if (!(backwardError() <= backwardTol)) {
+    // phi(r) = 1 / |v| - 1, v = (rI + A)^-1 b, increasing in r like f;
+    // phi' = v.(rI + A)^-1 v / |v|^3; bracketed and safeguarded as above
+    double plo = std::max(0.0, bNorm - aNorm), phi = scale;
+    double pr = std::max(plo, bNorm - t / 3.0);
+    Vec3 v = in.b;
+    for (int it = 0; it < kMaxIterations; ++it) {
+      ++out.iterations;
+      const Eigen::PartialPivLU<Mat3> lu(pr * Mat3::Identity() + A);
+      v = lu.solve(in.b);
+      const double vn = v.norm();
+      const double g = 1.0 / vn - 1.0;
+      const double dg = v.dot(lu.solve(v)) / (vn * vn * vn);
+      if (!std::isfinite(g) || g < 0.0)
+        plo = pr;
+      else
+        phi = pr;
+      if (std::abs(g) <= tol || phi - plo <= tol * phi) break;
+      const double mid =
+          plo > 0.0 && phi > 4.0 * plo ? std::sqrt(plo) * std::sqrt(phi) : 0.5 * (plo + phi);
+      double next = dg > 0.0 && std::isfinite(g) ? pr - g / dg : mid;
+      if (!(next > plo && next < phi)) next = mid;
+      pr = next;
+    }
+    w = v.normalized();
+    out.impulse = -in.L * (Pi * w);
+    out.slip = in.b + in.K * out.impulse;
+    // |v| itself carries cond(rI + A) eps relative error (a backward stable
+    // solve pins v's residual, not its norm), so the root only makes |v| = 1
+    // to that noise, and w = v / |v| leaves e ~ that noise times |A v|
+    // (found: 1.1e-9 for a slip of 1.1e-9 at cond 2e8). Newton on the
+    // residual F(w, r) = b - L K Pi w - r w with w on the sphere, whose
+    // bordered Jacobian [A + rI, w; w^T, 0] is regular where A + rI is
+    // singular along the slip, brings e to the round-off of the residual.
+    double rr = std::max(out.slip.dot(w), 0.0);
+    for (int k = 0; k < 4 && !(backwardError() <= 1e-3 * backwardTol); ++k) {
+      Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+      M.topLeftCorner<3, 3>() = A + rr * Mat3::Identity();
+      M.block<3, 1>(0, 3) = w;
+      M.block<1, 3>(3, 0) = w.transpose();
+      Eigen::Vector4d rhs;
+      rhs << out.slip - rr * w, 0.0;
+      const Eigen::Vector4d delta = M.fullPivLu().solve(rhs);
+      if (!delta.allFinite()) break;
+      const Vec3 wNew = (w + delta.head<3>()).normalized();
+      const Vec3 impulseNew = -in.L * (Pi * wNew);
+      const Vec3 slipNew = in.b + in.K * impulseNew;
+      const double eNew = (slipNew - std::max(slipNew.dot(wNew), 0.0) * wNew).stableNorm();
+      if (!(eNew < backwardError())) break;
+      w = wNew, out.impulse = impulseNew, out.slip = slipNew, rr = std::max(rr + delta(3), 0.0);
+    }
+    // (a block that misses it even so is singular to round-off)
+    if (!(backwardError() <= backwardTol))
+      throw Error(
+          "friction block matrix K is numerically singular (the ellipsoidal slip misses its law "
+          "by " +
+          internal::formatDouble(backwardError()) + " against a slip scale " +
+          internal::formatDouble(scale) + ")");
+  }
   return out;
 }
 
@@ -258,13 +386,11 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
 FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockInput& in) {
   FrictionBlockResult out;
   const double tol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
-  // positive definite by Sylvester's criterion (leading minors > 0), then
-  // the inverse by cofactors
+  // positive definite by Cholesky, then the inverse from that factor (see
+  // requirePositiveDefiniteFactor)
   const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
-  const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
-  const double det = Ksym.determinant();
-  if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && det > 0.0))
-    throw Error("friction block matrix K is not positive definite");
+  const Eigen::LLT<Mat3> kLlt = requirePositiveDefiniteFactor(Ksym);
+  const double det = kLlt.matrixLLT().diagonal().prod() * kLlt.matrixLLT().diagonal().prod();
   // a diagonal spanning more than kMaxDiagonalSpread is out of this
   // solver's range: its slip potential weighs the slip's round-off along the
   // soft directions by K^-1 up to 1e300 (found by fuzzing: K = diag(1e10,
@@ -276,7 +402,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     throw Error("friction block out of range: the diagonal of K spans more than 1e200 (" +
                 internal::formatDouble(Ksym.diagonal().minCoeff()) + " to " +
                 internal::formatDouble(Ksym.diagonal().maxCoeff()) + ")");
-  const Mat3 Kinv = Ksym.inverse();
+  const Mat3 Kinv = inverseOf(kLlt);
   // (found by fuzzing: entries of 1e148 with K_xx = 6e17, det(K) = inf and
   // K^-1 = 0, so K^-1 b = 0 and the block stuck with a zero impulse)
   if (!std::isfinite(det) || !Kinv.allFinite())
@@ -286,36 +412,14 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // eigenvector driven by the impulse itself, off the law by 0.9 of L |q|);
   // the common path pays one product of two norms
   if (!(Ksym.norm() * Kinv.norm() < kSingularCondition / 3.0)) requireNotNumericallySingular(Ksym, Kinv);
-  // (and where the cofactors cancel to K^-1 b = 0 with b != 0, a pivoted
-  // solve: found by fuzzing, K = 0.75 (1 1^T) + 1e-8 I against b = 0.5 (1, 1,
-  // 1) stuck with a zero impulse)
-  const Vec3 lambda0 = [&] {
-    const Vec3 cofactor = -Kinv * in.b;
-    if (cofactor.norm() > 0.0) return cofactor;
-    const Vec3 solved = -in.K.partialPivLu().solve(in.b);
-    return solved.allFinite() ? solved : cofactor;
-  }();
-  // a stick returns -K^-1 b from a pivoted solve with K (backward stable:
-  // b + K lambda = 0 to round-off of |K| |lambda|); the cofactor inverse
-  // left b + K lambda at cond(K) eps, 1e-8 of the scale for a K of cond 1e8
-  // (found by fuzzing)
-  // (where it differs from the lambda0 the stick was decided with by more
-  // than kStickAgreement, K's condition is tested again with the pivoted
-  // inverse: found by fuzzing, a K singular to round-off in two 2x2 minors
-  // passed the singularity test with a cofactor inverse that had no
-  // digits, lambda0 fell inside L E, and the pivoted solve returned a force
-  // of 4.6e15 against L = 1e-8. A K within the condition limit keeps its
-  // stick: the cofactors can be the noisy side, e.g. K = 3 (1 1^T) + 1e-8 I,
-  // cond 9e8, with b along (1, 1, 1).)
-  constexpr double kStickAgreement = 1e-4;
-  auto stickImpulse = [&] {
-    const Eigen::PartialPivLU<Mat3> lu = in.K.partialPivLu();
-    const Vec3 solved = -lu.solve(in.b);
-    const Vec3 chosen = requireStopsTheSlip(in.K, in.b, solved.allFinite() ? solved : lambda0);
-    if (!((chosen - lambda0).stableNorm() <= kStickAgreement * chosen.stableNorm()))
-      requireNotNumericallySingular(Ksym, lu.inverse());
-    return chosen;
-  };
+  // lambda0 = -K^-1 b by the Cholesky factor (stickSolve): the stick is
+  // decided with the impulse it returns (the cofactor inverse cancelled to
+  // K^-1 b = 0 for K = 0.75 (1 1^T) + 1e-8 I, and had no digits for a K
+  // singular to round-off in two 2x2 minors, where a stick decided with it
+  // returned a pivoted solve's force of 4.6e15 against L = 1e-8; both found
+  // by fuzzing). A stick verifies b + K lambda = 0 (requireStopsTheSlip).
+  const Vec3 lambda0 = stickSolve(in.K, kLlt, in.b);
+  auto stickImpulse = [&] { return requireStopsTheSlip(in.K, in.b, lambda0); };
   const double lambda0Norm = lambda0.norm();
   if (lambda0Norm == 0.0) {
     out.sticking = true;
@@ -636,13 +740,72 @@ FrictionBlockResult requireFiniteResult(const FrictionBlockResult& r) {
 }  // namespace
 
 namespace {
-// K positive definite: the leading minors of its symmetric part (Sylvester),
-// as the exact path checks.
+// K positive definite: its symmetric part has a Cholesky factor, as the
+// exact path checks.
 void requirePositiveDefinite(const Mat3& K) {
-  const Mat3 Ksym = 0.5 * (K + K.transpose());
-  const double minor2 = Ksym(0, 0) * Ksym(1, 1) - Ksym(0, 1) * Ksym(1, 0);
-  if (!(Ksym(0, 0) > 0.0 && minor2 > 0.0 && Ksym.determinant() > 0.0))
-    throw Error("friction block matrix K is not positive definite");
+  requirePositiveDefiniteFactor(0.5 * (K + K.transpose()));
+}
+
+// The exact block with an ill-conditioned K verifies that a slip is the
+// law at its own slip direction, impulse = L q(s^), s = b + K impulse (a
+// residual: the returned state is then the exact solution of the block to
+// the law's round-off) and refuses the block otherwise. The slip potential
+// weighs the slip by K^-1, so its Newton iteration works at K's plain
+// condition number, not at its unit-diagonal one; beyond ~1e8 its descent
+// tests are round-off and it can stop far from the solution (found by
+// fuzzing, both with a K near singular, e.g. K = 0.75 1 1^T + 1.1e-8 I, and
+// with a wide diagonal and b off the rows' scale, e.g. K_xx = 8.4e12
+// against K_yy = K_zz = 1e-8 and b ~ 1e-8: slips driven by the impulse,
+// 0.5 to 1.1 of the set off the law). kVerifyCondition = 1e5 (|K|_F |K^-1|_F,
+// at least the 2-norm condition) lies below every such finding (the lowest:
+// 1.2e8; this round's session found 2.6e-6 at 3.8e6 with the lever factor
+// below) and above what the Bullet integration feeds the block (measured:
+// |K|_F |K^-1|_F at most 7.2e3, unit-diagonal condition ~10, diagonal span
+// ~6e3, levers ~1 to 3); the check costs one evaluation of the law there
+// and nothing below it. The direction of s is checked where it is resolved
+// (|s| above kResolvedSlip of the block's slip scale: the Newton tolerance
+// leaves 1e-14 of it, magnified by the law's sensitivity, up to 1e5 at the
+// lever domain's ends; as the fuzz target checks it), to kVerifyLaw of the
+// set's size (the target's tolerance), and the
+// slip's kinetic energy may not grow (s^T K^-1 s <= b^T K^-1 b, maximum
+// dissipation; to kVerifyEnergy, wherever s is resolved or not: found by
+// fuzzing, a K spanning 5.6e25 with a lever of 1e4 returned a slip of
+// 1e-9 of the scale with 2e4 times the energy of b).
+constexpr double kVerifyCondition = 1e5, kVerifyLaw = 1e-6, kResolvedSlip = 1e-2,
+                 kVerifyEnergy = 1e-10;
+FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
+                                             const FrictionBlockInput& in,
+                                             const FrictionBlockResult& r) {
+  if (r.sticking || in.L == 0.0) return r;
+  const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
+  const Eigen::LLT<Mat3> llt = requirePositiveDefiniteFactor(Ksym);
+  const double cond = Ksym.norm() * inverseOf(llt).norm();
+  // (times the lever's distance from 1: the law turns from force to torque
+  // across |w_z| / |w_xy| ~ 1 / lever, so the iteration's round-off reaches
+  // the law magnified by it; found by fuzzing: cond 3e6 with a lever of
+  // 1.06e4 left the law 1.2e-5 off)
+  const double lever = patch.shape().maxDistanceFromOrigin() / patch.rho();
+  if (cond * std::max({1.0, lever, 1.0 / lever}) < kVerifyCondition) return r;
+  const double energyBefore = in.b.dot(llt.solve(in.b)),
+               energyAfter = r.slip.dot(llt.solve(r.slip));
+  if (!(energyAfter <= energyBefore * (1.0 + kVerifyEnergy)))
+    throw Error("friction block: the exact block cannot resolve this K (condition number " +
+                internal::formatDouble(cond) + "): its slip gains kinetic energy (" +
+                internal::formatDouble(energyBefore) + " -> " +
+                internal::formatDouble(energyAfter) + ")");
+  const Vec3 q = patch.unitQ(Model::Exact, r.slip);
+  // (the set's size and the slip scale as the fuzz target measures them:
+  // force up to ∫|p| / Pz ~ 1 (p >= 0), torque up to that times the lever;
+  // relative to |q| alone a long lever's translation, |q| ~ 1 in a set of
+  // size 1e5, was held to 1e-12 of the set, below what the iteration
+  // resolves there)
+  const double lawSize = 1.0 + lever;
+  const double scale = in.b.stableNorm() + in.L * in.K.stableNorm() * lawSize;
+  const double miss = (r.impulse / in.L - q).stableNorm();
+  if (!(r.slip.stableNorm() > kResolvedSlip * scale) || miss <= kVerifyLaw * lawSize) return r;
+  throw Error("friction block: the exact block cannot resolve this K (condition number " +
+              internal::formatDouble(cond) + "): its impulse misses the law at its slip by " +
+              internal::formatDouble(miss / lawSize) + " of the law's size");
 }
 
 // The block after validation, at the scale it is given.
@@ -653,7 +816,7 @@ FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const Fr
     requirePositiveDefinite(input.K);
     return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
   }
-  return requireFiniteResult(solveExact(patch, input));
+  return requireVerifiedExactSlip(patch, input, requireFiniteResult(solveExact(patch, input)));
 }
 
 }  // namespace

@@ -1173,7 +1173,9 @@ TEST(CoreBadInput, FrictionBlockSticksWithBEqualToMinusKLambda) {
 // A body whose centre of mass is 9e117 m off O (Jz = 1.9e215, m = 8.6e9):
 // its mass exponents kept it at its own scale, where the limit field
 // overflows, and a direction came back with rate inf (found by fuzzing the
-// limits target). Now an Error, or finite output.
+// limits target). Now an Error, or finite output. (Since the sixth round
+// the Error names the mass matrix: the centre of mass lies 1.9e15 radii of
+// gyration from O, LimitsDomain.RefusesACentreOfMassFarBeyondTheRadiusOfGyration.)
 TEST(CoreBadInput, LimitDirectionsOfAnOverflowingFieldAtItsOwnScale) {
   FlatBody body;
   body.shape = PatchShape::polygon(
@@ -1202,7 +1204,10 @@ TEST(CoreBadInput, LimitDirectionsOfAnOverflowingFieldAtItsOwnScale) {
       }
       for (const LimitContinuum& c : result.continua) EXPECT_TRUE(std::isfinite(c.rdot));
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("overflows"), std::string::npos) << e.what();
+      const std::string what = e.what();
+      EXPECT_TRUE(what.find("overflows") != std::string::npos ||
+                  what.find("mass matrix") != std::string::npos)
+          << what;
     }
   }
 }
@@ -1502,15 +1507,12 @@ TEST(CoreBadInput, ExactBlockRefusesALawWithoutDigits) {
   const FrictionPatch noisy(
       sliver, LinearPressure::fromLoads(sliver, {0.32000003110670083, 2.6728782502318121e-10, 0.040000002870676614}),
       1e-8, 0.5);
-  // the law is noise: some direction's unit torque exceeds ten times its bound
-  const double torqueBound = sliver.maxDistanceFromOrigin() / noisy.rho();
-  ASSERT_GE(minPressure(sliver, noisy.pressure()), -1e-6 * noisy.Pz() / sliver.area());  // inside the p >= 0 domain
-  double largest = 0.0;
-  for (int i = 0; i < 2000; ++i) {
-    const double z = 1.0 - (2.0 * i + 1.0) / 2000.0, r = std::sqrt(1.0 - z * z), phi = 2.39996322972865332 * i;
-    largest = std::max(largest, std::abs(noisy.unitQ(Model::Exact, Vec3(r * std::cos(phi), r * std::sin(phi), z)).z()));
-  }
-  EXPECT_GT(largest, 10.0 * torqueBound);
+  // the law is noise: some direction's unit torque exceeded ten times its
+  // bound max|r| / rho (measured here before the sixth round; since then the
+  // exact law itself refuses this pressure, StepConditioning.
+  // ExactLawRefusesAPressureWithoutDigits)
+  ASSERT_GE(minPressure(sliver, noisy.pressure()),
+            -1e-6 * noisy.Pz() / sliver.area());  // inside the p >= 0 domain
   FrictionBlockInput in;
   in.b = Vec3(0.5, 0.5, 0.5);
   in.L = 0.5;
