@@ -232,8 +232,8 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
           stickSolve(in.K, requirePositiveDefiniteFactor(0.5 * (in.K + in.K.transpose())), in.b);
       if (!lambda0.allFinite())
         lambda0 = -in.L * (Pi * (n0 / d));
-      else if (!((lambda0 + in.L * (Pi * (n0 / d))).stableNorm() <=
-                 kStickAgreement * lambda0.stableNorm()))
+      else if (!(rangeSafeNorm(lambda0 + in.L * (Pi * (n0 / d))) <=
+                 kStickAgreement * rangeSafeNorm(lambda0)))
         pivoted = true;
     }
   }
@@ -311,7 +311,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   const double backwardTol = std::max(kBackwardErrorUlps * tol, kMinBackwardError) * scale;
   auto backwardError = [&] {
     const double along = out.slip.dot(w);
-    return (out.slip - std::max(along, 0.0) * w).stableNorm();
+    return rangeSafeNorm(out.slip - std::max(along, 0.0) * w);
   };
   if (!(backwardError() <= backwardTol)) {
     // phi(r) = 1 / |v| - 1, v = (rI + A)^-1 b, increasing in r like f;
@@ -360,7 +360,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
       const Vec3 wNew = (w + delta.head<3>()).normalized();
       const Vec3 impulseNew = -in.L * (Pi * wNew);
       const Vec3 slipNew = in.b + in.K * impulseNew;
-      const double eNew = (slipNew - std::max(slipNew.dot(wNew), 0.0) * wNew).stableNorm();
+      const double eNew = rangeSafeNorm(slipNew - std::max(slipNew.dot(wNew), 0.0) * wNew);
       if (!(eNew < backwardError())) break;
       w = wNew, out.impulse = impulseNew, out.slip = slipNew, rr = std::max(rr + delta(3), 0.0);
     }
@@ -742,8 +742,29 @@ FrictionBlockResult requireFiniteResult(const FrictionBlockResult& r) {
 namespace {
 // K positive definite: its symmetric part has a Cholesky factor, as the
 // exact path checks.
+// The decision is Eigen's LLT's (its unblocked lower factorisation: the
+// same pivots in the same order of operations, success iff each pivot is
+// > 0), written out for the 3x3 case, where Eigen's dynamic-size blocks
+// cost ~10 times the arithmetic on every block solve; the factor itself is
+// only needed by the stick paths, which call requirePositiveDefiniteFactor.
 void requirePositiveDefinite(const Mat3& K) {
-  requirePositiveDefiniteFactor(0.5 * (K + K.transpose()));
+  const Mat3 A = 0.5 * (K + K.transpose());
+  const double x0 = A(0, 0);
+  bool ok = x0 > 0.0;
+  if (ok) {
+    const double l00 = std::sqrt(x0);
+    const double l10 = A(1, 0) / l00, l20 = A(2, 0) / l00;
+    const double x1 = A(1, 1) - l10 * l10;
+    ok = x1 > 0.0;
+    if (ok) {
+      const double l11 = std::sqrt(x1);
+      const double l21 = (A(2, 1) - l20 * l10) / l11;
+      const double x2 = A(2, 2) - (l20 * l20 + l21 * l21);
+      ok = x2 > 0.0 && std::isfinite(l10) && std::isfinite(l20) && std::isfinite(l21) &&
+           std::isfinite(std::sqrt(x2));
+    }
+  }
+  if (!(ok && A.diagonal().minCoeff() > 0.0)) requirePositiveDefiniteFactor(A);  // throws
 }
 
 // The exact block with an ill-conditioned K verifies that a slip is the
