@@ -285,7 +285,8 @@ TEST(FrictionBlockTest, ExactGaugeIsTheBoundaryPointAndWarmStartsTheStickTest) {
   // the gauge's own tolerance (1e-14 relative), amplified by the 2x2 solve
   constexpr double kParallelTol = 1e-10;
   constexpr double kTurn = 0.05;  // rad: a warm start from a neighbouring visit
-  // the value and the Jacobian evaluations of the law (dual numbers) agree to
+  // the value and the Jacobian evaluations of the law (the polygon's Jacobian
+  // is a boundary integral over the same closed forms) agree to
   // its accuracy, ~1e-13 relative
   constexpr double kLawTol = 1e-13;
   for (const FrictionPatch& patch : {tiltedRectangle(), tiltedDisk()}) {
