@@ -53,6 +53,10 @@ constexpr double kFacingCos = 0.70710678118654752;
 // has a coin's bottom rim on another's side at 1.86 and rim contacts at 4.1
 // and (two coins side by side) ~10.
 constexpr double kOnFaceMargins = 1.5;
+// ... plus this many ulps of Bullet's scalar times the coordinates' size:
+// two boxes with zero margins touch on their faces to ~1e-8 m in float
+// (measured, 10 cm boxes near the origin), which 1.5 x 0 refused.
+constexpr double kOnFaceRoundOffUlps = 64.0;
 // Pseudo-velocity iterations of the patch position correction per step.
 constexpr int kPushIterations = 4;
 // A patch outline whose vertices (or radius) are within this fraction of its
@@ -477,12 +481,17 @@ bool contactOnFaces(const btPersistentManifold& m, bool aIs0, const internal::Fa
                     const internal::Face& faceB) {
   const btScalar tol = btScalar(kOnFaceMargins) * (m.getBody0()->getCollisionShape()->getMargin() +
                                                    m.getBody1()->getCollisionShape()->getMargin());
+  // plus the round-off of the distances themselves (shapes with zero
+  // margins touch on their faces to that round-off only)
+  const btScalar ulps = btScalar(kOnFaceRoundOffUlps) * SIMD_EPSILON;
   for (int k = 0; k < m.getNumContacts(); ++k) {
     const btManifoldPoint& p = m.getContactPoint(k);
     const btVector3& onA = aIs0 ? p.m_positionWorldOnA : p.m_positionWorldOnB;
     const btVector3& onB = aIs0 ? p.m_positionWorldOnB : p.m_positionWorldOnA;
-    if (btFabs(faceA.normal.dot(onA - faceA.centre)) > tol ||
-        btFabs(faceB.normal.dot(onB - faceB.centre)) > tol)
+    if (btFabs(faceA.normal.dot(onA - faceA.centre)) >
+            tol + ulps * (onA.length() + faceA.centre.length()) ||
+        btFabs(faceB.normal.dot(onB - faceB.centre)) >
+            tol + ulps * (onB.length() + faceB.centre.length()))
       return false;
   }
   return true;

@@ -373,6 +373,37 @@ TEST(PatchFrictionSolver, CoinsSideBySideTouchRimToRimAndAreNoPatch) {
   }
 }
 
+// Shapes with zero collision margins touch on their faces only to the
+// round-off of the contact points (~1e-8 m in float): the on-face test
+// (kOnFaceMargins x 0 margins) must leave them their patch. A 10 x 10 x 4 cm
+// box on a 20 x 20 x 10 cm box, both margin 0, 2 m from the origin, on a
+// static box: the patch is the upper box's bottom face, area 0.01 m^2,
+// carrying its weight.
+TEST(PatchFrictionSolver, BoxesWithZeroMarginsStillMakeAPatch) {
+  Scene scene(kG);
+  scene.addStaticBox(btVector3(5, 5, 0.5f), btVector3(0, 0, -0.5f), 1.0);
+  // (off the origin, where the coordinates carry round-off)
+  btRigidBody* upper =
+      scene.addBox(btVector3(0.05f, 0.05f, 0.02f), 0.3, btVector3(0.3f, -2.0f, 0.12f), 0.5, 0.0);
+  btRigidBody* lower =
+      scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 1.0, btVector3(0.3f, -2.0f, 0.05f), 0.5, 0.0);
+  scene.solver().enablePatchFriction(lower, {Model::Ellipsoidal});
+  scene.solver().enablePatchFriction(upper, {Model::Exact});
+  int steps = 0;
+  for (int k = 0; k < 60; ++k) {
+    scene.step(kDt);
+    for (const PatchReport& r : scene.solver().patchReports())
+      if (r.body == upper && r.other == lower) ++steps;
+  }
+  EXPECT_EQ(steps, 60);
+  const PatchReport* top = nullptr;
+  for (const PatchReport& r : scene.solver().patchReports())
+    if (r.body == upper && r.other == lower) top = &r;
+  ASSERT_NE(top, nullptr);
+  EXPECT_NEAR(top->shape->area(), 0.01, 1e-6);
+  EXPECT_NEAR(top->loads.Pz, 0.3 * kG, 1e-3 * 0.3 * kG);
+}
+
 // The shape and friction law of a patch are rebuilt only when its outline
 // changes (kOutlineRelTol in the solver, 1e-4 of the size), not with the
 // round-off of the transforms:
