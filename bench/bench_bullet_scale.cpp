@@ -47,6 +47,8 @@
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
 
+#include "interleaving.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -338,18 +340,11 @@ double fittedExponent(Phase p, Variant v) {
 int main(int argc, char** argv) {
   std::string csvPath;
   std::vector<char*> args;
-  bool interleavingGiven = false;
   for (int i = 0; i < argc; ++i) {
     if (std::strncmp(argv[i], "--csv=", 6) == 0) csvPath = argv[i] + 6;
     else args.push_back(argv[i]);
-    if (std::strncmp(argv[i], "--benchmark_enable_random_interleaving", 38) == 0)
-      interleavingGiven = true;
   }
-  static char interleave[] = "--benchmark_enable_random_interleaving=true";
-  if (!interleavingGiven) args.push_back(interleave);
-  int nArgs = int(args.size());
-  benchmark::Initialize(&nArgs, args.data());
-  if (benchmark::ReportUnrecognizedArguments(nArgs, args.data())) return 1;
+  if (!patchspin::bench::initializeInterleaved(args)) return 1;
   int maxN = 10000;
   if (const char* e = std::getenv("PATCHSPIN_SCALE_MAX_N")) maxN = std::atoi(e);
 

@@ -8,9 +8,10 @@
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
 
+#include "interleaving.hpp"
+
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <random>
 #include <string>
@@ -240,15 +241,7 @@ BENCHMARK(BM_ExactWhereAsked)->Arg(0)->Arg(10)->Arg(100)->Unit(benchmark::kMicro
 // unless the command line says otherwise.
 int main(int argc, char** argv) {
   std::vector<char*> args(argv, argv + argc);
-  bool interleavingGiven = false;
-  for (char* a : args)
-    if (std::strncmp(a, "--benchmark_enable_random_interleaving", 38) == 0)
-      interleavingGiven = true;
-  static char interleave[] = "--benchmark_enable_random_interleaving=true";
-  if (!interleavingGiven) args.push_back(interleave);
-  int nArgs = int(args.size());
-  benchmark::Initialize(&nArgs, args.data());
-  if (benchmark::ReportUnrecognizedArguments(nArgs, args.data())) return 1;
+  if (!patchspin::bench::initializeInterleaved(args)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
