@@ -398,7 +398,10 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
 // is tested first through the gauge of E along lambda0 = -K^-1 b: find w with
 // q(w) parallel to lambda0 (Newton on the sphere, started from the
 // ellipsoidal inverse), then stick iff |lambda0| <= L |q(w)|.
-FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockInput& in) {
+// (plainCondition: |K|_F |K^-1|_F of K's symmetric part, for
+// requireVerifiedExactSlip; set before any slip is returned)
+FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockInput& in,
+                               double* plainCondition) {
   FrictionBlockResult out;
   const double tol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
   // positive definite by Cholesky, then the inverse from that factor (see
@@ -426,7 +429,9 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // fuzzing: K = A A^T + d I with cond ~1e34 gave a slip along its largest
   // eigenvector driven by the impulse itself, off the law by 0.9 of L |q|);
   // the common path pays one product of two norms
-  if (!(Ksym.norm() * Kinv.norm() < kSingularCondition / 3.0)) requireNotNumericallySingular(Ksym, Kinv);
+  const double cond = Ksym.norm() * Kinv.norm();
+  *plainCondition = cond;
+  if (!(cond < kSingularCondition / 3.0)) requireNotNumericallySingular(Ksym, Kinv);
   // lambda0 = -K^-1 b by the Cholesky factor (stickSolve): the stick is
   // decided with the impulse it returns (the cofactor inverse cancelled to
   // K^-1 b = 0 for K = 0.75 (1 1^T) + 1e-8 I, and had no digits for a K
@@ -811,17 +816,15 @@ constexpr double kVerifyCondition = 1e5, kVerifyLaw = 1e-6, kResolvedSlip = 1e-2
                  kVerifyEnergy = 1e-10;
 FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
                                              const FrictionBlockInput& in,
-                                             const FrictionBlockResult& r) {
+                                             const FrictionBlockResult& r, double cond) {
   if (r.sticking || in.L == 0.0) return r;
-  const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
-  const Eigen::LLT<Mat3> llt = requirePositiveDefiniteFactor(Ksym);
-  const double cond = Ksym.norm() * inverseOf(llt).norm();
   // (times the lever's distance from 1: the law turns from force to torque
   // across |w_z| / |w_xy| ~ 1 / lever, so the iteration's round-off reaches
   // the law magnified by it; found by fuzzing: cond 3e6 with a lever of
   // 1.06e4 left the law 1.2e-5 off)
   const double lever = patch.shape().maxDistanceFromOrigin() / patch.rho();
   if (cond * std::max({1.0, lever, 1.0 / lever}) < kVerifyCondition) return r;
+  const Eigen::LLT<Mat3> llt = requirePositiveDefiniteFactor(0.5 * (in.K + in.K.transpose()));
   const double energyBefore = in.b.dot(llt.solve(in.b)),
                energyAfter = r.slip.dot(llt.solve(r.slip));
   if (!(energyAfter <= energyBefore * (1.0 + kVerifyEnergy)))
@@ -852,7 +855,10 @@ FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const Fr
     requirePositiveDefinite(input.K);
     return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
   }
-  return requireVerifiedExactSlip(patch, input, requireFiniteResult(solveExact(patch, input)));
+  // (K's plain condition number, as solveExact computed it)
+  double cond = 0.0;
+  const FrictionBlockResult r = requireFiniteResult(solveExact(patch, input, &cond));
+  return requireVerifiedExactSlip(patch, input, r, cond);
 }
 
 }  // namespace
