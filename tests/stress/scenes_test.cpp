@@ -224,7 +224,18 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // Bullet's point contacts, below). Not in the 1000-coin pour: after 8 s
     // it is still moving in every model (largest speed, |v| + R |omega|:
     // stock 0.89 m/s, ellipsoidal 0.92, exact 1.0; 4 s: stock 1.7), coins
-    // on patches included (0.37-0.46 m/s), so it is reported with the rest
+    // on patches included (0.37-0.46 m/s), so it is reported with the rest.
+    // Measured every second (scratch driver, float): the 1000-coin pile does
+    // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
+    // m/s at 1-16 s. Stock: 992 of 1000 coins above 1 cm/s at 0.5 s, 953 at
+    // 8 s; 916 at 8 s with 50 solver iterations instead of 10, and 887
+    // with the split-impulse threshold at 0 (no Baumgarte velocity) instead
+    // of Bullet's -4 cm. Ellipsoidal: 897 at 1 s, 837 at 8 s, 810 at 15 s,
+    // with 175 -> 405 coins on patches. Two layers (200 coins) leave 46
+    // (stock) and 22 (ellipsoidal) coins moving at 8 s, four layers 259 and
+    // 161. The patches shrink the number of moving coins, but a pile that
+    // Bullet's own contacts keep boiling (stock, whatever the iterations)
+    // does not come to rest with any friction model
     if (!stressFull()) {
       EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
     } else if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed) {
