@@ -899,18 +899,31 @@ constexpr double kMinLever = 1e-5, kMaxLever = 1e5;
 // gave a unit law whose torque reached 288 where its bound is 1, and the
 // block torques 100 times outside the set). Ordinary patches are ~1e4 and
 // more below it (a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10).
+// The unit law divides by Pz, and a polygon's Pz comes from its area
+// moments about O (the moment table's shoelace sums), whose terms are
+// products of coordinates up to max|r|^2: relative to the area they round
+// to ~eps max|r|^2 / A, so for a polygon the factor is max(1, diameter^2 /
+// A, max|r|^2 / A) (the law's integral itself is taken about the vertex
+// mean and keeps its digits: found by fuzzing, a 23-gon 900 diameters from
+// O, a 1.2e-8 m quadrilateral 8,800 diameters from O and a 1.7e6 m sliver
+// 9.6e9 m from O whose unit laws in pure translation had a force of 1 +
+// 1.1e-7, 1 + 5.5e-7 and 1 + 1.45e-4, Pz off by as much against a long
+// double sum about the vertex mean, 0.002 to 0.11 of eps max|r|^2 / A
+// times the terms; a disk's moments are closed forms about its centre:
+// its Pz 9,000 diameters from O was 3e-13 off).
 constexpr double kTermsUlps = 64.0, kLawNoDigits = 1e-6;
 void requireExactLawDigits(const FrictionPatch& patch) {
   const PatchShape& shape = patch.shape();
   const LinearPressure& p = patch.pressure();
   const double rmax = shape.maxDistanceFromOrigin();
   const double terms = shape.area() * (std::abs(p.p0) + (std::abs(p.cx) + std::abs(p.cy)) * rmax) / patch.Pz();
-  const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
+  const double reach = shape.isDisk() ? shape.diameter() : std::max(shape.diameter(), rmax);
+  const double sliver = std::max(1.0, reach / shape.area() * reach);
   const double roundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * terms;
   if (!(roundOff <= kLawNoDigits)) {
     throw Error("friction block: the exact law has no digits for this pressure and patch (round-off ~" +
                 internal::formatDouble(roundOff) + " of its force: terms about O " + internal::formatDouble(terms) +
-                " times Pz on a patch of diameter^2 / area " + internal::formatDouble(sliver) + ")");
+                " times Pz on a patch of (its size or distance from O)^2 / area " + internal::formatDouble(sliver) + ")");
   }
 }
 
