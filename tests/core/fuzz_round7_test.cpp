@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "oracle.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -162,4 +164,46 @@ TEST(FuzzRound7, LimitsHighCentreOfMassWithTinyMuIsSolvedAtUnitScale) {
           << (sphere ? "sphere solver" : "(111)") << ", direction " << d.w.transpose();
     }
   }
+}
+
+// 56. The exact block of a patch far smaller than rho: a 1e-8 m disk 9,000
+// diameters from O with rho = 0.5 (fuzz/known_failures of the sixth round:
+// lever max|r| / rho = 1.8e-4, inside the domain, but diameter / rho =
+// 4e-8), K well conditioned (unit-diagonal cond 5). The block spins about
+// the disk's centre (ICR at its rim), where the law turns across a
+// change of w_xy / w_z of diameter / rho: the iteration's stop at 1e-14 of
+// the slip scale left the law at the returned slip 8e-5 of the set off the
+// impulse (the impulse itself right to 1e-12). Now solved about the disk's
+// centre (step.cpp, solveExactRecentred). Checked against the brute-force
+// quadrature of Eq. (16) at the returned slip (tests/support/oracle.hpp,
+// independent of the core's law): impulse = L q(s^) to kLaw of L (the fuzz
+// target's law slack; measured 2e-8, the rounding of s = b + K impulse about
+// O: eps |b| rho / (|s_z| R) ~ 4e-8), and s = b + K impulse.
+TEST(FuzzRound7, ExactBlockOfATinyDiskFarFromOIsTheLawAtItsSlip) {
+  const Vec2 centre(-3.7438506778344681e-05, -8.2157417227233455e-05);
+  const double radius = 1e-8, rho = 0.5;
+  const PatchShape shape = PatchShape::disk(radius, centre);
+  const LinearPressure p =
+      LinearPressure::fromLoads(shape, PatchLoads{1371.8459892853916, 0.11270929465102736, -0.051357058932178852});
+  const FrictionPatch patch(shape, p, 1073217536.0, rho);
+  FrictionBlockInput input;
+  input.b = Vec3(0.5, 0.5, 0.5);
+  input.L = 0.5;
+  input.K << 1.0, 0.5, 0.5, 0.5, 1.25, 0.75, 0.5, 0.75, 1.25;
+  input.warmSlip = Vec3(0.5, -524288.0, -524288.0);
+  input.warmGauge = Vec3(14956363776.0, 0.00021257251501083374, -1.1920928955078125e-07);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, input);
+  ASSERT_FALSE(r.sticking);
+  // (the ICR c = rho (-s_y, s_x) / s_z lies at the disk's rim, 1.1 R from
+  // its centre: the hard case, where the law turns fastest)
+  const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
+  EXPECT_LT((icr - centre).norm(), 2.0 * radius);
+  // slip = b + K impulse to the round-off of one 3x3 product
+  constexpr double kSlip = 1e-14;
+  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(), kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
+  // oracle: Q = -mu ∫ p k dA with mu = 1, so q = Q / Pz
+  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho, r.slip, 1e-12) / patch.Pz();
+  constexpr double kLaw = 1e-6;
+  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L) << "q " << q.transpose() << ", impulse "
+                                                               << r.impulse.transpose();
 }
