@@ -854,10 +854,11 @@ FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
 // scale) reaches the law magnified by rho / diameter, whatever
 // max|r| / rho is (found by fuzzing: a 1e-8 m disk 9,000 diameters from O
 // with rho = 0.5, lever max|r| / rho 1.8e-4 but diameter / rho 4e-8: the
-// impulse was right to 1e-12 and the law at the returned slip 4e-5 of the
-// set off it, spinning about the disk's centre; scaling the spin
-// coordinate alone changed nothing). About g the law resolves at unit
-// scale. Slip and impulse map as
+// impulse was right to 1e-12 and the law at the returned slip 8e-5 of the
+// set's size off it, the ICR at the disk's rim; scaling the spin
+// coordinate alone changed nothing; recentred: 2e-8, by brute-force
+// quadrature). About g the law resolves at unit scale. Slip and impulse
+// map as
 //   s' = T s,  lambda = T^T lambda',  T = [[1, 0, -g_y / rho], [0, 1, g_x / rho], [0, 0, rho' / rho]]
 // (the velocity at g, and the torque about g: power s.lambda is kept), so
 // K' = T K T^T, b' = T b, and the law of the recentred patch is the one about
