@@ -87,6 +87,18 @@ double plainCondition(const Mat3& K) {
 }
 constexpr double kUnverifiedCondition = 1e5 / 3.0;
 
+// The exact unit law's round-off factor over eps times its terms about O
+// (step.cpp, requireExactLawDigits): max(1, diameter^2 / A) for the kernel
+// integrals' cancellation on a sliver, and for a polygon also max|r|^2 / A,
+// the round-off of its Pz from area moments about O (shoelace products of
+// coordinates up to max|r|^2; found: a 23-gon 900 diameters from O whose
+// pure translation gave a unit force of 1 + 1.1e-7). A disk's moments are
+// closed forms about its centre (its Pz 9,000 diameters from O: 3e-13 off).
+double lawRoundOffFactor(const PatchShape& shape) {
+  const double reach = shape.isDisk() ? shape.diameter() : std::max(shape.diameter(), shape.maxDistanceFromOrigin());
+  return std::max(1.0, reach / shape.area() * reach);
+}
+
 void run(ByteReader& in) {
   const PatchShape shape = takeShape(in);
   const uint8_t mode = in.byte();
@@ -155,8 +167,7 @@ void run(ByteReader& in) {
     const LinearPressure& pq = patch.pressure();
     const double rm = shape.maxDistanceFromOrigin();
     const double terms = shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rm);
-    const double sliverRatio = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
-    return 64.0 * std::numeric_limits<double>::epsilon() * sliverRatio * terms / std::abs(patch.Pz());
+    return 64.0 * std::numeric_limits<double>::epsilon() * lawRoundOffFactor(shape) * terms / std::abs(patch.Pz());
   }();
   // and K's diagonal spanning at most 1e30, where it is positive (a K with
   // a diagonal entry <= 0 is not positive definite: refused for that)
@@ -267,8 +278,7 @@ void run(ByteReader& in) {
   constexpr double kTermsUlps = 64.0;
   const LinearPressure& pq = patch.pressure();
   const double termsA = shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rmax);
-  const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
-  const double forceRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA /
+  const double forceRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * lawRoundOffFactor(shape) * termsA /
                                std::abs(patch.Pz());
   const double lawRoundOff = forceRoundOff * (1.0 + rmax / patch.rho());
   note("law round-off model: %.3g of the set", lawRoundOff / unitScale);

@@ -473,7 +473,16 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   const int eMass = std::max(-exponentOf(body.mass), 2 * eOffset - exponentOf(body.Jz));
   const int eMu = exponentOf(body.mu);
   const int eFrictionField = eMu == kNoExponent ? kNoExponent : ePressure + eMu + eMass;
-  const int eExternalField = std::max(plus(plus(eForce, eLever), eMass), plus(eSpin, eOffset - exponentOf(body.Jz)));
+  // the external field M^-1 Q_e, Q_e = (P_x, P_y, (T_z + x_c P_y - y_c P_x)
+  // / rho), and M^-1 involve x_c and y_c only: z_c is a lever of the
+  // pressure (tipping couples, above), not of this field (found by fuzzing:
+  // with z_c = 1.7e266 and P_x = 0.5 the lever with z_c put this field at
+  // 2^884, the loads were scaled by 2^-883, the friction field, mu = 1.7e-279
+  // against g = 4.3e300, came out ~1e-245, B B^T of (111) underflowed and a
+  // direction was 1.4e-3 of the field off the fixed point)
+  const int eComXY = std::max(exponentOf(body.com.x()), exponentOf(body.com.y()));
+  const int eLeverXY = eComXY == kNoExponent ? 0 : std::max(0, eComXY - eLength);
+  const int eExternalField = std::max(plus(plus(eForce, eLeverXY), eMass), plus(eSpin, eOffset - exponentOf(body.Jz)));
   int eLoad = std::max(eFrictionField, eExternalField);
   eLoad = eLoad == kNoExponent ? ePressure : eLoad - eMass;
   // (not beyond pressures of 2^600 at unit scale: mu of 1e-300 stays tiny)

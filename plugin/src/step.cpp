@@ -847,6 +847,72 @@ FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
               internal::formatDouble(miss / lawSize) + " of the law's size");
 }
 
+// The exact block of a patch much smaller than rho, solved in the frame of
+// the patch's own centre g with rho' of Eq. (11) about g. The law turns as
+// the ICR crosses the patch, across a change of w_xy / w_z of ~diameter /
+// rho, so in O's coordinates the iteration's round-off (1e-14 of the slip
+// scale) reaches the law magnified by rho / diameter, whatever
+// max|r| / rho is (found by fuzzing: a 1e-8 m disk 9,000 diameters from O
+// with rho = 0.5, lever max|r| / rho 1.8e-4 but diameter / rho 4e-8: the
+// impulse was right to 1e-12 and the law at the returned slip 8e-5 of the
+// set's size off it, the ICR at the disk's rim; scaling the spin
+// coordinate alone changed nothing; recentred: 2e-8, by brute-force
+// quadrature). About g the law resolves at unit scale. Slip and impulse
+// map as
+//   s' = T s,  lambda = T^T lambda',  T = [[1, 0, -g_y / rho], [0, 1, g_x / rho], [0, 0, rho' / rho]]
+// (the velocity at g, and the torque about g: power s.lambda is kept), so
+// K' = T K T^T, b' = T b, and the law of the recentred patch is the one about
+// O up to its normalisation: q_O(s) = (Pz' / Pz) T^T q'(T s), which L' = L
+// Pz' / Pz carries. Only below kRecentreBelow (Bullet's patches are
+// expressed about their centroid: diameter / rho ~ 1); costs a FrictionPatch
+// there. Where the recentred patch or block is refused (its K' can be worse
+// conditioned, T shears by g / rho), the block is solved about O as before.
+constexpr double kRecentreBelow = 1e-2;
+bool solveExactRecentred(const FrictionPatch& patch, const FrictionBlockInput& in, FrictionBlockResult& out) {
+  const PatchShape& shape = patch.shape();
+  if (!(shape.diameter() < kRecentreBelow * patch.rho())) return false;
+  try {
+    Vec2 g = Vec2::Zero();
+    if (shape.isDisk()) {
+      g = shape.centre();
+    } else {
+      for (const Vec2& v : shape.vertices()) g += v;
+      g /= static_cast<double>(shape.vertices().size());
+    }
+    const PatchShape local = shape.inFrame(g, 0.0);
+    const LinearPressure& p = patch.pressure();
+    const FrictionPatch recentred =
+        patch.isHertz() ? FrictionPatch(local, HertzPressure{patch.Pz()}, patch.mu())
+                        : FrictionPatch(local, LinearPressure{p.p0 + p.cx * g.x() + p.cy * g.y(), p.cx, p.cy}, patch.mu());
+    const double rho = patch.rho();
+    Mat3 T = Mat3::Identity();
+    T(0, 2) = -g.y() / rho;
+    T(1, 2) = g.x() / rho;
+    T(2, 2) = recentred.rho() / rho;
+    FrictionBlockInput localIn = in;
+    localIn.b = T * in.b;
+    localIn.K = T * in.K * T.transpose();
+    localIn.warmSlip = T * in.warmSlip;
+    localIn.warmGauge = T * in.warmGauge;
+    const double pzRatio = recentred.Pz() / patch.Pz();
+    localIn.L = in.L * pzRatio;
+    if (!localIn.b.allFinite() || !localIn.K.allFinite() || !std::isfinite(localIn.L)) return false;
+    double localCond = 0.0;
+    const FrictionBlockResult r = solveExact(recentred, localIn, &localCond);
+    out = r;
+    out.impulse = T.transpose() * r.impulse;
+    out.slip = r.sticking ? Vec3::Zero() : Vec3(in.b + in.K * out.impulse);
+    if (r.gaugeSlip.cwiseAbs().maxCoeff() > 0.0) {
+      const Mat3 Tinv = T.inverse();
+      out.gaugeSlip = Vec3(Tinv * r.gaugeSlip).normalized();
+      out.gaugeValue = (1.0 / pzRatio) * (T.transpose() * r.gaugeValue);
+    }
+    return out.impulse.allFinite() && out.slip.allFinite();
+  } catch (const Error&) {
+    return false;
+  }
+}
+
 // The block after validation, at the scale it is given.
 FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const FrictionBlockInput& input) {
   if (model == Model::Ellipsoidal) {
@@ -855,10 +921,17 @@ FrictionBlockResult solveModel(const FrictionPatch& patch, Model model, const Fr
     requirePositiveDefinite(input.K);
     return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
   }
-  // (K's plain condition number, as solveExact computed it)
+  // (K's plain condition number, as solveExact computed it; for a
+  // recentred block, K's own, for the verification about O)
   double cond = 0.0;
-  const FrictionBlockResult r = requireFiniteResult(solveExact(patch, input, &cond));
-  return requireVerifiedExactSlip(patch, input, r, cond);
+  FrictionBlockResult r;
+  if (solveExactRecentred(patch, input, r)) {
+    const Mat3 Ksym = 0.5 * (input.K + input.K.transpose());
+    cond = Ksym.norm() * inverseOf(requirePositiveDefiniteFactor(Ksym)).norm();
+  } else {
+    r = solveExact(patch, input, &cond);
+  }
+  return requireVerifiedExactSlip(patch, input, requireFiniteResult(r), cond);
 }
 
 }  // namespace
@@ -899,18 +972,31 @@ constexpr double kMinLever = 1e-5, kMaxLever = 1e5;
 // gave a unit law whose torque reached 288 where its bound is 1, and the
 // block torques 100 times outside the set). Ordinary patches are ~1e4 and
 // more below it (a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10).
+// The unit law divides by Pz, and a polygon's Pz comes from its area
+// moments about O (the moment table's shoelace sums), whose terms are
+// products of coordinates up to max|r|^2: relative to the area they round
+// to ~eps max|r|^2 / A, so for a polygon the factor is max(1, diameter^2 /
+// A, max|r|^2 / A) (the law's integral itself is taken about the vertex
+// mean and keeps its digits: found by fuzzing, a 23-gon 900 diameters from
+// O, a 1.2e-8 m quadrilateral 8,800 diameters from O and a 1.7e6 m sliver
+// 9.6e9 m from O whose unit laws in pure translation had a force of 1 +
+// 1.1e-7, 1 + 5.5e-7 and 1 + 1.45e-4, Pz off by as much against a long
+// double sum about the vertex mean, 0.002 to 0.11 of eps max|r|^2 / A
+// times the terms; a disk's moments are closed forms about its centre:
+// its Pz 9,000 diameters from O was 3e-13 off).
 constexpr double kTermsUlps = 64.0, kLawNoDigits = 1e-6;
 void requireExactLawDigits(const FrictionPatch& patch) {
   const PatchShape& shape = patch.shape();
   const LinearPressure& p = patch.pressure();
   const double rmax = shape.maxDistanceFromOrigin();
   const double terms = shape.area() * (std::abs(p.p0) + (std::abs(p.cx) + std::abs(p.cy)) * rmax) / patch.Pz();
-  const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
+  const double reach = shape.isDisk() ? shape.diameter() : std::max(shape.diameter(), rmax);
+  const double sliver = std::max(1.0, reach / shape.area() * reach);
   const double roundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * terms;
   if (!(roundOff <= kLawNoDigits)) {
     throw Error("friction block: the exact law has no digits for this pressure and patch (round-off ~" +
                 internal::formatDouble(roundOff) + " of its force: terms about O " + internal::formatDouble(terms) +
-                " times Pz on a patch of diameter^2 / area " + internal::formatDouble(sliver) + ")");
+                " times Pz on a patch of (its size or distance from O)^2 / area " + internal::formatDouble(sliver) + ")");
   }
 }
 

@@ -155,7 +155,15 @@ struct LimitOptions {
 // All limit directions of the body at rest in the frame psi = 0.
 // Far from unit scale the field is solved for the body with its loads and
 // masses scaled by powers of two (F_o is linear in both), so fields of 1e-300
-// or 1e280 give the same directions, with rates in the body's own units.
+// or 1e280 give the same directions, with rates in the body's own units
+// (the scale is the larger of the friction field, mu times the pressure's
+// loads, and the external one, M^-1 Q_e; a high centre of mass counts in
+// the pressure's loads, as the lever of tipping couples, not in M^-1 Q_e).
+// Refused with patchspin::Error up front: a centre of mass more than 1e5
+// radii of gyration sqrt(Jz / m) from O horizontally. The mass matrix (91)
+// then has a unit-diagonal condition of ~4 (1 + m (x_c^2 + y_c^2) / Jz) >=
+// 4e10 and neither its inverse nor the field acting through it has digits;
+// a physical body touches the ground within a few radii of gyration.
 // Degenerate fields are decided up front:
 //  * friction below 1e-10 of the external wrench's field c = M^-1 Q_e
 //    (mu = 0 included): the two directions +-c / |c|, polished by Newton;
