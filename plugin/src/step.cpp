@@ -99,8 +99,48 @@ void requireNotNumericallySingular(const Mat3& Ksym, const Mat3& Kinv) {
 // eps |K|^2 and eps |K|^3 (found by fuzzing: K = a 1 1^T + delta I with a =
 // 1.7e16 and delta = 7.5e7, unit-diagonal cond 6.7e8, whose computed
 // determinant came out negative: refused as not positive definite).
+//
+// The factor is Eigen's LLT with its unblocked lower factorisation written
+// out for the 3x3 case (the same operations in the same order, failing at
+// the first pivot <= 0 as Eigen does, the L1 norm for rcond() as its
+// compute() takes it): through Eigen's dynamic-size blocks it cost ~320
+// instructions on every exact block solve and every stick.
+struct Llt3 : Eigen::LLT<Mat3> {
+  explicit Llt3(const Mat3& a) {
+    m_matrix = a;
+    // (|lower part of column c| + |row c left of it|, summed as Eigen sums them)
+    const Mat3 b = a.cwiseAbs();
+    const double sums[3] = {(b(0, 0) + b(1, 0)) + b(2, 0) + 0.0, (b(1, 1) + b(2, 1)) + b(1, 0),
+                            b(2, 2) + (b(2, 0) + b(2, 1))};
+    m_l1_norm = 0.0;
+    for (const double sum : sums)
+      if (sum > m_l1_norm) m_l1_norm = sum;
+    m_isInitialized = true;
+    m_info = factor() ? Eigen::Success : Eigen::NumericalIssue;
+  }
+  // Eigen's llt_inplace::unblocked: per column k, x = a_kk - |L_k,0:k|^2,
+  // stop if x <= 0, l_kk = sqrt(x), then the column below minus L_k+1:,0:k
+  // L_k,0:k^T, divided by l_kk
+  bool factor() {
+    Mat3& m = m_matrix;
+    double x = m(0, 0);
+    if (x <= 0.0) return false;
+    m(0, 0) = x = std::sqrt(x);
+    m(1, 0) /= x;
+    m(2, 0) /= x;
+    x = m(1, 1) - m(1, 0) * m(1, 0);
+    if (x <= 0.0) return false;
+    m(1, 1) = x = std::sqrt(x);
+    m(2, 1) -= m(2, 0) * m(1, 0);
+    m(2, 1) /= x;
+    x = m(2, 2) - (m(2, 0) * m(2, 0) + m(2, 1) * m(2, 1));
+    if (x <= 0.0) return false;
+    m(2, 2) = std::sqrt(x);
+    return true;
+  }
+};
 Eigen::LLT<Mat3> requirePositiveDefiniteFactor(const Mat3& Ksym) {
-  Eigen::LLT<Mat3> llt(Ksym);
+  const Llt3 llt(Ksym);
   if (!(llt.info() == Eigen::Success && Ksym.diagonal().minCoeff() > 0.0 &&
         llt.matrixLLT().allFinite()))
     throw Error(
@@ -790,8 +830,9 @@ void requirePositiveDefinite(const Mat3& K) {
                  p12 = kDominant * (a11 * a22);
     // (normal, finite diagonals and bounds: a square that underflows then
     // lies below its bound in exact arithmetic too, and the factorisation's
-    // own underflows are far below 0.27 A22)
-    if (a00 >= kMin && a11 >= kMin && a22 >= kMin && A.allFinite() && p01 >= kMin &&
+    // own underflows are far below 0.27 A22; finite bounds imply finite
+    // diagonals, and an infinite or NaN off-diagonal fails its comparison)
+    if (a00 >= kMin && a11 >= kMin && a22 >= kMin && p01 >= kMin &&
         p02 >= kMin && p12 >= kMin && std::isfinite(p01) && std::isfinite(p02) &&
         std::isfinite(p12) && A(1, 0) * A(1, 0) <= p01 && A(2, 0) * A(2, 0) <= p02 &&
         A(2, 1) * A(2, 1) <= p12)
