@@ -346,15 +346,7 @@ PatchShape PatchShape::regularPolygon(int n, double circumradius, const Vec2& ce
   return polygon(std::move(v));
 }
 
-double PatchShape::radius() const {
-  if (kind_ != Kind::Disk) throw Error("radius() asked of a polygon patch");
-  return radius_;
-}
-
-const Vec2& PatchShape::centre() const {
-  if (kind_ != Kind::Disk) throw Error("centre() asked of a polygon patch");
-  return centre_;
-}
+void PatchShape::throwNotA(const char* what) { throw Error(what); }
 
 const std::vector<Vec2>& PatchShape::vertices() const {
   if (kind_ != Kind::Polygon) throw Error("vertices() asked of a disk patch");

@@ -60,9 +60,16 @@ class PatchShape {
 
   Kind kind() const { return kind_; }
   bool isDisk() const { return kind_ == Kind::Disk; }
-  // Disk only (Error otherwise): radius and centre.
-  double radius() const;
-  const Vec2& centre() const;
+  // Disk only (Error otherwise): radius and centre. (Inline: the friction
+  // solver asks for them on every visit of a disk patch.)
+  double radius() const {
+    if (kind_ != Kind::Disk) throwNotA("radius() asked of a polygon patch");
+    return radius_;
+  }
+  const Vec2& centre() const {
+    if (kind_ != Kind::Disk) throwNotA("centre() asked of a polygon patch");
+    return centre_;
+  }
   // Polygon only (Error otherwise): counter-clockwise vertices.
   const std::vector<Vec2>& vertices() const;
 
@@ -91,6 +98,7 @@ class PatchShape {
  private:
   PatchShape() = default;
   void finish();
+  [[noreturn]] static void throwNotA(const char* what);
 
   Kind kind_ = Kind::Disk;
   double radius_ = 0.0;
