@@ -235,7 +235,9 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // (stock) and 22 (ellipsoidal) coins moving at 8 s, four layers 259 and
     // 161. The patches shrink the number of moving coins, but a pile that
     // Bullet's own contacts keep boiling (stock, whatever the iterations)
-    // does not come to rest with any friction model
+    // does not come to rest with any friction model. In double Bullet it
+    // boils too, at a lower level: from 15 to 24 s, 141-252 coins above
+    // 1 cm/s (stock) and 110-186 (ellipsoidal, 507-540 on patches)
     if (!stressFull()) {
       EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
     } else if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed) {
