@@ -141,7 +141,8 @@ struct BodyTerms {
 // Ks^-1 for the quick stick test (Kff^-1, for a patch off its interior, is
 // rare and computed on demand).
 struct Blocks {
-  Mat3 Winv, Kff, Knf, Ks, G, KsInv;
+  Mat3 Winv, Knf, G, Ks, KsInv;
+  Mat3 Kff;  // last: read only off the interior (see PatchConstraint's layout)
 };
 // A stacked patch's blocks with its support held (the blocks of
 // K6 - K_PS K_S^-1 K_SP over the held DOFs) and the support's response
@@ -190,40 +191,67 @@ bool makeBlocks(const Mat6& K6, Blocks& b) {
   return true;
 }
 
-// One flat patch of one manifold, for one island solve.
+// One flat patch of one manifold, for one island solve. Every solver
+// iteration streams over all of them: in a pile of 1000 bodies they fill the
+// L2 cache many times over, so a visit's fields lie together, in about the
+// order the visit reads them, the rarely read ones at the end, and the visit
+// reads nothing of the PatchState: what it needs of the state and of the
+// friction law's shape is copied in (ShapeSummary, LawCache).
 struct PatchState;
+// What a visit reads of the friction law's shape (fixed within the step).
+struct ShapeSummary {
+  bool disk = true;
+  Vec2 centre = Vec2::Zero();
+  double radius = 0.0, diameter = 0.0;
+  double innerRadius2 = 0.0;  // PatchState::innerRadius2
+};
+// The state's record of the friction law's pressure, read and changed
+// during the visits; written back to the PatchState at the end of the step.
+// Not rolled back with a stacked patch's redone visit: the law it describes
+// is not either.
+struct LawCache {
+  Vec2 pressureCop = Vec2::Zero();   // PatchState::pressureCop
+  bool piInvValid = false;           // PatchState::piInvValid
+  Mat3 piInv = Mat3::Identity();     // PatchState::piInv
+};
 struct PatchConstraint {
-  PatchState* state = nullptr;
-  BodyTerms a, b;
-  Mat3 F = Mat3::Identity();  // columns ex, ey, n (world)
+  // read by every visit, a skipped one included
+  bool settled = false;  // see snapshot
+  bool interior = true;  // centre of pressure on the patch: normal block bilateral
+  bool tipping = false;
+  bool sticking = false;
+  bool failed = false;  // the law or block refused its input in this step (see blockErrors)
+  bool fanRefine = true;  // exactFanSticks may refine (until a refinement fails in this step)
+  bool haveLast = false;  // see last
+  bool stateSticking = false;  // PatchState::sticking (the end of the last step)
   Model model = Model::Ellipsoidal;
-  double mu = 0.0, rho = 0.0, dt = 0.0;
-  Blocks k;  // effective-mass blocks
+  int refreshes = 0;  // pressure refreshes in this step
+  PatchState* state = nullptr;
   // supporting patch (the lower body's own patch: index in the island's
   // patches, or -1) and the blocks with it held (index in Impl::holds);
   // for a support on a static body, its load: the patch standing on it,
   // and the support's blocks with that load held
   int support = -1, hold = -1;
   int load = -1, loadHold = -1;
-  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
-  Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
-  Vec3 warmSlip = Vec3::Zero();
-  bool interior = true;  // centre of pressure on the patch: normal block bilateral
-  bool tipping = false;
-  bool sticking = false;
-  int refreshes = 0;  // pressure refreshes in this step
-  bool failed = false;  // the law or block refused its input in this step (see blockErrors)
-  bool fanRefine = true;  // exactFanSticks may refine (until a refinement fails in this step)
+  double mu = 0.0, rho = 0.0;
   // converged: the last visit changed nothing, and while neither body's
   // velocity has changed since (snapshot), a visit would change nothing again
-  bool settled = false;
   btVector3 snapshot[4];  // delta linear / angular velocity of a, then b
+  BodyTerms a, b;
+  Mat3 F = Mat3::Identity();  // columns ex, ey, n (world)
+  Vec3 lamN = Vec3::Zero(), targetN = Vec3::Zero(), lamF = Vec3::Zero();
+  Vec3 warmSlip = Vec3::Zero();
+  ShapeSummary shape;
+  LawCache law;
   // last friction solve of this step, reused while its input stays put
-  bool haveLast = false;
   int lastHeld = 0;
   double lastL = 0.0;
   Vec3 lastB = Vec3::Zero();
   FrictionBlockResult last;
+  Blocks k;  // effective-mass blocks (Kff, at the end, rarely read)
+  // read outside the iterations only
+  double dt = 0.0;
+  Vec3 lamPush = Vec3::Zero(), targetPush = Vec3::Zero();
 };
 
 // Per-manifold memory across steps: warm start and hysteresis.
@@ -613,14 +641,14 @@ Vec3 fanSlip(const Vec3& ws, int k) {
   const double angle = 2.0943951023931957 * k;  // 2 pi / 3
   return (ws + kFanSpread * (std::cos(angle) * u + std::sin(angle) * v)).normalized();
 }
-bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x,
-                    const Vec3& direction, bool& refine) {
-  if ((st.piInv * x).norm() > kFanGate) return false;
+bool exactFanSticks(PatchState& st, const Mat3& piInv, bool sticking, const FrictionPatch& friction,
+                    const Vec3& x, const Vec3& direction, bool& refine) {
+  if ((piInv * x).norm() > kFanGate) return false;
   if (!st.fanValid || direction.dot(st.fanDirection) < kHullTurnCos) {
     st.fanValid = false;
     // three evaluations: only for a patch that ended the last step stuck
     // (in a landing pile the others mostly slip: the fan cost 4 % there)
-    if (!st.sticking || st.hullDirection.dot(direction) < kHullTurnCos) return false;
+    if (!sticking || st.hullDirection.dot(direction) < kHullTurnCos) return false;
     // hullPoint = q(w*) with w* = hullSlip
     st.fanCentre = st.hullPoint;
     const Vec3& ws = st.hullSlip;
@@ -654,7 +682,7 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
     if (a.sum() <= 1.0 - kFanSlack) return true;
     // beyond what E bulges out there, or a patch that slipped at the end of
     // the last step: most likely a slip, not worth one more evaluation
-    if (a.sum() > kFanBulge || !st.sticking || !refine) return false;
+    if (a.sum() > kFanBulge || !sticking || !refine) return false;
     const Vec3 p[3] = {sign * st.fanCentre, sign * st.fan[k], sign * st.fan[(k + 1) % 3]};
     // x lies in this cone, beyond the flat face: one more law value inside
     // the face's corner directions, at the slips' mix with x's barycentric
@@ -672,14 +700,16 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
   }
   return false;
 }
-[[gnu::noinline]] bool exactHullSticks(PatchState& st, const FrictionPatch& friction,
-                                       const Vec3& lambda0, double L, bool& refine) {
+// (piInv: Pi^-1 of `friction`; sticking: the block stuck at the end of the last step)
+[[gnu::noinline]] bool exactHullSticks(PatchState& st, const Mat3& piInv, bool sticking,
+                                       const FrictionPatch& friction, const Vec3& lambda0, double L,
+                                       bool& refine) {
   const Vec3 x = lambda0 / L;
   const double xNorm = x.norm();
   if (!(xNorm > 0.0) || !std::isfinite(xNorm)) return false;
   const Vec3 direction = x / xNorm;
   if (!st.hullValid || direction.dot(st.hullDirection) < kHullTurnCos) {
-    const Vec3 w = -(st.piInv * direction);
+    const Vec3 w = -(piInv * direction);
     const double wNorm = w.norm();
     if (!(wNorm > 0.0) || !std::isfinite(wNorm)) return false;
     st.hullSlip = w / wNorm;
@@ -690,7 +720,7 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
   }
   const Vec3 q = st.hullPoint.dot(x) >= 0.0 ? st.hullPoint : Vec3(-st.hullPoint);
   auto inHull = [&](double a) {
-    const Vec3 z = st.piInv * (x - a * q);
+    const Vec3 z = piInv * (x - a * q);
     return std::hypot(z.x(), z.y()) + std::abs(z.z()) <= 1.0 - a;
   };
   // the projection of x on q, and a grid in [0, 1]
@@ -698,7 +728,7 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
   if (inHull(along) || inHull(0.9375 * along)) return true;
   for (int k = 1; k < 8; ++k)
     if (inHull(k / 8.0)) return true;
-  return exactFanSticks(st, friction, x, direction, refine);
+  return exactFanSticks(st, piInv, sticking, friction, x, direction, refine);
 }
 
 // Whether the support of a stacked patch keeps its friction impulse inside
@@ -707,12 +737,12 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
 [[gnu::noinline]] bool supportCanTake(PatchConstraint& sup, const Vec6& ds) {
   const Vec3 lamS = sup.lamF + ds.tail<3>();
   const double Ls = sup.mu * (sup.lamN[0] + ds[0]);
-  PatchState& ss = *sup.state;
-  if (!ss.piInvValid) {
-    ss.piInv = ss.friction->Pi().inverse();
-    ss.piInvValid = true;
+  LawCache& law = sup.law;
+  if (!law.piInvValid) {
+    law.piInv = sup.state->friction->Pi().inverse();
+    law.piInvValid = true;
   }
-  const Vec3 z = ss.piInv * lamS;
+  const Vec3 z = law.piInv * lamS;
   const double size = sup.model == Model::Ellipsoidal ? z.norm() : std::hypot(z.x(), z.y()) + std::abs(z.z());
   return size <= Ls;
 }
@@ -1040,6 +1070,18 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     pc.dt = dt;
     pc.mu = mu;
     pc.rho = st.friction->rho();
+    pc.stateSticking = st.sticking;
+    const PatchShape& patchShape = st.friction->shape();
+    pc.shape.disk = patchShape.isDisk();
+    if (pc.shape.disk) {
+      pc.shape.centre = patchShape.centre();
+      pc.shape.radius = patchShape.radius();
+    }
+    pc.shape.diameter = patchShape.diameter();
+    pc.shape.innerRadius2 = st.innerRadius2;
+    pc.law.pressureCop = st.pressureCop;
+    pc.law.piInvValid = st.piInvValid;
+    if (st.piInvValid) pc.law.piInv = st.piInv;
     const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
     const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
     const Vec3 O = toEigen(st.geometry.origin);
@@ -1125,7 +1167,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       pc.settled = false;
     }
     FrictionPatch& friction = *pc.state->friction;
-    const PatchShape& shape = friction.shape();
+    const ShapeSummary& shape = pc.shape;
     // a patch on a body that stands on a patch of its own (a simple stack) is
     // solved with that support held (see convertContacts): all six DOFs
     // while the support sticks and can take the share without slipping,
@@ -1160,15 +1202,15 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
       const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
       const bool onPatch =
-          shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= shape.radius() * shape.radius()
-                         : cop.squaredNorm() <= pc.state->innerRadius2 || shape.contains(cop);
+          shape.disk ? (cop - shape.centre).squaredNorm() <= shape.radius * shape.radius
+                     : cop.squaredNorm() <= shape.innerRadius2 || friction.shape().contains(cop);
       if (onPatch) {
         lamN = y;
         pc.interior = true;
       } else {
-        const Vec2 clamped = nearestPointOn(shape, cop);
+        const Vec2 clamped = nearestPointOn(friction.shape(), cop);
         lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
-        pc.tipping = (cop - clamped).norm() > kTipRelTol * shape.diameter();
+        pc.tipping = (cop - clamped).norm() > kTipRelTol * shape.diameter;
       }
     }
     Vec6 d = Vec6::Zero();
@@ -1204,17 +1246,17 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
         // while a body at rest or sliding steadily never pays for a refresh
         // and a centred symmetric patch keeps Pi = I.
-        const double moved = (cop - pc.state->pressureCop).norm() / shape.diameter();
+        const double moved = (cop - pc.law.pressureCop).norm() / shape.diameter;
         // the quick stick test's measure of lambda0 = -K^-1 b against the
         // law's Pi (see below): <= L sticks
         auto stickSize = [&](Vec3& lambda0) {
-          PatchState& st = *pc.state;
-          if (!st.piInvValid) {
-            st.piInv = friction.Pi().inverse();
-            st.piInvValid = true;
+          LawCache& law = pc.law;
+          if (!law.piInvValid) {
+            law.piInv = friction.Pi().inverse();
+            law.piInvValid = true;
           }
           lambda0 = -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
-          const Vec3 unitLoad = st.piInv * lambda0;
+          const Vec3 unitLoad = law.piInv * lambda0;
           const double size = pc.model == Model::Ellipsoidal
                                   ? unitLoad.norm()
                                   : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
@@ -1226,7 +1268,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         bool refreshDue = moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance
                                                      : settings.pressureLagTolerance);
         if (refreshDue && settings.deferStickingRefresh && moved <= kDeferMove &&
-            (pc.state->sticking || (pc.haveLast && pc.last.sticking))) {
+            (pc.stateSticking || (pc.haveLast && pc.last.sticking))) {
           size = stickSize(lambda0);
           if (size <= kDeferStick * L) {
             refreshDue = false;
@@ -1241,12 +1283,11 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           // its kern, |cop - C| <= I / (A R) = R / 4; a polygon's admissibility
           // test is nearestAdmissibleLoads' own first step (admissible loads
           // come back unchanged)
-          if (!shape.isDisk() ||
-              (cop - shape.centre()).squaredNorm() > 0.0625 * shape.radius() * shape.radius())
-            loads = nearestAdmissibleLoads(shape, loads, pc.rho);
+          if (!shape.disk || (cop - shape.centre).squaredNorm() > 0.0625 * shape.radius * shape.radius)
+            loads = nearestAdmissibleLoads(friction.shape(), loads, pc.rho);
           friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
-          pc.state->pressureCop = cop;
-          pc.state->piInvValid = false;  // Pi and the law changed (also for supportCanTake)
+          pc.law.pressureCop = cop;
+          pc.law.piInvValid = false;  // Pi and the law changed (also for supportCanTake)
           pc.state->hullValid = false;
           pc.state->fanValid = false;
           refreshed = true;
@@ -1263,12 +1304,12 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // products instead of a block solve.
         bool quick = false;
         if (settings.quickStick) {
-          PatchState& st = *pc.state;
           if (std::isnan(size)) size = stickSize(lambda0);
-          const bool stuckBefore = st.sticking || (pc.haveLast && pc.last.sticking);
+          const bool stuckBefore = pc.stateSticking || (pc.haveLast && pc.last.sticking);
           if (std::isfinite(size) &&
               (size <= L || (pc.model == Model::Exact && stuckBefore &&
-                             exactHullSticks(st, friction, lambda0, L, pc.fanRefine)))) {
+                             exactHullSticks(*pc.state, pc.law.piInv, pc.stateSticking, friction,
+                                             lambda0, L, pc.fanRefine)))) {
             quick = true;
             ++stats.quickSticks;
             pc.last.impulse = lambda0;
@@ -1353,7 +1394,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       PatchConstraint& before = impl_->retry;
       before = pc;
       if (!visit(&stackHold->all, 2)) {
+        const LawCache law = pc.law;  // the law is not rolled back: nor is its record
         pc = before;
+        pc.law = law;
         visit(stackHold->normal.valid ? &stackHold->normal : nullptr, stackHold->normal.valid ? 1 : 0);
       }
     } else {
@@ -1408,6 +1451,9 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     st.slipT = c[3] * ex + c[4] * ey;
     st.slipSpin = c[5];
     st.sticking = pc.sticking;
+    st.pressureCop = pc.law.pressureCop;
+    st.piInvValid = pc.law.piInvValid;
+    if (pc.law.piInvValid) st.piInv = pc.law.piInv;
     if (pc.tipping || pc.failed) {
       st.tipStep = im.step;
       st.flat = false;
