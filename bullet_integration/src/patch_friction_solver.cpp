@@ -310,6 +310,17 @@ bool isStale(const PatchState& st, long step) {
 // Steps between sweeps of the stale states.
 constexpr long kSweepSteps = 16;
 
+// What a PatchReport is made of, kept at the end of the step; the state
+// (geometry, shape) stays as it is until the next step's convertContacts.
+struct ReportSource {
+  const PatchState* state = nullptr;
+  Model model = Model::Ellipsoidal;
+  bool sticking = false;
+  double mu = 0.0, rho = 0.0, dt = 0.0;
+  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero();
+  Vec3 slip = Vec3::Zero();  // x_o at the end of the step
+};
+
 }  // namespace
 
 struct PatchFrictionSolver::Impl {
@@ -318,8 +329,15 @@ struct PatchFrictionSolver::Impl {
   std::vector<PatchConstraint> patches;  // current island
   std::vector<StackHold> holds;          // stacked patches of the current island
   PatchConstraint retry;                 // a stacked patch's state before its visit
-  std::vector<PatchReport> reports;      // whole step (the first reportCount)
+  // reports of the whole step: what they are made of (the first
+  // reportCount sources), and the reports themselves, filled from them
+  // when first asked for after the step (fillReports): a step writes ~100
+  // bytes per patch instead of a 624-byte PatchReport that nobody may read
+  std::vector<ReportSource> reportSources;
   size_t reportCount = 0;
+  bool reportsFilled = true;
+  bool inStep = false;  // between prepareSolve and allSolved: the sources are being written
+  std::vector<PatchReport> reports;
   PatchSolverSettings settings;
   PatchSolverStats stats;
   std::vector<long> reportShapeIds;  // shapeId of each report's shape (copied only when it changes)
@@ -327,6 +345,7 @@ struct PatchFrictionSolver::Impl {
   std::vector<btRigidBody*> flushBodies;  // bodies of this island's patches
   long step = 0;
 
+  void fillReports();
   const PatchOptions* optionsOf(const btCollisionObject* o) const {
     auto it = options.find(o);
     return it == options.end() ? nullptr : &it->second;
@@ -856,7 +875,51 @@ bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) 
   return impl_->optionsOf(body) != nullptr;
 }
 
-const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const { return impl_->reports; }
+const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
+  impl_->fillReports();
+  return impl_->reports;
+}
+
+// The reports of the last step from their sources, once per step (reports
+// are overwritten in place: no allocation once the vector and the shapes'
+// storage have grown).
+void PatchFrictionSolver::Impl::fillReports() {
+  if (reportsFilled || inStep) return;
+  reportsFilled = true;
+  if (reports.size() < reportCount) {
+    reports.resize(reportCount);
+    reportShapeIds.resize(reportCount, 0);
+  }
+  for (size_t slot = 0; slot < reportCount; ++slot) {
+    const ReportSource& src = reportSources[slot];
+    const PatchState& st = *src.state;
+    PatchReport& r = reports[slot];
+    r.body = st.body;
+    r.other = st.other;
+    r.origin = st.geometry.origin;
+    r.normal = st.geometry.normal;
+    r.xAxis = st.geometry.xAxis;
+    r.yAxis = st.geometry.yAxis;
+    const PatchShape& shape = st.friction->shape();
+    if (reportShapeIds[slot] != st.shapeId || !r.shape) {
+      r.shape = shape;
+      reportShapeIds[slot] = st.shapeId;
+    }
+    r.model = src.model;
+    r.mu = src.mu;
+    r.rho = src.rho;
+    const PatchLoads l = toLoads(src.lamN);
+    r.loads = PatchLoads{l.Pz / src.dt, l.Tx / src.dt, l.Ty / src.dt};
+    r.pressure = r.loads.Pz > 0.0 ? LinearPressure::fromLoads(shape, r.loads) : LinearPressure();
+    r.Q = src.lamF / src.dt;
+    r.slip = src.slip;
+    r.r = r.slip.norm();
+    r.sticking = src.sticking;
+    r.w = src.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
+  }
+  reports.resize(reportCount);
+  reportShapeIds.resize(reportCount);
+}
 
 void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
   patchspin::internal::requireFinite(settings.pressureRefreshTolerance, "PatchSolverSettings::pressureRefreshTolerance");
@@ -873,6 +936,7 @@ const PatchSolverSettings& PatchFrictionSolver::settings() const { return impl_-
 const PatchSolverStats& PatchFrictionSolver::stats() const { return impl_->stats; }
 
 const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
+  impl_->fillReports();
   for (const PatchReport& r : impl_->reports)
     if (r.body == body) return &r;
   return nullptr;
@@ -882,13 +946,14 @@ void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
   btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
   ++impl_->step;
   impl_->reportCount = 0;
+  impl_->reportsFilled = false;
+  impl_->inStep = true;
   impl_->stats = PatchSolverStats();
 }
 
 void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
   btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
-  impl_->reports.resize(impl_->reportCount);
-  impl_->reportShapeIds.resize(impl_->reportCount);
+  impl_->inStep = false;
   // forget manifolds not seen for a while (they may have been deleted).
   // The sweep walks every state (a node of a hash map: a cache miss each in
   // a large pile), so it runs every kSweepSteps steps; a state found stale
@@ -1458,39 +1523,24 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
       st.tipStep = im.step;
       st.flat = false;
     }
-    // reports are overwritten in place (no allocation once the vector and
-    // the shapes' storage have grown); allSolved() trims the vector
-    if (im.reportCount == im.reports.size()) {
-      im.reports.emplace_back();
-      im.reportShapeIds.push_back(0);
-    }
-    const size_t slot = im.reportCount++;
-    PatchReport& r = im.reports[slot];
-    r.body = st.body;
-    r.other = st.other;
-    r.origin = st.geometry.origin;
-    r.normal = st.geometry.normal;
-    r.xAxis = st.geometry.xAxis;
-    r.yAxis = st.geometry.yAxis;
-    const PatchShape& shape = st.friction->shape();
-    if (im.reportShapeIds[slot] != st.shapeId || !r.shape) {
-      r.shape = shape;
-      im.reportShapeIds[slot] = st.shapeId;
-    }
+    // the report's sources (the report is filled when asked for: fillReports)
+    if (im.reportCount == im.reportSources.size()) im.reportSources.emplace_back();
+    ReportSource& r = im.reportSources[im.reportCount++];
+    r.state = &st;
     r.model = pc.model;
+    r.sticking = pc.sticking;
     r.mu = pc.mu;
     r.rho = pc.rho;
-    const PatchLoads l = toLoads(pc.lamN);
-    r.loads = PatchLoads{l.Pz / pc.dt, l.Tx / pc.dt, l.Ty / pc.dt};
-    r.pressure = r.loads.Pz > 0.0 ? LinearPressure::fromLoads(shape, r.loads) : LinearPressure();
-    r.Q = pc.lamF / pc.dt;
+    r.dt = pc.dt;
+    r.lamN = pc.lamN;
+    r.lamF = pc.lamF;
     r.slip = c.tail<3>();
-    r.r = r.slip.norm();
-    r.sticking = pc.sticking;
-    if (l.Pz > 0.0 && pc.mu > 0.0)
-      im.stats.maxPressureLag = std::max(
-          im.stats.maxPressureLag, (Vec2(l.Ty / l.Pz, -l.Tx / l.Pz) - st.pressureCop).norm() / shape.diameter());
-    r.w = pc.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
+    const PatchLoads l = toLoads(pc.lamN);
+    if (l.Pz > 0.0 && pc.mu > 0.0) {
+      const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
+      im.stats.maxPressureLag =
+          std::max(im.stats.maxPressureLag, (cop - pc.law.pressureCop).norm() / pc.shape.diameter);
+    }
   }
   im.flushBodies.clear();
   for (const PatchConstraint& pc : im.patches)
