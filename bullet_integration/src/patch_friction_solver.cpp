@@ -131,6 +131,10 @@ PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lam
 struct BodyTerms {
   int id = -1;
   bool dynamic = false;
+  // the solver body's velocity and spin plus the step's external impulses
+  // (Bullet adds those only at write-back): fixed during the iterations,
+  // which add the solver body's delta velocities to them (velocityOf)
+  btVector3 v0{0, 0, 0}, w0{0, 0, 0};
   Vec3 r = Vec3::Zero();     // lever O - centre of mass, world [m]
   Vec3 invM = Vec3::Zero();  // inverse mass (x) linear factor [1/kg]
   Mat3 invI = Mat3::Zero();  // world inverse inertia with the angular factor [1/(kg m^2)]
@@ -233,6 +237,7 @@ struct PatchConstraint {
   // and the support's blocks with that load held
   int support = -1, hold = -1;
   int load = -1, loadHold = -1;
+  int ids[2] = {-1, -1};  // a.id, b.id (a skipped visit reads this line and the snapshot only)
   double mu = 0.0, rho = 0.0;
   // converged: the last visit changed nothing, and while neither body's
   // velocity has changed since (snapshot), a visit would change nothing again
@@ -361,16 +366,12 @@ struct PatchFrictionSolver::Impl {
 
 namespace {
 
-// Velocity of a solver body during the iterations (Bullet adds the external
-// impulses only at write-back, so include them here).
-void velocityOf(const btSolverBody& sb, Vec3& v, Vec3& w) {
-  if (!sb.m_originalBody) {
-    v.setZero();
-    w.setZero();
-    return;
-  }
-  v = toEigen(sb.m_linearVelocity + sb.m_externalForceImpulse + sb.m_deltaLinearVelocity);
-  w = toEigen(sb.m_angularVelocity + sb.m_externalTorqueImpulse + sb.m_deltaAngularVelocity);
+// Velocity of a patch's dynamic body during the iterations: its fixed part
+// (BodyTerms::v0, w0) plus the solver body's delta velocities, the only part
+// of the solver body read (the line Bullet's own rows read and write).
+void velocityOf(const BodyTerms& t, const btSolverBody& sb, Vec3& v, Vec3& w) {
+  v = toEigen(t.v0 + sb.m_deltaLinearVelocity);
+  w = toEigen(t.w0 + sb.m_deltaAngularVelocity);
 }
 
 // The point of the patch nearest to p (p itself if inside).
@@ -421,12 +422,12 @@ Vec6 patchVelocity(const PatchConstraint& pc, Get get) {
   Vec3 u = Vec3::Zero(), w = Vec3::Zero();
   Vec3 v, om;
   if (pc.a.dynamic) {
-    get(pc.a.id, v, om);
+    get(pc.a, v, om);
     u += v + om.cross(pc.a.r);
     w += om;
   }
   if (pc.b.dynamic) {
-    get(pc.b.id, v, om);
+    get(pc.b, v, om);
     u -= v + om.cross(pc.b.r);
     w -= om;
   }
@@ -437,7 +438,7 @@ Vec6 patchVelocity(const PatchConstraint& pc, Get get) {
 }
 
 Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
-  return patchVelocity(pc, [&](int id, Vec3& v, Vec3& w) { velocityOf(pool[id], v, w); });
+  return patchVelocity(pc, [&](const BodyTerms& t, Vec3& v, Vec3& w) { velocityOf(t, pool[t.id], v, w); });
 }
 
 // Generalised impulse lam of the six DOFs -> world force f at O and couple m
@@ -464,6 +465,8 @@ BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r) {
   t.id = id;
   t.dynamic = sb.m_originalBody != nullptr;
   if (!t.dynamic) return t;
+  t.v0 = sb.m_linearVelocity + sb.m_externalForceImpulse;
+  t.w0 = sb.m_angularVelocity + sb.m_externalTorqueImpulse;
   t.r = r;
   t.invM = toEigen(sb.m_invMass).cwiseProduct(toEigen(sb.m_linearFactor));
   const btMatrix3x3& I = sb.m_originalBody->getInvInertiaTensorWorld();
@@ -1159,6 +1162,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
     pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
     pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
+    pc.ids[0] = idA;
+    pc.ids[1] = idB;
 
     // effective masses of the 6 DOFs and the friction block's Schur
     // complement (normal block held bilateral): Blocks
@@ -1210,8 +1215,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
   if (iteration >= info.m_numIterations) return residual;
   double worst = 0.0;
   auto snapshotOf = [&](const PatchConstraint& pc, btVector3* out) {
-    const btSolverBody& a = m_tmpSolverBodyPool[pc.a.id];
-    const btSolverBody& b = m_tmpSolverBodyPool[pc.b.id];
+    const btSolverBody& a = m_tmpSolverBodyPool[pc.ids[0]];
+    const btSolverBody& b = m_tmpSolverBodyPool[pc.ids[1]];
     out[0] = a.m_deltaLinearVelocity;
     out[1] = a.m_deltaAngularVelocity;
     out[2] = b.m_deltaLinearVelocity;
@@ -1484,9 +1489,9 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
     for (PatchConstraint& pc : impl_->patches) {
       if (pc.targetPush.isZero()) continue;
       auto& pool = m_tmpSolverBodyPool;
-      const Vec3 c = patchVelocity(pc, [&](int id, Vec3& v, Vec3& w) {
-                       v = toEigen(pool[id].m_pushVelocity);
-                       w = toEigen(pool[id].m_turnVelocity);
+      const Vec3 c = patchVelocity(pc, [&](const BodyTerms& t, Vec3& v, Vec3& w) {
+                       v = toEigen(pool[t.id].m_pushVelocity);
+                       w = toEigen(pool[t.id].m_turnVelocity);
                      }).head<3>();
       Vec3 lam = pc.lamPush - pc.k.Winv * (c - pc.targetPush);
       if (lam[0] < 0.0) lam.setZero();  // pushes only apart
