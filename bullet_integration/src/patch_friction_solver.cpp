@@ -259,20 +259,42 @@ struct PatchConstraint {
   Vec3 lamPush = Vec3::Zero(), targetPush = Vec3::Zero();
 };
 
-// Per-manifold memory across steps: warm start and hysteresis.
+// Per-manifold memory across steps: warm start and hysteresis. A node of
+// the states' hash map, looked up for every touching manifold of an
+// opted-in body in every step: what every step reads and writes lies at the
+// start (the line of the map's key), the exact law's certificates at the end.
 struct PatchState {
   const btCollisionObject* body = nullptr;
   const btCollisionObject* other = nullptr;
+  long lastSeen = std::numeric_limits<long>::min() / 2;
+  long tipStep = std::numeric_limits<long>::min() / 2;
+  bool flat = false;
+  bool sticking = false;  // the friction block stuck at the end of the last step
+  bool overlapValid = false;  // see overlapPose
+  bool piInvValid = false;    // see piInv
+  // the faces' kinds when geometry's overlap was last clipped (see overlapPose)
+  internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
+                                          internal::Face::Kind::Polygon};
+  long shapeId = 0;                               // unique per built `friction`
+  // squared radius of the largest disk about O inside a polygon patch: a
+  // centre of pressure within it is on the patch without the edge tests
+  // (patches of overlapping coins are clipped 64-gons)
+  double innerRadius2 = 0.0;
+  // centre of pressure of the pressure `friction` was last refreshed with
+  Vec2 pressureCop = Vec2::Zero();
   // warm start in world axes (the patch frame turns with the body): normal
   // impulse, tilt couple, tangential friction impulse and slip, spin parts
   double normal = 0.0, frictionSpin = 0.0, slipSpin = 0.0;
   Vec3 couple = Vec3::Zero(), frictionT = Vec3::Zero(), slipT = Vec3::Zero();
-  bool flat = false;
-  // centre of pressure of the pressure `friction` was last refreshed with
-  Vec2 pressureCop = Vec2::Zero();
   // Pi^-1 of `friction` (quick stick test), valid until the next refresh
   Mat3 piInv = Mat3::Identity();
-  bool piInvValid = false;
+  // relative pose of the bodies (B in A's frame) when geometry's overlap was
+  // last clipped (see kOverlapRelTol)
+  btTransform overlapPose = btTransform::getIdentity();
+  internal::DetectedPatch geometry;               // this step's patch
+  std::optional<internal::PatchOutline> outline;  // shape of `friction`
+  std::optional<FrictionPatch> friction;
+  // the exact law's stick certificates (untouched by ellipsoidal patches):
   // a value q(w) of the exact law (a point on the boundary of its limit set),
   // its slip w and the direction of lambda0 / L it was taken for: see
   // exactHullSticks
@@ -288,23 +310,6 @@ struct PatchState {
   Mat3 fanInv[3];  // inverses of [fanCentre, fan[k], fan[k+1]]
   Vec3 fanDirection = Vec3::Zero(), fanSlip = Vec3::Zero();  // fanSlip: fanCentre's w*
   bool fanValid = false;
-  bool sticking = false;  // the friction block stuck at the end of the last step
-  std::optional<internal::PatchOutline> outline;  // shape of `friction`
-  std::optional<FrictionPatch> friction;
-  internal::DetectedPatch geometry;               // this step's patch
-  // relative pose of the bodies (B in A's frame) and the faces' kinds when
-  // geometry's overlap was last clipped (see kOverlapRelTol)
-  btTransform overlapPose = btTransform::getIdentity();
-  internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
-                                          internal::Face::Kind::Polygon};
-  bool overlapValid = false;
-  long shapeId = 0;                               // unique per built `friction`
-  // squared radius of the largest disk about O inside a polygon patch: a
-  // centre of pressure within it is on the patch without the edge tests
-  // (patches of overlapping coins are clipped 64-gons)
-  double innerRadius2 = 0.0;
-  long lastSeen = std::numeric_limits<long>::min() / 2;
-  long tipStep = std::numeric_limits<long>::min() / 2;
 };
 
 // A state not seen since the cooldown of a tip: its manifold may have been
