@@ -1051,6 +1051,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
     bool flat = false;
     std::optional<internal::DetectedPatch> geo;
+    bool kept = false;  // st.geometry is this step's patch (geo unset)
     if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
       const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
       const double angle = std::acos(c);
@@ -1072,9 +1073,15 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         for (int row = 0; keep && row < 3; ++row)
           keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
                  kOverlapRelTol;
-        geo = internal::buildPatch(*faceA, *faceB, A->getWorldTransform().getBasis().getColumn(0),
-                                   keep ? &st.geometry : nullptr);
-        if (geo && !keep) {
+        // a kept overlap is updated in place (no copy of its outline)
+        const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
+        if (keep) {
+          internal::refreshFrame(*faceA, *faceB, xHint, st.geometry);
+          kept = true;
+        } else {
+          geo = internal::buildPatch(*faceA, *faceB, xHint);
+        }
+        if (geo) {
           st.overlapPose = rel;
           st.overlapKinds[0] = faceA->kind;
           st.overlapKinds[1] = faceB->kind;
@@ -1082,7 +1089,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         }
       }
     }
-    st.flat = flat && geo.has_value();
+    st.flat = flat && (kept || geo.has_value());
     if (!st.flat) {
       st.normal = st.frictionSpin = st.slipSpin = 0.0;
       st.couple.setZero();
@@ -1098,7 +1105,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
     }
 
-    st.geometry = std::move(*geo);
+    if (!kept) st.geometry = std::move(*geo);
     const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
     // shape and friction law: rebuilt only when the outline changes
     const internal::PatchOutline& outline = st.geometry.outline;
