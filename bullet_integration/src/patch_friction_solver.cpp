@@ -367,6 +367,31 @@ struct PatchFrictionSolver::Impl {
   // touching manifolds per body)
   std::vector<const PatchOptions*> optionsById;
   std::vector<char> optionsKnown;
+  // ... and those lookups go through a table by the object's index in its
+  // world's collision-object array, kept across steps: the hash map (a
+  // bucket and a node, two cache misses per body in a large pile) is asked
+  // only when an entry is missing or stale. An entry holds for the same
+  // object (address) while the options are unchanged (optionsVersion:
+  // enablePatchFriction and disablePatchFriction advance it).
+  struct OptionsEntry {
+    const btCollisionObject* object = nullptr;
+    const PatchOptions* options = nullptr;
+    long version = -1;
+  };
+  std::vector<OptionsEntry> optionsByIndex;
+  long optionsVersion = 0;
+  const PatchOptions* cachedOptionsOf(const btCollisionObject* o) {
+    const int ix = o->getWorldArrayIndex();
+    if (ix < 0) return optionsOf(o);
+    if (std::size_t(ix) >= optionsByIndex.size()) optionsByIndex.resize(std::size_t(ix) + 1);
+    OptionsEntry& e = optionsByIndex[std::size_t(ix)];
+    if (e.object != o || e.version != optionsVersion) {
+      e.object = o;
+      e.options = optionsOf(o);
+      e.version = optionsVersion;
+    }
+    return e.options;
+  }
 };
 
 namespace {
@@ -875,9 +900,13 @@ void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOpti
   if (options.rho) patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
   patchspin::internal::requirePositive(options.flatnessTolerance, "PatchOptions::flatnessTolerance");
   impl_->options[body] = options;
+  ++impl_->optionsVersion;
 }
 
-void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) { impl_->options.erase(body); }
+void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) {
+  impl_->options.erase(body);
+  ++impl_->optionsVersion;
+}
 
 bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
   return impl_->optionsOf(body) != nullptr;
@@ -1007,9 +1036,9 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const btRigidBody* rb = btRigidBody::upcast(o);
       if (!rb || !(rb->getInvMass() > 0)) return nullptr;
       const int id = o->getCompanionId();
-      if (id < 0 || std::size_t(id) >= im.optionsById.size()) return im.optionsOf(o);
+      if (id < 0 || std::size_t(id) >= im.optionsById.size()) return im.cachedOptionsOf(o);
       if (!im.optionsKnown[std::size_t(id)]) {
-        im.optionsById[std::size_t(id)] = im.optionsOf(o);
+        im.optionsById[std::size_t(id)] = im.cachedOptionsOf(o);
         im.optionsKnown[std::size_t(id)] = 1;
       }
       return im.optionsById[std::size_t(id)];
