@@ -252,7 +252,10 @@ struct PatchConstraint {
   int lastHeld = 0;
   double lastL = 0.0;
   Vec3 lastB = Vec3::Zero();
-  FrictionBlockResult last;
+  struct {
+    Vec3 impulse = Vec3::Zero(), slip = Vec3::Zero();
+    bool sticking = false;
+  } last;  // what the visits use of its FrictionBlockResult
   Blocks k;  // effective-mass blocks (Kff, at the end, rarely read)
   // read outside the iterations only
   double dt = 0.0;
@@ -1426,7 +1429,6 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
             pc.last.impulse = lambda0;
             pc.last.slip.setZero();
             pc.last.sticking = true;
-            pc.last.iterations = 0;
             pc.haveLast = true;
             pc.lastHeld = held;
             pc.lastB = in.b;
@@ -1439,16 +1441,19 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
                       std::abs(L - pc.lastL) <= kReuseRelTol * L);
         if (!reuse) {
           ++stats.blockSolves;
-          pc.last = solveFrictionBlock(friction, pc.model, in);
-          if (pc.model == Model::Exact && !pc.last.gaugeSlip.isZero(0.0)) {
+          const FrictionBlockResult solved = solveFrictionBlock(friction, pc.model, in);
+          pc.last.impulse = solved.impulse;
+          pc.last.slip = solved.slip;
+          pc.last.sticking = solved.sticking;
+          if (pc.model == Model::Exact && !solved.gaugeSlip.isZero(0.0)) {
             PatchState& st = *pc.state;
-            st.gaugeSlip = pc.last.gaugeSlip;
+            st.gaugeSlip = solved.gaugeSlip;
             // a stick's boundary point along lambda0 is the hull test's best
             // q* for the next visits (lambda0 turns little between them)
-            if (pc.last.sticking && pc.last.gaugeValue.allFinite()) {
-              st.hullSlip = pc.last.gaugeSlip;
-              st.hullPoint = pc.last.gaugeValue;
-              st.hullDirection = pc.last.gaugeValue.normalized();
+            if (solved.sticking && solved.gaugeValue.allFinite()) {
+              st.hullSlip = solved.gaugeSlip;
+              st.hullPoint = solved.gaugeValue;
+              st.hullDirection = solved.gaugeValue.normalized();
               st.hullValid = true;
               st.fanValid = false;
             }
@@ -1458,7 +1463,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           pc.lastB = in.b;
           pc.lastL = L;
         }
-        const FrictionBlockResult& res = pc.last;
+        const auto& res = pc.last;
         lamF = res.impulse;
         pc.sticking = res.sticking;
         pc.warmSlip = res.slip;
