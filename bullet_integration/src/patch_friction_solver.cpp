@@ -1122,19 +1122,21 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       }
     }
     st.flat = flat && (kept || geo.has_value());
+    // (the warm start is read only after a step that ended flat, whose end
+    // wrote it: a contact that is not flat leaves it as it is)
     if (!st.flat) {
-      st.normal = st.frictionSpin = st.slipSpin = 0.0;
-      st.couple.setZero();
-      st.frictionT.setZero();
-      st.slipT.setZero();
       convertContact(m, info);
       continue;
     }
     // stock rows of this manifold are replaced: start them from zero if
-    // the contact goes back to Bullet later
-    for (int k = 0; k < m->getNumContacts(); ++k) {
-      btManifoldPoint& p = m->getContactPoint(k);
-      p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+    // the contact goes back to Bullet later. After a step that ended flat
+    // they are zero already (Bullet's write-back skipped this manifold, and
+    // the points it adds or replaces carry zero or the old zero impulses).
+    if (!wasFlat) {
+      for (int k = 0; k < m->getNumContacts(); ++k) {
+        btManifoldPoint& p = m->getContactPoint(k);
+        p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+      }
     }
 
     if (!kept) st.geometry = std::move(*geo);
