@@ -8,7 +8,8 @@
 //   split iterations  stock split impulses, then the patch's position
 //                     correction (gap and tilt) on the pseudo velocities
 //   iterations        stock rows, then per patch: normal block, friction block
-//   finish            reports and warm-start cache, then stock write-back
+//   finish            warm-start cache and what the reports are made of
+//                     (filled when asked for), then stock write-back
 #include <patchspin/bullet/patch_friction_solver.hpp>
 
 #include "patch_detection.hpp"
