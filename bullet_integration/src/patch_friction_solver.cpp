@@ -365,6 +365,17 @@ struct PatchFrictionSolver::Impl {
     return it == options.end() ? nullptr : &it->second;
   }
   std::vector<int> ownPatch, patchesAbove;  // scratch of linkStackedPatches
+  // a manifold whose patch is detected, its solver rows pending (convertContacts)
+  struct Candidate {
+    int index;
+    PatchState* state;
+    const PatchOptions* options;
+    const btCollisionObject* A;
+    const btCollisionObject* B;
+    double mu;
+    bool wasFlat;
+  };
+  std::vector<Candidate> candidates;
   // options of the island's bodies by solver body id (convertBodies has
   // numbered them before convertContacts), looked up once per body and
   // solve: a manifold's two lookups are then array reads (in a pile, ~4
@@ -472,7 +483,8 @@ Vec6 patchVelocity(const PatchConstraint& pc, Get get) {
 }
 
 Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
-  return patchVelocity(pc, [&](const BodyTerms& t, Vec3& v, Vec3& w) { velocityOf(t, pool[t.id], v, w); });
+  return patchVelocity(pc,
+                       [&](const BodyTerms& t, Vec3& v, Vec3& w) { velocityOf(t, pool[t.id], v, w); });
 }
 
 // Generalised impulse lam of the six DOFs -> world force f at O and couple m
@@ -1023,228 +1035,252 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   const double dt = double(info.m_timeStep);
   im.optionsById.assign(std::size_t(m_tmpSolverBodyPool.size()), nullptr);
   im.optionsKnown.assign(std::size_t(m_tmpSolverBodyPool.size()), 0);
-  for (int i = 0; i < numManifolds; ++i) {
-    btPersistentManifold* m = manifolds[i];
-    // empty manifolds first: the broadphase keeps one for every pair whose
-    // bounding boxes overlap (~10 per touching one in a pile), and the option
-    // lookups below are hash lookups
-    if (m->getNumContacts() == 0) {
-      convertContact(m, info);
-      continue;
-    }
-    const btCollisionObject* o0 = m->getBody0();
-    const btCollisionObject* o1 = m->getBody1();
-    // the patch belongs to an opted-in dynamic body (a static or kinematic
-    // body opted in has no patch of its own: what stands on it decides)
-    auto dynamicOptions = [&](const btCollisionObject* o) -> const PatchOptions* {
-      const btRigidBody* rb = btRigidBody::upcast(o);
-      if (!rb || !(rb->getInvMass() > 0)) return nullptr;
-      const int id = o->getCompanionId();
-      if (id < 0 || std::size_t(id) >= im.optionsById.size()) return im.cachedOptionsOf(o);
-      if (!im.optionsKnown[std::size_t(id)]) {
-        im.optionsById[std::size_t(id)] = im.cachedOptionsOf(o);
-        im.optionsKnown[std::size_t(id)] = 1;
-      }
-      return im.optionsById[std::size_t(id)];
-    };
-    const PatchOptions* opt0 = dynamicOptions(o0);
-    const PatchOptions* opt1 = dynamicOptions(o1);
-    if (!opt0 && !opt1) {
-      convertContact(m, info);
-      continue;
-    }
-    // both opted in (a stack): the patch is the upper body's, the one the
-    // normal enters against its gravity (findPatchReport(upper) then finds
-    // it); without gravity, body0's. Manifold normal: from body1 to body0.
-    if (opt0 && opt1) {
-      const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
-      const btVector3 g = btRigidBody::upcast(o0)->getGravity();
-      if (nInto0.dot(g) > 0) opt0 = nullptr;  // body0 is underneath
-      else opt1 = nullptr;
-    }
-    const bool aIs0 = opt0 != nullptr;
-    const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
-    const btCollisionObject* A = aIs0 ? o0 : o1;
-    const btCollisionObject* B = aIs0 ? o1 : o0;
-    // manifold normal points from body1 to body0
-    const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
-                                  : -m->getContactPoint(0).m_normalWorldOnB;
-    PatchState& st = im.states[m];
-    if (st.body != A || st.other != B || isStale(st, im.step - 1)) {
-      st = PatchState();
-      st.body = A;
-      st.other = B;
-    }
-    const bool wasFlat = st.flat && st.lastSeen >= im.step - 1;
-    st.lastSeen = im.step;
-
-    // faces and flatness, with hysteresis
-    double cosA = 0.0, cosB = 0.0;
-    const auto faceA = internal::findFaceAlong(*A, -nIntoA, &cosA);
-    const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
-    bool flat = false;
-    std::optional<internal::DetectedPatch> geo;
-    bool kept = false;  // st.geometry is this step's patch (geo unset)
-    if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
-      const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
-      const double angle = std::acos(c);
-      const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
-      // the faces must also face the contact, and the contact must be on
-      // them: two coins side by side touch rim to rim, with a normal across
-      // their (parallel) faces or, from Bullet's convex test near the rim,
-      // along them at a point one coin thickness off the other's face
-      flat = angle < tol && cosA >= kFacingCos && cosB >= kFacingCos &&
-             im.step - st.tipStep > kTipCooldownSteps && contactOnFaces(*m, aIs0, *faceA, *faceB);
-      // x axis fixed in the moving body: a box spinning on a plane keeps
-      // the same outline, and its cached shape, in this frame
-      if (flat) {
-        const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
-        bool keep = wasFlat && st.overlapValid && faceA->kind == st.overlapKinds[0] &&
-                    faceB->kind == st.overlapKinds[1] &&
-                    double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
-                        kOverlapRelTol * st.geometry.outline.size();
-        for (int row = 0; keep && row < 3; ++row)
-          keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
-                 kOverlapRelTol;
-        // a kept overlap is updated in place (no copy of its outline)
-        const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
-        if (keep) {
-          internal::refreshFrame(*faceA, *faceB, xHint, st.geometry);
-          kept = true;
-        } else {
-          geo = internal::buildPatch(*faceA, *faceB, xHint);
+  // In chunks of manifolds: first the detection of the chunk's patches
+  // (faces, flatness, overlap, friction law: nothing of the solver bodies),
+  // then, in the manifolds' order, Bullet's contacts and the patches' solver
+  // rows (solver bodies, effective masses, warm starts), exactly as one pass
+  // would have made them. The two passes keep each one's code in the
+  // instruction cache, instead of alternating between the patch detection
+  // and Bullet's convertContact for every manifold (resting 1000-body pile:
+  // 8.26M -> 6.56M instruction-cache misses in 40 steps, stock 5.29M). A
+  // chunk of 256 manifolds stays in the L2 cache between the passes (1024:
+  // 6.41M, but +1.4 % L2 misses; 48: 7.05M).
+  constexpr int kChunk = 256;
+  for (int begin = 0; begin < numManifolds; begin += kChunk) {
+    const int end = std::min(numManifolds, begin + kChunk);
+    im.candidates.clear();
+    for (int i = begin; i < end; ++i) {
+      btPersistentManifold* m = manifolds[i];
+      // empty manifolds first: the broadphase keeps one for every pair whose
+      // bounding boxes overlap (~10 per touching one in a pile); every
+      // manifold that is not a candidate goes to Bullet in the second pass
+      if (m->getNumContacts() == 0) continue;
+      const btCollisionObject* o0 = m->getBody0();
+      const btCollisionObject* o1 = m->getBody1();
+      // the patch belongs to an opted-in dynamic body (a static or kinematic
+      // body opted in has no patch of its own: what stands on it decides)
+      auto dynamicOptions = [&](const btCollisionObject* o) -> const PatchOptions* {
+        const btRigidBody* rb = btRigidBody::upcast(o);
+        if (!rb || !(rb->getInvMass() > 0)) return nullptr;
+        const int id = o->getCompanionId();
+        if (id < 0 || std::size_t(id) >= im.optionsById.size()) return im.cachedOptionsOf(o);
+        if (!im.optionsKnown[std::size_t(id)]) {
+          im.optionsById[std::size_t(id)] = im.cachedOptionsOf(o);
+          im.optionsKnown[std::size_t(id)] = 1;
         }
-        if (geo) {
-          st.overlapPose = rel;
-          st.overlapKinds[0] = faceA->kind;
-          st.overlapKinds[1] = faceB->kind;
-          st.overlapValid = true;
+        return im.optionsById[std::size_t(id)];
+      };
+      const PatchOptions* opt0 = dynamicOptions(o0);
+      const PatchOptions* opt1 = dynamicOptions(o1);
+      if (!opt0 && !opt1) {
+        continue;  // stock (pass 2)
+      }
+      // both opted in (a stack): the patch is the upper body's, the one the
+      // normal enters against its gravity (findPatchReport(upper) then finds
+      // it); without gravity, body0's. Manifold normal: from body1 to body0.
+      if (opt0 && opt1) {
+        const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
+        const btVector3 g = btRigidBody::upcast(o0)->getGravity();
+        if (nInto0.dot(g) > 0) opt0 = nullptr;  // body0 is underneath
+        else opt1 = nullptr;
+      }
+      const bool aIs0 = opt0 != nullptr;
+      const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
+      const btCollisionObject* A = aIs0 ? o0 : o1;
+      const btCollisionObject* B = aIs0 ? o1 : o0;
+      // manifold normal points from body1 to body0
+      const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
+                                    : -m->getContactPoint(0).m_normalWorldOnB;
+      PatchState& st = im.states[m];
+      if (st.body != A || st.other != B || isStale(st, im.step - 1)) {
+        st = PatchState();
+        st.body = A;
+        st.other = B;
+      }
+      const bool wasFlat = st.flat && st.lastSeen >= im.step - 1;
+      st.lastSeen = im.step;
+
+      // faces and flatness, with hysteresis
+      double cosA = 0.0, cosB = 0.0;
+      const auto faceA = internal::findFaceAlong(*A, -nIntoA, &cosA);
+      const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
+      bool flat = false;
+      std::optional<internal::DetectedPatch> geo;
+      bool kept = false;  // st.geometry is this step's patch (geo unset)
+      if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
+        const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
+        const double angle = std::acos(c);
+        const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
+        // the faces must also face the contact, and the contact must be on
+        // them: two coins side by side touch rim to rim, with a normal across
+        // their (parallel) faces or, from Bullet's convex test near the rim,
+        // along them at a point one coin thickness off the other's face
+        flat = angle < tol && cosA >= kFacingCos && cosB >= kFacingCos &&
+               im.step - st.tipStep > kTipCooldownSteps && contactOnFaces(*m, aIs0, *faceA, *faceB);
+        // x axis fixed in the moving body: a box spinning on a plane keeps
+        // the same outline, and its cached shape, in this frame
+        if (flat) {
+          const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
+          bool keep = wasFlat && st.overlapValid && faceA->kind == st.overlapKinds[0] &&
+                      faceB->kind == st.overlapKinds[1] &&
+                      double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
+                          kOverlapRelTol * st.geometry.outline.size();
+          for (int row = 0; keep && row < 3; ++row)
+            keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
+                   kOverlapRelTol;
+          // a kept overlap is updated in place (no copy of its outline)
+          const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
+          if (keep) {
+            internal::refreshFrame(*faceA, *faceB, xHint, st.geometry);
+            kept = true;
+          } else {
+            geo = internal::buildPatch(*faceA, *faceB, xHint);
+          }
+          if (geo) {
+            st.overlapPose = rel;
+            st.overlapKinds[0] = faceA->kind;
+            st.overlapKinds[1] = faceB->kind;
+            st.overlapValid = true;
+          }
         }
       }
-    }
-    st.flat = flat && (kept || geo.has_value());
-    // (the warm start is read only after a step that ended flat, whose end
-    // wrote it: a contact that is not flat leaves it as it is)
-    if (!st.flat) {
-      convertContact(m, info);
-      continue;
-    }
-    // stock rows of this manifold are replaced: start them from zero if
-    // the contact goes back to Bullet later. After a step that ended flat
-    // they are zero already (Bullet's write-back skipped this manifold, and
-    // the points it adds or replaces carry zero or the old zero impulses).
-    if (!wasFlat) {
-      for (int k = 0; k < m->getNumContacts(); ++k) {
-        btManifoldPoint& p = m->getContactPoint(k);
-        p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+      st.flat = flat && (kept || geo.has_value());
+      // (the warm start is read only after a step that ended flat, whose end
+      // wrote it: a contact that is not flat leaves it as it is)
+      if (!st.flat) {
+        continue;  // stock (pass 2)
       }
-    }
+      // stock rows of this manifold are replaced: start them from zero if
+      // the contact goes back to Bullet later. After a step that ended flat
+      // they are zero already (Bullet's write-back skipped this manifold, and
+      // the points it adds or replaces carry zero or the old zero impulses).
+      if (!wasFlat) {
+        for (int k = 0; k < m->getNumContacts(); ++k) {
+          btManifoldPoint& p = m->getContactPoint(k);
+          p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+        }
+      }
 
-    if (!kept) st.geometry = std::move(*geo);
-    const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
-    // shape and friction law: rebuilt only when the outline changes
-    const internal::PatchOutline& outline = st.geometry.outline;
-    const double size = outline.size();
-    if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
-        (opt.rho && st.friction->rho() != *opt.rho)) {
-      try {
-        const PatchShape shape = outline.toShape();
-        st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu, opt.rho ? *opt.rho : 0.0);
-        st.outline = outline;
-        st.pressureCop = shape.centroid();  // uniform pressure
-        st.piInvValid = false;
-        st.hullValid = false;
-        st.fanValid = false;
-        st.shapeId = ++im.shapeCount;
-        st.innerRadius2 = innerRadiusSquared(shape);
-        ++im.stats.shapeRebuilds;
-      } catch (const Error&) {
-        st.flat = false;  // degenerate overlap: leave it to Bullet
-        st.friction.reset();
-        st.outline.reset();
+      if (!kept) st.geometry = std::move(*geo);
+      const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
+      // shape and friction law: rebuilt only when the outline changes
+      const internal::PatchOutline& outline = st.geometry.outline;
+      const double size = outline.size();
+      if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
+          (opt.rho && st.friction->rho() != *opt.rho)) {
+        try {
+          const PatchShape shape = outline.toShape();
+          st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu,
+                              opt.rho ? *opt.rho : 0.0);
+          st.outline = outline;
+          st.pressureCop = shape.centroid();  // uniform pressure
+          st.piInvValid = false;
+          st.hullValid = false;
+          st.fanValid = false;
+          st.shapeId = ++im.shapeCount;
+          st.innerRadius2 = innerRadiusSquared(shape);
+          ++im.stats.shapeRebuilds;
+        } catch (const Error&) {
+          st.flat = false;  // degenerate overlap: leave it to Bullet
+          st.friction.reset();
+          st.outline.reset();
+          continue;  // stock (pass 2)
+        }
+      }
+      if (st.friction->mu() != mu) {
+        try {
+          st.friction->setMu(mu);
+        } catch (const Error&) {
+          st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
+          st.friction.reset();
+          st.outline.reset();
+          continue;  // stock (pass 2)
+        }
+      }
+      im.candidates.push_back({i, &st, &opt, A, B, mu, wasFlat});
+    }
+    std::size_t next = 0;
+    for (int i = begin; i < end; ++i) {
+      btPersistentManifold* m = manifolds[i];
+      if (next == im.candidates.size() || im.candidates[next].index != i) {
         convertContact(m, info);
         continue;
       }
-    }
-    if (st.friction->mu() != mu) {
-      try {
-        st.friction->setMu(mu);
-      } catch (const Error&) {
-        st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
-        st.friction.reset();
-        st.outline.reset();
+      const Impl::Candidate& cand = im.candidates[next++];
+      PatchState& st = *cand.state;
+      const PatchOptions& opt = *cand.options;
+      const btCollisionObject* A = cand.A;
+      const btCollisionObject* B = cand.B;
+      const double mu = cand.mu;
+      const bool wasFlat = cand.wasFlat;
+      im.patches.emplace_back();
+      PatchConstraint& pc = im.patches.back();
+      pc.state = &st;
+      pc.model = opt.model;
+      pc.dt = dt;
+      pc.mu = mu;
+      pc.rho = st.friction->rho();
+      pc.stateSticking = st.sticking;
+      const PatchShape& patchShape = st.friction->shape();
+      pc.shape.disk = patchShape.isDisk();
+      if (pc.shape.disk) {
+        pc.shape.centre = patchShape.centre();
+        pc.shape.radius = patchShape.radius();
+      }
+      pc.shape.diameter = patchShape.diameter();
+      pc.shape.innerRadius2 = st.innerRadius2;
+      pc.law.pressureCop = st.pressureCop;
+      pc.law.piInvValid = st.piInvValid;
+      if (st.piInvValid) pc.law.piInv = st.piInv;
+      const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
+      const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
+      const Vec3 O = toEigen(st.geometry.origin);
+      const Vec3 ex = toEigen(st.geometry.xAxis);
+      const Vec3 ey = toEigen(st.geometry.yAxis);
+      pc.F.col(0) = ex;
+      pc.F.col(1) = ey;
+      pc.F.col(2) = toEigen(st.geometry.normal);
+      const btSolverBody& sbA = m_tmpSolverBodyPool[idA];
+      const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
+      pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
+      pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
+      pc.ids[0] = idA;
+      pc.ids[1] = idB;
+
+      // effective masses of the 6 DOFs and the friction block's Schur
+      // complement (normal block held bilateral): Blocks
+      if (!makeBlocks(effectiveMass(pc.a, pc.b, pc.F, pc.rho), pc.k)) {
+        im.patches.pop_back();
+        st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
         convertContact(m, info);
         continue;
       }
-    }
 
-    im.patches.emplace_back();
-    PatchConstraint& pc = im.patches.back();
-    pc.state = &st;
-    pc.model = opt.model;
-    pc.dt = dt;
-    pc.mu = mu;
-    pc.rho = st.friction->rho();
-    pc.stateSticking = st.sticking;
-    const PatchShape& patchShape = st.friction->shape();
-    pc.shape.disk = patchShape.isDisk();
-    if (pc.shape.disk) {
-      pc.shape.centre = patchShape.centre();
-      pc.shape.radius = patchShape.radius();
-    }
-    pc.shape.diameter = patchShape.diameter();
-    pc.shape.innerRadius2 = st.innerRadius2;
-    pc.law.pressureCop = st.pressureCop;
-    pc.law.piInvValid = st.piInvValid;
-    if (st.piInvValid) pc.law.piInv = st.piInv;
-    const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
-    const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
-    const Vec3 O = toEigen(st.geometry.origin);
-    const Vec3 ex = toEigen(st.geometry.xAxis);
-    const Vec3 ey = toEigen(st.geometry.yAxis);
-    pc.F.col(0) = ex;
-    pc.F.col(1) = ey;
-    pc.F.col(2) = toEigen(st.geometry.normal);
-    const btSolverBody& sbA = m_tmpSolverBodyPool[idA];
-    const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
-    pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
-    pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
-    pc.ids[0] = idA;
-    pc.ids[1] = idB;
+      // position error: gap at O (< 0 penetrating) and tilt of the face
+      //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
+      //   otherwise:      Baumgarte with erp2 in the velocity target
+      const double gap = st.geometry.gap;
+      const Vec3 tilt = toEigen(st.geometry.tilt);
+      const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
+      if (gap > 0.0) {
+        pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
+      } else if (info.m_splitImpulse) {
+        pc.targetPush = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp) / dt;
+      } else {
+        pc.targetN = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp2) / dt;
+      }
+      if (gap > 0.0 && info.m_splitImpulse) pc.targetPush = tiltRate * double(info.m_erp) / dt;
 
-    // effective masses of the 6 DOFs and the friction block's Schur
-    // complement (normal block held bilateral): Blocks
-    if (!makeBlocks(effectiveMass(pc.a, pc.b, pc.F, pc.rho), pc.k)) {
-      im.patches.pop_back();
-      st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
-      convertContact(m, info);
-      continue;
-    }
-
-    // position error: gap at O (< 0 penetrating) and tilt of the face
-    //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
-    //   otherwise:      Baumgarte with erp2 in the velocity target
-    const double gap = st.geometry.gap;
-    const Vec3 tilt = toEigen(st.geometry.tilt);
-    const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
-    if (gap > 0.0) {
-      pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
-    } else if (info.m_splitImpulse) {
-      pc.targetPush = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp) / dt;
-    } else {
-      pc.targetN = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp2) / dt;
-    }
-    if (gap > 0.0 && info.m_splitImpulse) pc.targetPush = tiltRate * double(info.m_erp) / dt;
-
-    // warm start from the previous step
-    if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
-      const double f = kPatchWarmStartFactor;
-      pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
-      pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
-      pc.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
-      Vec6 lam;
-      lam << pc.lamN, pc.lamF;
-      applyImpulse(pc, m_tmpSolverBodyPool, lam);
+      // warm start from the previous step
+      if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
+        const double f = kPatchWarmStartFactor;
+        pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
+        pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
+        pc.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
+        Vec6 lam;
+        lam << pc.lamN, pc.lamF;
+        applyImpulse(pc, m_tmpSolverBodyPool, lam);
+      }
     }
   }
 
@@ -1400,7 +1436,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           // its kern, |cop - C| <= I / (A R) = R / 4; a polygon's admissibility
           // test is nearestAdmissibleLoads' own first step (admissible loads
           // come back unchanged)
-          if (!shape.disk || (cop - shape.centre).squaredNorm() > 0.0625 * shape.radius * shape.radius)
+          if (!shape.disk ||
+              (cop - shape.centre).squaredNorm() > 0.0625 * shape.radius * shape.radius)
             loads = nearestAdmissibleLoads(friction.shape(), loads, pc.rho);
           friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
           pc.law.pressureCop = cop;
