@@ -267,9 +267,11 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
   }
 }
 
-std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint,
-                                        const DetectedPatch* overlap) {
-  DetectedPatch patch;
+namespace {
+
+// The frame (normal, axes), gap and tilt of the patch between faces a and b;
+// returns the provisional 2D origin (a's centre projected onto b's plane).
+btVector3 setFrame(const Face& a, const Face& b, const btVector3& xHint, DetectedPatch& patch) {
   const btVector3 n = b.normal.normalized();
   patch.normal = n;
   btVector3 ex = xHint - n * xHint.dot(n);
@@ -281,7 +283,6 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   ex.normalize();
   patch.xAxis = ex;
   patch.yAxis = n.cross(ex);
-  const btVector3& ey = patch.yAxis;
 
   // provisional 2D origin: a's centre projected onto b's plane
   const double gap = double(n.dot(a.centre - b.centre));
@@ -289,6 +290,23 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   patch.gap = gap;
   // rotation that takes -a.normal onto n (small angle): theta = u x n
   patch.tilt = (-a.normal).cross(n);
+  return base;
+}
+
+}  // namespace
+
+void refreshFrame(const Face& a, const Face& b, const btVector3& xHint, DetectedPatch& patch) {
+  const btVector3 base = setFrame(a, b, xHint, patch);
+  patch.origin =
+      base + patch.xAxis * btScalar(patch.centre.x()) + patch.yAxis * btScalar(patch.centre.y());
+}
+
+std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint,
+                                        const DetectedPatch* overlap) {
+  DetectedPatch patch;
+  const btVector3 base = setFrame(a, b, xHint, patch);
+  const btVector3& ex = patch.xAxis;
+  const btVector3& ey = patch.yAxis;
   if (overlap) {
     patch.outline = overlap->outline;
     patch.centre = overlap->centre;

@@ -67,5 +67,9 @@ struct DetectedPatch {
 // always computed from the faces.
 std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint,
                                         const DetectedPatch* overlap = nullptr);
+// The same as `patch = *buildPatch(a, b, xHint, &patch)` without copying the
+// outline: the frame, gap, tilt and origin recomputed from the faces, the
+// outline and centre kept.
+void refreshFrame(const Face& a, const Face& b, const btVector3& xHint, DetectedPatch& patch);
 
 }  // namespace patchspin::bullet::internal

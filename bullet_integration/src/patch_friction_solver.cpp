@@ -8,7 +8,8 @@
 //   split iterations  stock split impulses, then the patch's position
 //                     correction (gap and tilt) on the pseudo velocities
 //   iterations        stock rows, then per patch: normal block, friction block
-//   finish            reports and warm-start cache, then stock write-back
+//   finish            warm-start cache and what the reports are made of
+//                     (filled when asked for), then stock write-back
 #include <patchspin/bullet/patch_friction_solver.hpp>
 
 #include "patch_detection.hpp"
@@ -131,6 +132,10 @@ PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lam
 struct BodyTerms {
   int id = -1;
   bool dynamic = false;
+  // the solver body's velocity and spin plus the step's external impulses
+  // (Bullet adds those only at write-back): fixed during the iterations,
+  // which add the solver body's delta velocities to them (velocityOf)
+  btVector3 v0{0, 0, 0}, w0{0, 0, 0};
   Vec3 r = Vec3::Zero();     // lever O - centre of mass, world [m]
   Vec3 invM = Vec3::Zero();  // inverse mass (x) linear factor [1/kg]
   Mat3 invI = Mat3::Zero();  // world inverse inertia with the angular factor [1/(kg m^2)]
@@ -141,7 +146,8 @@ struct BodyTerms {
 // Ks^-1 for the quick stick test (Kff^-1, for a patch off its interior, is
 // rare and computed on demand).
 struct Blocks {
-  Mat3 Winv, Kff, Knf, Ks, G, KsInv;
+  Mat3 Winv, Knf, G, Ks, KsInv;
+  Mat3 Kff;  // last: read only off the interior (see PatchConstraint's layout)
 };
 // A stacked patch's blocks with its support held (the blocks of
 // K6 - K_PS K_S^-1 K_SP over the held DOFs) and the support's response
@@ -190,56 +196,109 @@ bool makeBlocks(const Mat6& K6, Blocks& b) {
   return true;
 }
 
-// One flat patch of one manifold, for one island solve.
+// One flat patch of one manifold, for one island solve. Every solver
+// iteration streams over all of them: in a pile of 1000 bodies they fill the
+// L2 cache many times over, so a visit's fields lie together, in about the
+// order the visit reads them, the rarely read ones at the end, and the visit
+// reads nothing of the PatchState: what it needs of the state and of the
+// friction law's shape is copied in (ShapeSummary, LawCache).
 struct PatchState;
+// What a visit reads of the friction law's shape (fixed within the step).
+struct ShapeSummary {
+  bool disk = true;
+  Vec2 centre = Vec2::Zero();
+  double radius = 0.0, diameter = 0.0;
+  double innerRadius2 = 0.0;  // PatchState::innerRadius2
+};
+// The state's record of the friction law's pressure, read and changed
+// during the visits; written back to the PatchState at the end of the step.
+// Not rolled back with a stacked patch's redone visit: the law it describes
+// is not either.
+struct LawCache {
+  Vec2 pressureCop = Vec2::Zero();   // PatchState::pressureCop
+  bool piInvValid = false;           // PatchState::piInvValid
+  Mat3 piInv = Mat3::Identity();     // PatchState::piInv
+};
 struct PatchConstraint {
-  PatchState* state = nullptr;
-  BodyTerms a, b;
-  Mat3 F = Mat3::Identity();  // columns ex, ey, n (world)
+  // read by every visit, a skipped one included
+  bool settled = false;  // see snapshot
+  bool interior = true;  // centre of pressure on the patch: normal block bilateral
+  bool tipping = false;
+  bool sticking = false;
+  bool failed = false;  // the law or block refused its input in this step (see blockErrors)
+  bool fanRefine = true;  // exactFanSticks may refine (until a refinement fails in this step)
+  bool haveLast = false;  // see last
+  bool stateSticking = false;  // PatchState::sticking (the end of the last step)
   Model model = Model::Ellipsoidal;
-  double mu = 0.0, rho = 0.0, dt = 0.0;
-  Blocks k;  // effective-mass blocks
+  int refreshes = 0;  // pressure refreshes in this step
+  PatchState* state = nullptr;
   // supporting patch (the lower body's own patch: index in the island's
   // patches, or -1) and the blocks with it held (index in Impl::holds);
   // for a support on a static body, its load: the patch standing on it,
   // and the support's blocks with that load held
   int support = -1, hold = -1;
   int load = -1, loadHold = -1;
-  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero(), lamPush = Vec3::Zero();
-  Vec3 targetN = Vec3::Zero(), targetPush = Vec3::Zero();
-  Vec3 warmSlip = Vec3::Zero();
-  bool interior = true;  // centre of pressure on the patch: normal block bilateral
-  bool tipping = false;
-  bool sticking = false;
-  int refreshes = 0;  // pressure refreshes in this step
-  bool failed = false;  // the law or block refused its input in this step (see blockErrors)
-  bool fanRefine = true;  // exactFanSticks may refine (until a refinement fails in this step)
+  int ids[2] = {-1, -1};  // a.id, b.id (a skipped visit reads this line and the snapshot only)
+  double mu = 0.0, rho = 0.0;
   // converged: the last visit changed nothing, and while neither body's
   // velocity has changed since (snapshot), a visit would change nothing again
-  bool settled = false;
   btVector3 snapshot[4];  // delta linear / angular velocity of a, then b
+  BodyTerms a, b;
+  Mat3 F = Mat3::Identity();  // columns ex, ey, n (world)
+  Vec3 lamN = Vec3::Zero(), targetN = Vec3::Zero(), lamF = Vec3::Zero();
+  Vec3 warmSlip = Vec3::Zero();
+  ShapeSummary shape;
+  LawCache law;
   // last friction solve of this step, reused while its input stays put
-  bool haveLast = false;
   int lastHeld = 0;
   double lastL = 0.0;
   Vec3 lastB = Vec3::Zero();
-  FrictionBlockResult last;
+  struct {
+    Vec3 impulse = Vec3::Zero(), slip = Vec3::Zero();
+    bool sticking = false;
+  } last;  // what the visits use of its FrictionBlockResult
+  Blocks k;  // effective-mass blocks (Kff, at the end, rarely read)
+  // read outside the iterations only
+  double dt = 0.0;
+  Vec3 lamPush = Vec3::Zero(), targetPush = Vec3::Zero();
 };
 
-// Per-manifold memory across steps: warm start and hysteresis.
+// Per-manifold memory across steps: warm start and hysteresis. A node of
+// the states' hash map, looked up for every touching manifold of an
+// opted-in body in every step: what every step reads and writes lies at the
+// start (the line of the map's key), the exact law's certificates at the end.
 struct PatchState {
   const btCollisionObject* body = nullptr;
   const btCollisionObject* other = nullptr;
+  long lastSeen = std::numeric_limits<long>::min() / 2;
+  long tipStep = std::numeric_limits<long>::min() / 2;
+  bool flat = false;
+  bool sticking = false;  // the friction block stuck at the end of the last step
+  bool overlapValid = false;  // see overlapPose
+  bool piInvValid = false;    // see piInv
+  // the faces' kinds when geometry's overlap was last clipped (see overlapPose)
+  internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
+                                          internal::Face::Kind::Polygon};
+  long shapeId = 0;                               // unique per built `friction`
+  // squared radius of the largest disk about O inside a polygon patch: a
+  // centre of pressure within it is on the patch without the edge tests
+  // (patches of overlapping coins are clipped 64-gons)
+  double innerRadius2 = 0.0;
+  // centre of pressure of the pressure `friction` was last refreshed with
+  Vec2 pressureCop = Vec2::Zero();
   // warm start in world axes (the patch frame turns with the body): normal
   // impulse, tilt couple, tangential friction impulse and slip, spin parts
   double normal = 0.0, frictionSpin = 0.0, slipSpin = 0.0;
   Vec3 couple = Vec3::Zero(), frictionT = Vec3::Zero(), slipT = Vec3::Zero();
-  bool flat = false;
-  // centre of pressure of the pressure `friction` was last refreshed with
-  Vec2 pressureCop = Vec2::Zero();
   // Pi^-1 of `friction` (quick stick test), valid until the next refresh
   Mat3 piInv = Mat3::Identity();
-  bool piInvValid = false;
+  // relative pose of the bodies (B in A's frame) when geometry's overlap was
+  // last clipped (see kOverlapRelTol)
+  btTransform overlapPose = btTransform::getIdentity();
+  internal::DetectedPatch geometry;               // this step's patch
+  std::optional<internal::PatchOutline> outline;  // shape of `friction`
+  std::optional<FrictionPatch> friction;
+  // the exact law's stick certificates (untouched by ellipsoidal patches):
   // a value q(w) of the exact law (a point on the boundary of its limit set),
   // its slip w and the direction of lambda0 / L it was taken for: see
   // exactHullSticks
@@ -255,23 +314,6 @@ struct PatchState {
   Mat3 fanInv[3];  // inverses of [fanCentre, fan[k], fan[k+1]]
   Vec3 fanDirection = Vec3::Zero(), fanSlip = Vec3::Zero();  // fanSlip: fanCentre's w*
   bool fanValid = false;
-  bool sticking = false;  // the friction block stuck at the end of the last step
-  std::optional<internal::PatchOutline> outline;  // shape of `friction`
-  std::optional<FrictionPatch> friction;
-  internal::DetectedPatch geometry;               // this step's patch
-  // relative pose of the bodies (B in A's frame) and the faces' kinds when
-  // geometry's overlap was last clipped (see kOverlapRelTol)
-  btTransform overlapPose = btTransform::getIdentity();
-  internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
-                                          internal::Face::Kind::Polygon};
-  bool overlapValid = false;
-  long shapeId = 0;                               // unique per built `friction`
-  // squared radius of the largest disk about O inside a polygon patch: a
-  // centre of pressure within it is on the patch without the edge tests
-  // (patches of overlapping coins are clipped 64-gons)
-  double innerRadius2 = 0.0;
-  long lastSeen = std::numeric_limits<long>::min() / 2;
-  long tipStep = std::numeric_limits<long>::min() / 2;
 };
 
 // A state not seen since the cooldown of a tip: its manifold may have been
@@ -282,6 +324,17 @@ bool isStale(const PatchState& st, long step) {
 // Steps between sweeps of the stale states.
 constexpr long kSweepSteps = 16;
 
+// What a PatchReport is made of, kept at the end of the step; the state
+// (geometry, shape) stays as it is until the next step's convertContacts.
+struct ReportSource {
+  const PatchState* state = nullptr;
+  Model model = Model::Ellipsoidal;
+  bool sticking = false;
+  double mu = 0.0, rho = 0.0, dt = 0.0;
+  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero();
+  Vec3 slip = Vec3::Zero();  // x_o at the end of the step
+};
+
 }  // namespace
 
 struct PatchFrictionSolver::Impl {
@@ -290,8 +343,15 @@ struct PatchFrictionSolver::Impl {
   std::vector<PatchConstraint> patches;  // current island
   std::vector<StackHold> holds;          // stacked patches of the current island
   PatchConstraint retry;                 // a stacked patch's state before its visit
-  std::vector<PatchReport> reports;      // whole step (the first reportCount)
+  // reports of the whole step: what they are made of (the first
+  // reportCount sources), and the reports themselves, filled from them
+  // when first asked for after the step (fillReports): a step writes ~100
+  // bytes per patch instead of a 624-byte PatchReport that nobody may read
+  std::vector<ReportSource> reportSources;
   size_t reportCount = 0;
+  bool reportsFilled = true;
+  bool inStep = false;  // between prepareSolve and allSolved: the sources are being written
+  std::vector<PatchReport> reports;
   PatchSolverSettings settings;
   PatchSolverStats stats;
   std::vector<long> reportShapeIds;  // shapeId of each report's shape (copied only when it changes)
@@ -299,31 +359,64 @@ struct PatchFrictionSolver::Impl {
   std::vector<btRigidBody*> flushBodies;  // bodies of this island's patches
   long step = 0;
 
+  void fillReports();
   const PatchOptions* optionsOf(const btCollisionObject* o) const {
     auto it = options.find(o);
     return it == options.end() ? nullptr : &it->second;
   }
   std::vector<int> ownPatch, patchesAbove;  // scratch of linkStackedPatches
+  // a manifold whose patch is detected, its solver rows pending (convertContacts)
+  struct Candidate {
+    int index;
+    PatchState* state;
+    const PatchOptions* options;
+    const btCollisionObject* A;
+    const btCollisionObject* B;
+    double mu;
+    bool wasFlat;
+  };
+  std::vector<Candidate> candidates;
   // options of the island's bodies by solver body id (convertBodies has
   // numbered them before convertContacts), looked up once per body and
   // solve: a manifold's two lookups are then array reads (in a pile, ~4
   // touching manifolds per body)
   std::vector<const PatchOptions*> optionsById;
   std::vector<char> optionsKnown;
+  // ... and those lookups go through a table by the object's index in its
+  // world's collision-object array, kept across steps: the hash map (a
+  // bucket and a node, two cache misses per body in a large pile) is asked
+  // only when an entry is missing or stale. An entry holds for the same
+  // object (address) while the options are unchanged (optionsVersion:
+  // enablePatchFriction and disablePatchFriction advance it).
+  struct OptionsEntry {
+    const btCollisionObject* object = nullptr;
+    const PatchOptions* options = nullptr;
+    long version = -1;
+  };
+  std::vector<OptionsEntry> optionsByIndex;
+  long optionsVersion = 0;
+  const PatchOptions* cachedOptionsOf(const btCollisionObject* o) {
+    const int ix = o->getWorldArrayIndex();
+    if (ix < 0) return optionsOf(o);
+    if (std::size_t(ix) >= optionsByIndex.size()) optionsByIndex.resize(std::size_t(ix) + 1);
+    OptionsEntry& e = optionsByIndex[std::size_t(ix)];
+    if (e.object != o || e.version != optionsVersion) {
+      e.object = o;
+      e.options = optionsOf(o);
+      e.version = optionsVersion;
+    }
+    return e.options;
+  }
 };
 
 namespace {
 
-// Velocity of a solver body during the iterations (Bullet adds the external
-// impulses only at write-back, so include them here).
-void velocityOf(const btSolverBody& sb, Vec3& v, Vec3& w) {
-  if (!sb.m_originalBody) {
-    v.setZero();
-    w.setZero();
-    return;
-  }
-  v = toEigen(sb.m_linearVelocity + sb.m_externalForceImpulse + sb.m_deltaLinearVelocity);
-  w = toEigen(sb.m_angularVelocity + sb.m_externalTorqueImpulse + sb.m_deltaAngularVelocity);
+// Velocity of a patch's dynamic body during the iterations: its fixed part
+// (BodyTerms::v0, w0) plus the solver body's delta velocities, the only part
+// of the solver body read (the line Bullet's own rows read and write).
+void velocityOf(const BodyTerms& t, const btSolverBody& sb, Vec3& v, Vec3& w) {
+  v = toEigen(t.v0 + sb.m_deltaLinearVelocity);
+  w = toEigen(t.w0 + sb.m_deltaAngularVelocity);
 }
 
 // The point of the patch nearest to p (p itself if inside).
@@ -374,12 +467,12 @@ Vec6 patchVelocity(const PatchConstraint& pc, Get get) {
   Vec3 u = Vec3::Zero(), w = Vec3::Zero();
   Vec3 v, om;
   if (pc.a.dynamic) {
-    get(pc.a.id, v, om);
+    get(pc.a, v, om);
     u += v + om.cross(pc.a.r);
     w += om;
   }
   if (pc.b.dynamic) {
-    get(pc.b.id, v, om);
+    get(pc.b, v, om);
     u -= v + om.cross(pc.b.r);
     w -= om;
   }
@@ -390,7 +483,8 @@ Vec6 patchVelocity(const PatchConstraint& pc, Get get) {
 }
 
 Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
-  return patchVelocity(pc, [&](int id, Vec3& v, Vec3& w) { velocityOf(pool[id], v, w); });
+  return patchVelocity(pc,
+                       [&](const BodyTerms& t, Vec3& v, Vec3& w) { velocityOf(t, pool[t.id], v, w); });
 }
 
 // Generalised impulse lam of the six DOFs -> world force f at O and couple m
@@ -417,6 +511,8 @@ BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r) {
   t.id = id;
   t.dynamic = sb.m_originalBody != nullptr;
   if (!t.dynamic) return t;
+  t.v0 = sb.m_linearVelocity + sb.m_externalForceImpulse;
+  t.w0 = sb.m_angularVelocity + sb.m_externalTorqueImpulse;
   t.r = r;
   t.invM = toEigen(sb.m_invMass).cwiseProduct(toEigen(sb.m_linearFactor));
   const btMatrix3x3& I = sb.m_originalBody->getInvInertiaTensorWorld();
@@ -613,14 +709,14 @@ Vec3 fanSlip(const Vec3& ws, int k) {
   const double angle = 2.0943951023931957 * k;  // 2 pi / 3
   return (ws + kFanSpread * (std::cos(angle) * u + std::sin(angle) * v)).normalized();
 }
-bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x,
-                    const Vec3& direction, bool& refine) {
-  if ((st.piInv * x).norm() > kFanGate) return false;
+bool exactFanSticks(PatchState& st, const Mat3& piInv, bool sticking, const FrictionPatch& friction,
+                    const Vec3& x, const Vec3& direction, bool& refine) {
+  if ((piInv * x).norm() > kFanGate) return false;
   if (!st.fanValid || direction.dot(st.fanDirection) < kHullTurnCos) {
     st.fanValid = false;
     // three evaluations: only for a patch that ended the last step stuck
     // (in a landing pile the others mostly slip: the fan cost 4 % there)
-    if (!st.sticking || st.hullDirection.dot(direction) < kHullTurnCos) return false;
+    if (!sticking || st.hullDirection.dot(direction) < kHullTurnCos) return false;
     // hullPoint = q(w*) with w* = hullSlip
     st.fanCentre = st.hullPoint;
     const Vec3& ws = st.hullSlip;
@@ -654,7 +750,7 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
     if (a.sum() <= 1.0 - kFanSlack) return true;
     // beyond what E bulges out there, or a patch that slipped at the end of
     // the last step: most likely a slip, not worth one more evaluation
-    if (a.sum() > kFanBulge || !st.sticking || !refine) return false;
+    if (a.sum() > kFanBulge || !sticking || !refine) return false;
     const Vec3 p[3] = {sign * st.fanCentre, sign * st.fan[k], sign * st.fan[(k + 1) % 3]};
     // x lies in this cone, beyond the flat face: one more law value inside
     // the face's corner directions, at the slips' mix with x's barycentric
@@ -672,14 +768,16 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
   }
   return false;
 }
-[[gnu::noinline]] bool exactHullSticks(PatchState& st, const FrictionPatch& friction,
-                                       const Vec3& lambda0, double L, bool& refine) {
+// (piInv: Pi^-1 of `friction`; sticking: the block stuck at the end of the last step)
+[[gnu::noinline]] bool exactHullSticks(PatchState& st, const Mat3& piInv, bool sticking,
+                                       const FrictionPatch& friction, const Vec3& lambda0, double L,
+                                       bool& refine) {
   const Vec3 x = lambda0 / L;
   const double xNorm = x.norm();
   if (!(xNorm > 0.0) || !std::isfinite(xNorm)) return false;
   const Vec3 direction = x / xNorm;
   if (!st.hullValid || direction.dot(st.hullDirection) < kHullTurnCos) {
-    const Vec3 w = -(st.piInv * direction);
+    const Vec3 w = -(piInv * direction);
     const double wNorm = w.norm();
     if (!(wNorm > 0.0) || !std::isfinite(wNorm)) return false;
     st.hullSlip = w / wNorm;
@@ -690,7 +788,7 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
   }
   const Vec3 q = st.hullPoint.dot(x) >= 0.0 ? st.hullPoint : Vec3(-st.hullPoint);
   auto inHull = [&](double a) {
-    const Vec3 z = st.piInv * (x - a * q);
+    const Vec3 z = piInv * (x - a * q);
     return std::hypot(z.x(), z.y()) + std::abs(z.z()) <= 1.0 - a;
   };
   // the projection of x on q, and a grid in [0, 1]
@@ -698,7 +796,7 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
   if (inHull(along) || inHull(0.9375 * along)) return true;
   for (int k = 1; k < 8; ++k)
     if (inHull(k / 8.0)) return true;
-  return exactFanSticks(st, friction, x, direction, refine);
+  return exactFanSticks(st, piInv, sticking, friction, x, direction, refine);
 }
 
 // Whether the support of a stacked patch keeps its friction impulse inside
@@ -707,12 +805,12 @@ bool exactFanSticks(PatchState& st, const FrictionPatch& friction, const Vec3& x
 [[gnu::noinline]] bool supportCanTake(PatchConstraint& sup, const Vec6& ds) {
   const Vec3 lamS = sup.lamF + ds.tail<3>();
   const double Ls = sup.mu * (sup.lamN[0] + ds[0]);
-  PatchState& ss = *sup.state;
-  if (!ss.piInvValid) {
-    ss.piInv = ss.friction->Pi().inverse();
-    ss.piInvValid = true;
+  LawCache& law = sup.law;
+  if (!law.piInvValid) {
+    law.piInv = sup.state->friction->Pi().inverse();
+    law.piInvValid = true;
   }
-  const Vec3 z = ss.piInv * lamS;
+  const Vec3 z = law.piInv * lamS;
   const double size = sup.model == Model::Ellipsoidal ? z.norm() : std::hypot(z.x(), z.y()) + std::abs(z.z());
   return size <= Ls;
 }
@@ -818,15 +916,63 @@ void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOpti
   if (options.rho) patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
   patchspin::internal::requirePositive(options.flatnessTolerance, "PatchOptions::flatnessTolerance");
   impl_->options[body] = options;
+  ++impl_->optionsVersion;
 }
 
-void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) { impl_->options.erase(body); }
+void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) {
+  impl_->options.erase(body);
+  ++impl_->optionsVersion;
+}
 
 bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
   return impl_->optionsOf(body) != nullptr;
 }
 
-const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const { return impl_->reports; }
+const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
+  impl_->fillReports();
+  return impl_->reports;
+}
+
+// The reports of the last step from their sources, once per step (reports
+// are overwritten in place: no allocation once the vector and the shapes'
+// storage have grown).
+void PatchFrictionSolver::Impl::fillReports() {
+  if (reportsFilled || inStep) return;
+  reportsFilled = true;
+  if (reports.size() < reportCount) {
+    reports.resize(reportCount);
+    reportShapeIds.resize(reportCount, 0);
+  }
+  for (size_t slot = 0; slot < reportCount; ++slot) {
+    const ReportSource& src = reportSources[slot];
+    const PatchState& st = *src.state;
+    PatchReport& r = reports[slot];
+    r.body = st.body;
+    r.other = st.other;
+    r.origin = st.geometry.origin;
+    r.normal = st.geometry.normal;
+    r.xAxis = st.geometry.xAxis;
+    r.yAxis = st.geometry.yAxis;
+    const PatchShape& shape = st.friction->shape();
+    if (reportShapeIds[slot] != st.shapeId || !r.shape) {
+      r.shape = shape;
+      reportShapeIds[slot] = st.shapeId;
+    }
+    r.model = src.model;
+    r.mu = src.mu;
+    r.rho = src.rho;
+    const PatchLoads l = toLoads(src.lamN);
+    r.loads = PatchLoads{l.Pz / src.dt, l.Tx / src.dt, l.Ty / src.dt};
+    r.pressure = r.loads.Pz > 0.0 ? LinearPressure::fromLoads(shape, r.loads) : LinearPressure();
+    r.Q = src.lamF / src.dt;
+    r.slip = src.slip;
+    r.r = r.slip.norm();
+    r.sticking = src.sticking;
+    r.w = src.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
+  }
+  reports.resize(reportCount);
+  reportShapeIds.resize(reportCount);
+}
 
 void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
   patchspin::internal::requireFinite(settings.pressureRefreshTolerance, "PatchSolverSettings::pressureRefreshTolerance");
@@ -843,6 +989,7 @@ const PatchSolverSettings& PatchFrictionSolver::settings() const { return impl_-
 const PatchSolverStats& PatchFrictionSolver::stats() const { return impl_->stats; }
 
 const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
+  impl_->fillReports();
   for (const PatchReport& r : impl_->reports)
     if (r.body == body) return &r;
   return nullptr;
@@ -852,13 +999,14 @@ void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
   btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
   ++impl_->step;
   impl_->reportCount = 0;
+  impl_->reportsFilled = false;
+  impl_->inStep = true;
   impl_->stats = PatchSolverStats();
 }
 
 void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
   btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
-  impl_->reports.resize(impl_->reportCount);
-  impl_->reportShapeIds.resize(impl_->reportCount);
+  impl_->inStep = false;
   // forget manifolds not seen for a while (they may have been deleted).
   // The sweep walks every state (a node of a hash map: a cache miss each in
   // a large pile), so it runs every kSweepSteps steps; a state found stale
@@ -887,205 +1035,252 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   const double dt = double(info.m_timeStep);
   im.optionsById.assign(std::size_t(m_tmpSolverBodyPool.size()), nullptr);
   im.optionsKnown.assign(std::size_t(m_tmpSolverBodyPool.size()), 0);
-  for (int i = 0; i < numManifolds; ++i) {
-    btPersistentManifold* m = manifolds[i];
-    // empty manifolds first: the broadphase keeps one for every pair whose
-    // bounding boxes overlap (~10 per touching one in a pile), and the option
-    // lookups below are hash lookups
-    if (m->getNumContacts() == 0) {
-      convertContact(m, info);
-      continue;
-    }
-    const btCollisionObject* o0 = m->getBody0();
-    const btCollisionObject* o1 = m->getBody1();
-    // the patch belongs to an opted-in dynamic body (a static or kinematic
-    // body opted in has no patch of its own: what stands on it decides)
-    auto dynamicOptions = [&](const btCollisionObject* o) -> const PatchOptions* {
-      const btRigidBody* rb = btRigidBody::upcast(o);
-      if (!rb || !(rb->getInvMass() > 0)) return nullptr;
-      const int id = o->getCompanionId();
-      if (id < 0 || std::size_t(id) >= im.optionsById.size()) return im.optionsOf(o);
-      if (!im.optionsKnown[std::size_t(id)]) {
-        im.optionsById[std::size_t(id)] = im.optionsOf(o);
-        im.optionsKnown[std::size_t(id)] = 1;
+  // In chunks of manifolds: first the detection of the chunk's patches
+  // (faces, flatness, overlap, friction law: nothing of the solver bodies),
+  // then, in the manifolds' order, Bullet's contacts and the patches' solver
+  // rows (solver bodies, effective masses, warm starts), exactly as one pass
+  // would have made them. The two passes keep each one's code in the
+  // instruction cache, instead of alternating between the patch detection
+  // and Bullet's convertContact for every manifold (resting 1000-body pile:
+  // 8.26M -> 6.56M instruction-cache misses in 40 steps, stock 5.29M). A
+  // chunk of 256 manifolds stays in the L2 cache between the passes (1024:
+  // 6.41M, but +1.4 % L2 misses; 48: 7.05M).
+  constexpr int kChunk = 256;
+  for (int begin = 0; begin < numManifolds; begin += kChunk) {
+    const int end = std::min(numManifolds, begin + kChunk);
+    im.candidates.clear();
+    for (int i = begin; i < end; ++i) {
+      btPersistentManifold* m = manifolds[i];
+      // empty manifolds first: the broadphase keeps one for every pair whose
+      // bounding boxes overlap (~10 per touching one in a pile); every
+      // manifold that is not a candidate goes to Bullet in the second pass
+      if (m->getNumContacts() == 0) continue;
+      const btCollisionObject* o0 = m->getBody0();
+      const btCollisionObject* o1 = m->getBody1();
+      // the patch belongs to an opted-in dynamic body (a static or kinematic
+      // body opted in has no patch of its own: what stands on it decides)
+      auto dynamicOptions = [&](const btCollisionObject* o) -> const PatchOptions* {
+        const btRigidBody* rb = btRigidBody::upcast(o);
+        if (!rb || !(rb->getInvMass() > 0)) return nullptr;
+        const int id = o->getCompanionId();
+        if (id < 0 || std::size_t(id) >= im.optionsById.size()) return im.cachedOptionsOf(o);
+        if (!im.optionsKnown[std::size_t(id)]) {
+          im.optionsById[std::size_t(id)] = im.cachedOptionsOf(o);
+          im.optionsKnown[std::size_t(id)] = 1;
+        }
+        return im.optionsById[std::size_t(id)];
+      };
+      const PatchOptions* opt0 = dynamicOptions(o0);
+      const PatchOptions* opt1 = dynamicOptions(o1);
+      if (!opt0 && !opt1) {
+        continue;  // stock (pass 2)
       }
-      return im.optionsById[std::size_t(id)];
-    };
-    const PatchOptions* opt0 = dynamicOptions(o0);
-    const PatchOptions* opt1 = dynamicOptions(o1);
-    if (!opt0 && !opt1) {
-      convertContact(m, info);
-      continue;
-    }
-    // both opted in (a stack): the patch is the upper body's, the one the
-    // normal enters against its gravity (findPatchReport(upper) then finds
-    // it); without gravity, body0's. Manifold normal: from body1 to body0.
-    if (opt0 && opt1) {
-      const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
-      const btVector3 g = btRigidBody::upcast(o0)->getGravity();
-      if (nInto0.dot(g) > 0) opt0 = nullptr;  // body0 is underneath
-      else opt1 = nullptr;
-    }
-    const bool aIs0 = opt0 != nullptr;
-    const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
-    const btCollisionObject* A = aIs0 ? o0 : o1;
-    const btCollisionObject* B = aIs0 ? o1 : o0;
-    // manifold normal points from body1 to body0
-    const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
-                                  : -m->getContactPoint(0).m_normalWorldOnB;
-    PatchState& st = im.states[m];
-    if (st.body != A || st.other != B || isStale(st, im.step - 1)) {
-      st = PatchState();
-      st.body = A;
-      st.other = B;
-    }
-    const bool wasFlat = st.flat && st.lastSeen >= im.step - 1;
-    st.lastSeen = im.step;
+      // both opted in (a stack): the patch is the upper body's, the one the
+      // normal enters against its gravity (findPatchReport(upper) then finds
+      // it); without gravity, body0's. Manifold normal: from body1 to body0.
+      if (opt0 && opt1) {
+        const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
+        const btVector3 g = btRigidBody::upcast(o0)->getGravity();
+        if (nInto0.dot(g) > 0) opt0 = nullptr;  // body0 is underneath
+        else opt1 = nullptr;
+      }
+      const bool aIs0 = opt0 != nullptr;
+      const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
+      const btCollisionObject* A = aIs0 ? o0 : o1;
+      const btCollisionObject* B = aIs0 ? o1 : o0;
+      // manifold normal points from body1 to body0
+      const btVector3 nIntoA = aIs0 ? m->getContactPoint(0).m_normalWorldOnB
+                                    : -m->getContactPoint(0).m_normalWorldOnB;
+      PatchState& st = im.states[m];
+      if (st.body != A || st.other != B || isStale(st, im.step - 1)) {
+        st = PatchState();
+        st.body = A;
+        st.other = B;
+      }
+      const bool wasFlat = st.flat && st.lastSeen >= im.step - 1;
+      st.lastSeen = im.step;
 
-    // faces and flatness, with hysteresis
-    double cosA = 0.0, cosB = 0.0;
-    const auto faceA = internal::findFaceAlong(*A, -nIntoA, &cosA);
-    const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
-    bool flat = false;
-    std::optional<internal::DetectedPatch> geo;
-    if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
-      const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
-      const double angle = std::acos(c);
-      const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
-      // the faces must also face the contact, and the contact must be on
-      // them: two coins side by side touch rim to rim, with a normal across
-      // their (parallel) faces or, from Bullet's convex test near the rim,
-      // along them at a point one coin thickness off the other's face
-      flat = angle < tol && cosA >= kFacingCos && cosB >= kFacingCos &&
-             im.step - st.tipStep > kTipCooldownSteps && contactOnFaces(*m, aIs0, *faceA, *faceB);
-      // x axis fixed in the moving body: a box spinning on a plane keeps
-      // the same outline, and its cached shape, in this frame
-      if (flat) {
-        const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
-        bool keep = wasFlat && st.overlapValid && faceA->kind == st.overlapKinds[0] &&
-                    faceB->kind == st.overlapKinds[1] &&
-                    double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
-                        kOverlapRelTol * st.geometry.outline.size();
-        for (int row = 0; keep && row < 3; ++row)
-          keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
-                 kOverlapRelTol;
-        geo = internal::buildPatch(*faceA, *faceB, A->getWorldTransform().getBasis().getColumn(0),
-                                   keep ? &st.geometry : nullptr);
-        if (geo && !keep) {
-          st.overlapPose = rel;
-          st.overlapKinds[0] = faceA->kind;
-          st.overlapKinds[1] = faceB->kind;
-          st.overlapValid = true;
+      // faces and flatness, with hysteresis
+      double cosA = 0.0, cosB = 0.0;
+      const auto faceA = internal::findFaceAlong(*A, -nIntoA, &cosA);
+      const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
+      bool flat = false;
+      std::optional<internal::DetectedPatch> geo;
+      bool kept = false;  // st.geometry is this step's patch (geo unset)
+      if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
+        const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
+        const double angle = std::acos(c);
+        const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
+        // the faces must also face the contact, and the contact must be on
+        // them: two coins side by side touch rim to rim, with a normal across
+        // their (parallel) faces or, from Bullet's convex test near the rim,
+        // along them at a point one coin thickness off the other's face
+        flat = angle < tol && cosA >= kFacingCos && cosB >= kFacingCos &&
+               im.step - st.tipStep > kTipCooldownSteps && contactOnFaces(*m, aIs0, *faceA, *faceB);
+        // x axis fixed in the moving body: a box spinning on a plane keeps
+        // the same outline, and its cached shape, in this frame
+        if (flat) {
+          const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
+          bool keep = wasFlat && st.overlapValid && faceA->kind == st.overlapKinds[0] &&
+                      faceB->kind == st.overlapKinds[1] &&
+                      double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
+                          kOverlapRelTol * st.geometry.outline.size();
+          for (int row = 0; keep && row < 3; ++row)
+            keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
+                   kOverlapRelTol;
+          // a kept overlap is updated in place (no copy of its outline)
+          const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
+          if (keep) {
+            internal::refreshFrame(*faceA, *faceB, xHint, st.geometry);
+            kept = true;
+          } else {
+            geo = internal::buildPatch(*faceA, *faceB, xHint);
+          }
+          if (geo) {
+            st.overlapPose = rel;
+            st.overlapKinds[0] = faceA->kind;
+            st.overlapKinds[1] = faceB->kind;
+            st.overlapValid = true;
+          }
         }
       }
-    }
-    st.flat = flat && geo.has_value();
-    if (!st.flat) {
-      st.normal = st.frictionSpin = st.slipSpin = 0.0;
-      st.couple.setZero();
-      st.frictionT.setZero();
-      st.slipT.setZero();
-      convertContact(m, info);
-      continue;
-    }
-    // stock rows of this manifold are replaced: start them from zero if
-    // the contact goes back to Bullet later
-    for (int k = 0; k < m->getNumContacts(); ++k) {
-      btManifoldPoint& p = m->getContactPoint(k);
-      p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
-    }
+      st.flat = flat && (kept || geo.has_value());
+      // (the warm start is read only after a step that ended flat, whose end
+      // wrote it: a contact that is not flat leaves it as it is)
+      if (!st.flat) {
+        continue;  // stock (pass 2)
+      }
+      // stock rows of this manifold are replaced: start them from zero if
+      // the contact goes back to Bullet later. After a step that ended flat
+      // they are zero already (Bullet's write-back skipped this manifold, and
+      // the points it adds or replaces carry zero or the old zero impulses).
+      if (!wasFlat) {
+        for (int k = 0; k < m->getNumContacts(); ++k) {
+          btManifoldPoint& p = m->getContactPoint(k);
+          p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+        }
+      }
 
-    st.geometry = std::move(*geo);
-    const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
-    // shape and friction law: rebuilt only when the outline changes
-    const internal::PatchOutline& outline = st.geometry.outline;
-    const double size = outline.size();
-    if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
-        (opt.rho && st.friction->rho() != *opt.rho)) {
-      try {
-        const PatchShape shape = outline.toShape();
-        st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu, opt.rho ? *opt.rho : 0.0);
-        st.outline = outline;
-        st.pressureCop = shape.centroid();  // uniform pressure
-        st.piInvValid = false;
-        st.hullValid = false;
-        st.fanValid = false;
-        st.shapeId = ++im.shapeCount;
-        st.innerRadius2 = innerRadiusSquared(shape);
-        ++im.stats.shapeRebuilds;
-      } catch (const Error&) {
-        st.flat = false;  // degenerate overlap: leave it to Bullet
-        st.friction.reset();
-        st.outline.reset();
+      if (!kept) st.geometry = std::move(*geo);
+      const double mu = opt.mu ? *opt.mu : double(m->getContactPoint(0).m_combinedFriction);
+      // shape and friction law: rebuilt only when the outline changes
+      const internal::PatchOutline& outline = st.geometry.outline;
+      const double size = outline.size();
+      if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
+          (opt.rho && st.friction->rho() != *opt.rho)) {
+        try {
+          const PatchShape shape = outline.toShape();
+          st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu,
+                              opt.rho ? *opt.rho : 0.0);
+          st.outline = outline;
+          st.pressureCop = shape.centroid();  // uniform pressure
+          st.piInvValid = false;
+          st.hullValid = false;
+          st.fanValid = false;
+          st.shapeId = ++im.shapeCount;
+          st.innerRadius2 = innerRadiusSquared(shape);
+          ++im.stats.shapeRebuilds;
+        } catch (const Error&) {
+          st.flat = false;  // degenerate overlap: leave it to Bullet
+          st.friction.reset();
+          st.outline.reset();
+          continue;  // stock (pass 2)
+        }
+      }
+      if (st.friction->mu() != mu) {
+        try {
+          st.friction->setMu(mu);
+        } catch (const Error&) {
+          st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
+          st.friction.reset();
+          st.outline.reset();
+          continue;  // stock (pass 2)
+        }
+      }
+      im.candidates.push_back({i, &st, &opt, A, B, mu, wasFlat});
+    }
+    std::size_t next = 0;
+    for (int i = begin; i < end; ++i) {
+      btPersistentManifold* m = manifolds[i];
+      if (next == im.candidates.size() || im.candidates[next].index != i) {
         convertContact(m, info);
         continue;
       }
-    }
-    if (st.friction->mu() != mu) {
-      try {
-        st.friction->setMu(mu);
-      } catch (const Error&) {
-        st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
-        st.friction.reset();
-        st.outline.reset();
+      const Impl::Candidate& cand = im.candidates[next++];
+      PatchState& st = *cand.state;
+      const PatchOptions& opt = *cand.options;
+      const btCollisionObject* A = cand.A;
+      const btCollisionObject* B = cand.B;
+      const double mu = cand.mu;
+      const bool wasFlat = cand.wasFlat;
+      im.patches.emplace_back();
+      PatchConstraint& pc = im.patches.back();
+      pc.state = &st;
+      pc.model = opt.model;
+      pc.dt = dt;
+      pc.mu = mu;
+      pc.rho = st.friction->rho();
+      pc.stateSticking = st.sticking;
+      const PatchShape& patchShape = st.friction->shape();
+      pc.shape.disk = patchShape.isDisk();
+      if (pc.shape.disk) {
+        pc.shape.centre = patchShape.centre();
+        pc.shape.radius = patchShape.radius();
+      }
+      pc.shape.diameter = patchShape.diameter();
+      pc.shape.innerRadius2 = st.innerRadius2;
+      pc.law.pressureCop = st.pressureCop;
+      pc.law.piInvValid = st.piInvValid;
+      if (st.piInvValid) pc.law.piInv = st.piInv;
+      const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
+      const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
+      const Vec3 O = toEigen(st.geometry.origin);
+      const Vec3 ex = toEigen(st.geometry.xAxis);
+      const Vec3 ey = toEigen(st.geometry.yAxis);
+      pc.F.col(0) = ex;
+      pc.F.col(1) = ey;
+      pc.F.col(2) = toEigen(st.geometry.normal);
+      const btSolverBody& sbA = m_tmpSolverBodyPool[idA];
+      const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
+      pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
+      pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
+      pc.ids[0] = idA;
+      pc.ids[1] = idB;
+
+      // effective masses of the 6 DOFs and the friction block's Schur
+      // complement (normal block held bilateral): Blocks
+      if (!makeBlocks(effectiveMass(pc.a, pc.b, pc.F, pc.rho), pc.k)) {
+        im.patches.pop_back();
+        st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
         convertContact(m, info);
         continue;
       }
-    }
 
-    im.patches.emplace_back();
-    PatchConstraint& pc = im.patches.back();
-    pc.state = &st;
-    pc.model = opt.model;
-    pc.dt = dt;
-    pc.mu = mu;
-    pc.rho = st.friction->rho();
-    const int idA = getOrInitSolverBody(*const_cast<btCollisionObject*>(A), info.m_timeStep);
-    const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(B), info.m_timeStep);
-    const Vec3 O = toEigen(st.geometry.origin);
-    const Vec3 ex = toEigen(st.geometry.xAxis);
-    const Vec3 ey = toEigen(st.geometry.yAxis);
-    pc.F.col(0) = ex;
-    pc.F.col(1) = ey;
-    pc.F.col(2) = toEigen(st.geometry.normal);
-    const btSolverBody& sbA = m_tmpSolverBodyPool[idA];
-    const btSolverBody& sbB = m_tmpSolverBodyPool[idB];
-    pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
-    pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
+      // position error: gap at O (< 0 penetrating) and tilt of the face
+      //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
+      //   otherwise:      Baumgarte with erp2 in the velocity target
+      const double gap = st.geometry.gap;
+      const Vec3 tilt = toEigen(st.geometry.tilt);
+      const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
+      if (gap > 0.0) {
+        pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
+      } else if (info.m_splitImpulse) {
+        pc.targetPush = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp) / dt;
+      } else {
+        pc.targetN = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp2) / dt;
+      }
+      if (gap > 0.0 && info.m_splitImpulse) pc.targetPush = tiltRate * double(info.m_erp) / dt;
 
-    // effective masses of the 6 DOFs and the friction block's Schur
-    // complement (normal block held bilateral): Blocks
-    if (!makeBlocks(effectiveMass(pc.a, pc.b, pc.F, pc.rho), pc.k)) {
-      im.patches.pop_back();
-      st.flat = false;  // e.g. a body with locked rotation: leave it to Bullet
-      convertContact(m, info);
-      continue;
-    }
-
-    // position error: gap at O (< 0 penetrating) and tilt of the face
-    //   split impulse:  pseudo velocities target (-gap, tilt) * erp / dt
-    //   otherwise:      Baumgarte with erp2 in the velocity target
-    const double gap = st.geometry.gap;
-    const Vec3 tilt = toEigen(st.geometry.tilt);
-    const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
-    if (gap > 0.0) {
-      pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
-    } else if (info.m_splitImpulse) {
-      pc.targetPush = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp) / dt;
-    } else {
-      pc.targetN = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp2) / dt;
-    }
-    if (gap > 0.0 && info.m_splitImpulse) pc.targetPush = tiltRate * double(info.m_erp) / dt;
-
-    // warm start from the previous step
-    if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
-      const double f = kPatchWarmStartFactor;
-      pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
-      pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
-      pc.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
-      Vec6 lam;
-      lam << pc.lamN, pc.lamF;
-      applyImpulse(pc, m_tmpSolverBodyPool, lam);
+      // warm start from the previous step
+      if ((info.m_solverMode & SOLVER_USE_WARMSTARTING) && wasFlat) {
+        const double f = kPatchWarmStartFactor;
+        pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
+        pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
+        pc.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
+        Vec6 lam;
+        lam << pc.lamN, pc.lamF;
+        applyImpulse(pc, m_tmpSolverBodyPool, lam);
+      }
     }
   }
 
@@ -1103,8 +1298,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
   if (iteration >= info.m_numIterations) return residual;
   double worst = 0.0;
   auto snapshotOf = [&](const PatchConstraint& pc, btVector3* out) {
-    const btSolverBody& a = m_tmpSolverBodyPool[pc.a.id];
-    const btSolverBody& b = m_tmpSolverBodyPool[pc.b.id];
+    const btSolverBody& a = m_tmpSolverBodyPool[pc.ids[0]];
+    const btSolverBody& b = m_tmpSolverBodyPool[pc.ids[1]];
     out[0] = a.m_deltaLinearVelocity;
     out[1] = a.m_deltaAngularVelocity;
     out[2] = b.m_deltaLinearVelocity;
@@ -1125,7 +1320,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       pc.settled = false;
     }
     FrictionPatch& friction = *pc.state->friction;
-    const PatchShape& shape = friction.shape();
+    const ShapeSummary& shape = pc.shape;
     // a patch on a body that stands on a patch of its own (a simple stack) is
     // solved with that support held (see convertContacts): all six DOFs
     // while the support sticks and can take the share without slipping,
@@ -1160,15 +1355,15 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
       const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
       const bool onPatch =
-          shape.isDisk() ? (cop - shape.centre()).squaredNorm() <= shape.radius() * shape.radius()
-                         : cop.squaredNorm() <= pc.state->innerRadius2 || shape.contains(cop);
+          shape.disk ? (cop - shape.centre).squaredNorm() <= shape.radius * shape.radius
+                     : cop.squaredNorm() <= shape.innerRadius2 || friction.shape().contains(cop);
       if (onPatch) {
         lamN = y;
         pc.interior = true;
       } else {
-        const Vec2 clamped = nearestPointOn(shape, cop);
+        const Vec2 clamped = nearestPointOn(friction.shape(), cop);
         lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
-        pc.tipping = (cop - clamped).norm() > kTipRelTol * shape.diameter();
+        pc.tipping = (cop - clamped).norm() > kTipRelTol * shape.diameter;
       }
     }
     Vec6 d = Vec6::Zero();
@@ -1204,17 +1399,17 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // 1e-6) of the diameter, so that Pi changes by ~1e-6 relative at most,
         // while a body at rest or sliding steadily never pays for a refresh
         // and a centred symmetric patch keeps Pi = I.
-        const double moved = (cop - pc.state->pressureCop).norm() / shape.diameter();
+        const double moved = (cop - pc.law.pressureCop).norm() / shape.diameter;
         // the quick stick test's measure of lambda0 = -K^-1 b against the
         // law's Pi (see below): <= L sticks
         auto stickSize = [&](Vec3& lambda0) {
-          PatchState& st = *pc.state;
-          if (!st.piInvValid) {
-            st.piInv = friction.Pi().inverse();
-            st.piInvValid = true;
+          LawCache& law = pc.law;
+          if (!law.piInvValid) {
+            law.piInv = friction.Pi().inverse();
+            law.piInvValid = true;
           }
           lambda0 = -(pc.interior ? Vec3(k.KsInv * in.b) : Vec3(k.Kff.inverse() * in.b));
-          const Vec3 unitLoad = st.piInv * lambda0;
+          const Vec3 unitLoad = law.piInv * lambda0;
           const double size = pc.model == Model::Ellipsoidal
                                   ? unitLoad.norm()
                                   : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
@@ -1226,7 +1421,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         bool refreshDue = moved > (pc.refreshes == 0 ? settings.pressureRefreshTolerance
                                                      : settings.pressureLagTolerance);
         if (refreshDue && settings.deferStickingRefresh && moved <= kDeferMove &&
-            (pc.state->sticking || (pc.haveLast && pc.last.sticking))) {
+            (pc.stateSticking || (pc.haveLast && pc.last.sticking))) {
           size = stickSize(lambda0);
           if (size <= kDeferStick * L) {
             refreshDue = false;
@@ -1241,12 +1436,12 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           // its kern, |cop - C| <= I / (A R) = R / 4; a polygon's admissibility
           // test is nearestAdmissibleLoads' own first step (admissible loads
           // come back unchanged)
-          if (!shape.isDisk() ||
-              (cop - shape.centre()).squaredNorm() > 0.0625 * shape.radius() * shape.radius())
-            loads = nearestAdmissibleLoads(shape, loads, pc.rho);
+          if (!shape.disk ||
+              (cop - shape.centre).squaredNorm() > 0.0625 * shape.radius * shape.radius)
+            loads = nearestAdmissibleLoads(friction.shape(), loads, pc.rho);
           friction.setLoads(PatchLoads{loads.Pz / pc.dt, loads.Tx / pc.dt, loads.Ty / pc.dt});
-          pc.state->pressureCop = cop;
-          pc.state->piInvValid = false;  // Pi and the law changed (also for supportCanTake)
+          pc.law.pressureCop = cop;
+          pc.law.piInvValid = false;  // Pi and the law changed (also for supportCanTake)
           pc.state->hullValid = false;
           pc.state->fanValid = false;
           refreshed = true;
@@ -1263,18 +1458,17 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // products instead of a block solve.
         bool quick = false;
         if (settings.quickStick) {
-          PatchState& st = *pc.state;
           if (std::isnan(size)) size = stickSize(lambda0);
-          const bool stuckBefore = st.sticking || (pc.haveLast && pc.last.sticking);
+          const bool stuckBefore = pc.stateSticking || (pc.haveLast && pc.last.sticking);
           if (std::isfinite(size) &&
               (size <= L || (pc.model == Model::Exact && stuckBefore &&
-                             exactHullSticks(st, friction, lambda0, L, pc.fanRefine)))) {
+                             exactHullSticks(*pc.state, pc.law.piInv, pc.stateSticking, friction,
+                                             lambda0, L, pc.fanRefine)))) {
             quick = true;
             ++stats.quickSticks;
             pc.last.impulse = lambda0;
             pc.last.slip.setZero();
             pc.last.sticking = true;
-            pc.last.iterations = 0;
             pc.haveLast = true;
             pc.lastHeld = held;
             pc.lastB = in.b;
@@ -1287,16 +1481,19 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
                       std::abs(L - pc.lastL) <= kReuseRelTol * L);
         if (!reuse) {
           ++stats.blockSolves;
-          pc.last = solveFrictionBlock(friction, pc.model, in);
-          if (pc.model == Model::Exact && !pc.last.gaugeSlip.isZero(0.0)) {
+          const FrictionBlockResult solved = solveFrictionBlock(friction, pc.model, in);
+          pc.last.impulse = solved.impulse;
+          pc.last.slip = solved.slip;
+          pc.last.sticking = solved.sticking;
+          if (pc.model == Model::Exact && !solved.gaugeSlip.isZero(0.0)) {
             PatchState& st = *pc.state;
-            st.gaugeSlip = pc.last.gaugeSlip;
+            st.gaugeSlip = solved.gaugeSlip;
             // a stick's boundary point along lambda0 is the hull test's best
             // q* for the next visits (lambda0 turns little between them)
-            if (pc.last.sticking && pc.last.gaugeValue.allFinite()) {
-              st.hullSlip = pc.last.gaugeSlip;
-              st.hullPoint = pc.last.gaugeValue;
-              st.hullDirection = pc.last.gaugeValue.normalized();
+            if (solved.sticking && solved.gaugeValue.allFinite()) {
+              st.hullSlip = solved.gaugeSlip;
+              st.hullPoint = solved.gaugeValue;
+              st.hullDirection = solved.gaugeValue.normalized();
               st.hullValid = true;
               st.fanValid = false;
             }
@@ -1306,7 +1503,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
           pc.lastB = in.b;
           pc.lastL = L;
         }
-        const FrictionBlockResult& res = pc.last;
+        const auto& res = pc.last;
         lamF = res.impulse;
         pc.sticking = res.sticking;
         pc.warmSlip = res.slip;
@@ -1353,7 +1550,9 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       PatchConstraint& before = impl_->retry;
       before = pc;
       if (!visit(&stackHold->all, 2)) {
+        const LawCache law = pc.law;  // the law is not rolled back: nor is its record
         pc = before;
+        pc.law = law;
         visit(stackHold->normal.valid ? &stackHold->normal : nullptr, stackHold->normal.valid ? 1 : 0);
       }
     } else {
@@ -1376,9 +1575,9 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
     for (PatchConstraint& pc : impl_->patches) {
       if (pc.targetPush.isZero()) continue;
       auto& pool = m_tmpSolverBodyPool;
-      const Vec3 c = patchVelocity(pc, [&](int id, Vec3& v, Vec3& w) {
-                       v = toEigen(pool[id].m_pushVelocity);
-                       w = toEigen(pool[id].m_turnVelocity);
+      const Vec3 c = patchVelocity(pc, [&](const BodyTerms& t, Vec3& v, Vec3& w) {
+                       v = toEigen(pool[t.id].m_pushVelocity);
+                       w = toEigen(pool[t.id].m_turnVelocity);
                      }).head<3>();
       Vec3 lam = pc.lamPush - pc.k.Winv * (c - pc.targetPush);
       if (lam[0] < 0.0) lam.setZero();  // pushes only apart
@@ -1408,43 +1607,31 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     st.slipT = c[3] * ex + c[4] * ey;
     st.slipSpin = c[5];
     st.sticking = pc.sticking;
+    st.pressureCop = pc.law.pressureCop;
+    st.piInvValid = pc.law.piInvValid;
+    if (pc.law.piInvValid) st.piInv = pc.law.piInv;
     if (pc.tipping || pc.failed) {
       st.tipStep = im.step;
       st.flat = false;
     }
-    // reports are overwritten in place (no allocation once the vector and
-    // the shapes' storage have grown); allSolved() trims the vector
-    if (im.reportCount == im.reports.size()) {
-      im.reports.emplace_back();
-      im.reportShapeIds.push_back(0);
-    }
-    const size_t slot = im.reportCount++;
-    PatchReport& r = im.reports[slot];
-    r.body = st.body;
-    r.other = st.other;
-    r.origin = st.geometry.origin;
-    r.normal = st.geometry.normal;
-    r.xAxis = st.geometry.xAxis;
-    r.yAxis = st.geometry.yAxis;
-    const PatchShape& shape = st.friction->shape();
-    if (im.reportShapeIds[slot] != st.shapeId || !r.shape) {
-      r.shape = shape;
-      im.reportShapeIds[slot] = st.shapeId;
-    }
+    // the report's sources (the report is filled when asked for: fillReports)
+    if (im.reportCount == im.reportSources.size()) im.reportSources.emplace_back();
+    ReportSource& r = im.reportSources[im.reportCount++];
+    r.state = &st;
     r.model = pc.model;
+    r.sticking = pc.sticking;
     r.mu = pc.mu;
     r.rho = pc.rho;
-    const PatchLoads l = toLoads(pc.lamN);
-    r.loads = PatchLoads{l.Pz / pc.dt, l.Tx / pc.dt, l.Ty / pc.dt};
-    r.pressure = r.loads.Pz > 0.0 ? LinearPressure::fromLoads(shape, r.loads) : LinearPressure();
-    r.Q = pc.lamF / pc.dt;
+    r.dt = pc.dt;
+    r.lamN = pc.lamN;
+    r.lamF = pc.lamF;
     r.slip = c.tail<3>();
-    r.r = r.slip.norm();
-    r.sticking = pc.sticking;
-    if (l.Pz > 0.0 && pc.mu > 0.0)
-      im.stats.maxPressureLag = std::max(
-          im.stats.maxPressureLag, (Vec2(l.Ty / l.Pz, -l.Tx / l.Pz) - st.pressureCop).norm() / shape.diameter());
-    r.w = pc.sticking || r.r == 0.0 ? Vec3::Zero() : Vec3(r.slip / r.r);
+    const PatchLoads l = toLoads(pc.lamN);
+    if (l.Pz > 0.0 && pc.mu > 0.0) {
+      const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
+      im.stats.maxPressureLag =
+          std::max(im.stats.maxPressureLag, (cop - pc.law.pressureCop).norm() / pc.shape.diameter);
+    }
   }
   im.flushBodies.clear();
   for (const PatchConstraint& pc : im.patches)

@@ -180,7 +180,11 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   const PatchSolverSettings& settings() const;
   const PatchSolverStats& stats() const;
 
-  // Patches that were active in the last step (all islands).
+  // Patches that were active in the last step (all islands). The reports
+  // are filled from the solver's record of the step at the first call after
+  // it (a step that nobody asks about does not pay for them), so a
+  // reference or pointer kept from an earlier call shows the reports as of
+  // the last call. Between steps only (not from inside a solve).
   const std::vector<PatchReport>& patchReports() const;
   // The report of the patch under `body` in the last step, or null.
   const PatchReport* findPatchReport(const btCollisionObject* body) const;
