@@ -46,7 +46,7 @@ PatchLoads rhsToLoads(const Vec3& r) { return PatchLoads{r[0], -r[2], r[1]}; }
 LinearPressure LinearPressure::fromLoads(const PatchShape& shape, const PatchLoads& loads) {
   requireFiniteLoads(loads);
   // Eq. (94): [Pz, Ty, -Tx] = G (p0, cx, cy)
-  const Vec3 c = shape.loadMatrixInverse() * loadsToRhs(loads);
+  const Vec3 c = shape.solveLoadMatrix(loadsToRhs(loads));
   if (!c.allFinite()) {  // found by fuzzing: loads ~1e308 gave p = -inf
     throw Error("loads out of range: the pressure carrying (Pz, Tx, Ty) = (" +
                 internal::formatDouble(loads.Pz) + ", " + internal::formatDouble(loads.Tx) + ", " +
@@ -149,7 +149,16 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
   auto toLoads = [&](const Vec3& l) { return PatchLoads{l[0], l[1] * rho, l[2] * rho}; };
 
   if (!shape.isDisk()) {
-    const Mat3 Minv = M.inverse();
+    // (with O outside the polygon, G^-1 (1, x_i, y_i) by PatchShape's
+    // solve about the vertex mean: M^-1 = G^-1 P^-1, whose cofactor inverse
+    // about a far O loses ~(max|r| / size)^4 eps; P^-1 is exact up to rho's
+    // rounding. A patch about a point inside it keeps M^-1.)
+    const bool aboutMean = shape.maxDistanceFromOrigin() > shape.diameter();
+    Mat3 PinvT;  // P^-T
+    PinvT << 1.0, 0.0, 0.0,  //
+        0.0, 0.0, -rho,      //
+        0.0, rho, 0.0;
+    const Mat3 Minv = aboutMean ? Mat3::Zero() : Mat3(M.inverse());
     // the cone's inward normals a_i and their norms (computed once: the
     // Bullet layer calls this at every pressure refresh of a patch whose
     // centre of pressure is outside its kern)
@@ -160,7 +169,8 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
     std::vector<Row> rows;
     rows.reserve(shape.vertices().size());
     for (const Vec2& v : shape.vertices()) {
-      const Vec3 a = Minv.transpose() * Vec3(1.0, v.x(), v.y());
+      const Vec3 phi(1.0, v.x(), v.y());
+      const Vec3 a = aboutMean ? Vec3(PinvT * shape.solveLoadMatrix(phi)) : Vec3(Minv.transpose() * phi);
       rows.push_back({a, a.norm()});
     }
     // feasibility with a small relative slack for round-off
