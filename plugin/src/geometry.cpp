@@ -473,9 +473,16 @@ Vec3 PatchShape::solveLoadMatrix(const Vec3& rhs) const {
   // consistent with each other, where G^-1 rhs as one matrix product
   // rounds them independently, each by eps (max|r| / size)^2 of the
   // pressure on the patch
+  // (at unit scale, a power of two: g_x Pz and G'^-1 rhs' overflowed for
+  // loads ~1e300 whose pressure is in range; found by fuzzing)
+  const double largest = rhs.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) return load_inverse_ * rhs;  // zero (or not finite)
+  const int e = std::ilogb(largest);
+  const Vec3 unit = rhs.unaryExpr([e](double x) { return std::ldexp(x, -e); });
   const Vec2& g = load_origin_;
-  const Vec3 local = local_load_inverse_ * Vec3(rhs[0], rhs[1] - g.x() * rhs[0], rhs[2] - g.y() * rhs[0]);
-  return Vec3(local[0] - (g.x() * local[1] + g.y() * local[2]), local[1], local[2]);
+  const Vec3 local = local_load_inverse_ * Vec3(unit[0], unit[1] - g.x() * unit[0], unit[2] - g.y() * unit[0]);
+  const Vec3 c(local[0] - (g.x() * local[1] + g.y() * local[2]), local[1], local[2]);
+  return c.unaryExpr([e](double x) { return std::ldexp(x, e); });
 }
 
 bool PatchShape::contains(const Vec2& point, double tol) const {

@@ -1,5 +1,5 @@
 // Eighth fuzz round (issue 6): regression tests for the classes decided in
-// it (fuzz/README.md, "Eighth round", items 57-59). Each fails on 95c6a5c
+// it (fuzz/README.md, "Eighth round", items 57-62). Each fails on 95c6a5c
 // (checked: the blocks were refused, the pressures lost); each is checked
 // against an independent computation (50-digit arithmetic, long double
 // sums about the vertex mean, brute-force quadrature of Eq. (16)).
@@ -409,4 +409,73 @@ TEST(FuzzRound8, FromLoadsAndNearestAdmissibleLoadsKeepTheirDigitsFarFromO) {
   }
   EXPECT_LT(worst, kPressure);
   EXPECT_LE(refused, kRefused) << checked << " projected";
+}
+
+// 61. minPressure on a polygon whose vertex products overflow where their
+// sum does not: p = (-5.2e297, -5.2e303, 3.7e303) on a triangle with a
+// vertex at (4.3e5, 6.0e5) gives cx x = -inf and cy y = +inf, NaN, which
+// std::min passed over, so minPressure returned the vertex at O's
+// -5.2e297 where the pressure at that vertex is -2.3e303 (found by the
+// pressure target). Checked against the pressure at every vertex in long
+// double (range to 1e4932), to kUlps eps of the terms |p0| + |cx x| + |cy
+// y| (the sum cancels them 1e6-fold; measured 0.9 eps of them).
+TEST(FuzzRound8, MinPressureWithOverflowingVertexProductsIsTheLowestVertex) {
+  const PatchShape triangle = PatchShape::polygon(
+      {{0.0, 0.0}, {428990.26137603901, 604750.50188696722}, {428989.27616420639, 604750.330503618}});
+  const LinearPressure p{-5.1874508961404106e+297, -5.22801961128216e+303, 3.708582688189708e+303};
+  long double lowest = std::numeric_limits<long double>::infinity(), terms = 0.0L;
+  for (const Vec2& v : triangle.vertices()) {
+    const long double x = static_cast<long double>(p.cx) * v.x(), y = static_cast<long double>(p.cy) * v.y();
+    if (p.p0 + x + y < lowest) lowest = p.p0 + x + y, terms = std::abs(p.p0) + std::abs(x) + std::abs(y);
+  }
+  ASSERT_LT(std::abs(lowest), static_cast<long double>(std::numeric_limits<double>::max()));
+  constexpr double kUlps = 8.0;
+  const double core = minPressure(triangle, p);
+  // (in long double: the terms, 4.5e309, are beyond double's range)
+  EXPECT_LE(std::abs(static_cast<long double>(core) - lowest), kUlps * kEps * terms)
+      << core << " vs " << static_cast<double>(lowest);
+}
+
+// 62. nearestAdmissibleLoads on a disk not centred at O maximised each
+// boundary ray's gain |y|^2 - d^2 (y the scaled loads, d the distance to
+// the ray), which loses d below sqrt(eps) |y|: loads 3e-9 of their size
+// outside the set (a 0.5 m disk with O on its rim, rho = 1.2e8) had every
+// sample's gain equal to the last bit, and the answer was 33% farther than
+// the nearest ray (and farther than the uniform pressure: found by the
+// pressure target), and on a 5.4e9 m disk with loads of 1e146 2.2 times.
+// Now the rays are ranked by d itself. Checked against a dense scan of the
+// boundary rays (pressures vanishing at one rim point, 200,000 of them,
+// their loads by loadsOf): the answer is admissible and as near as the
+// nearest scanned ray to kScan (the scan's own step, with room; measured
+// to 1e-12 of it).
+TEST(FuzzRound8, NearestAdmissibleLoadsOnADiskIsTheNearestBoundaryRay) {
+  struct Case {
+    double R;
+    Vec2 centre;
+    PatchLoads loads;
+    double rho;
+  };
+  const std::vector<Case> cases = {
+      {0.5, {0.5000005187294978, -0.0015335067838567222},
+       {6.008148193359375e-05, 1e-300, -6.2008168049345967e-49}, 116391936.0},
+      {5368184832.0, {2154373347.0781322, -642361449.92492497}, {3.770163170556893e+146, 0.5, 0.5},
+       4044283405.5980945}};
+  constexpr double kScan = 1e-6;
+  for (const Case& c : cases) {
+    const PatchShape disk = PatchShape::disk(c.R, c.centre);
+    const PatchLoads near = nearestAdmissibleLoads(disk, c.loads, c.rho);
+    EXPECT_TRUE(isAdmissible(disk, near, 1e-6));
+    const Vec3 y(c.loads.Pz, c.loads.Tx / c.rho, c.loads.Ty / c.rho);
+    auto scaled = [&](const PatchLoads& l) { return Vec3(l.Pz, l.Tx / c.rho, l.Ty / c.rho); };
+    double nearest = y.norm();  // the zero load
+    constexpr int kRays = 200000;
+    for (int i = 0; i < kRays; ++i) {
+      const double th = 2.0 * kPi * i / kRays;
+      const Vec2 n(std::cos(th), std::sin(th));
+      const Vec3 u = scaled(loadsOf(disk, LinearPressure{1.0 + n.dot(c.centre) / c.R, -n.x() / c.R, -n.y() / c.R}));
+      const double t = std::max(0.0, u.dot(y) / u.squaredNorm());
+      nearest = std::min(nearest, (t * u - y).norm());
+    }
+    EXPECT_LE((scaled(near) - y).norm(), nearest * (1.0 + kScan)) << "R = " << c.R;
+  }
 }
