@@ -258,8 +258,19 @@ void run(ByteReader& in) {
       // and coefficients 2.9e300 on a 0.5 m disk, terms 2.3e300 at any w.
       // Within kOverflowMargin of overflow the kernel's derivative, large
       // near its singular points, may carry the sum over)
+      // (the Jacobian carries the lever twice: the torque row, and the w_z
+      // column through the ICR, d v / d w_z = (-y, x) / rho; found in the
+      // eighth round: a 3.5e9 m disk 1.2e10 m from O with rho = 0.04 and p0
+      // = 4e267, terms 6e298 with the lever once, whose dQ/dw overflowed at
+      // |w| = 1.8e308 and at 9.5e-8. A short lever scales it by rho /
+      // max|r| instead: spinning about a point of the patch, dk/dw_xy ~
+      // rho / |r - c|, whose mean over the patch is ~rho / max|r|; found:
+      // p0 = 1.3e300 on a 0.5 m disk at O with rho = 1.1e9, overflowed at
+      // w = (2.2e-308, 0, 1.1e9))
       constexpr double kOverflowMargin = 1e8;
-      const double unscaled = std::max(pressureTerms, pressureTerms / wMax);
+      const double leverRatio = rmax / patch.rho();
+      const double jacobianTerms = pressureTerms * (1.0 + leverRatio + 1.0 / leverRatio);
+      const double unscaled = std::max(jacobianTerms, jacobianTerms / wMax);
       const bool tiny = usable && (wMax < 1e-100 || terms / wMax > 1e100 ||
                                    unscaled > std::numeric_limits<double>::max() / kOverflowMargin) &&
                         std::strstr(e.what(), "dQ/dw overflows") != nullptr;

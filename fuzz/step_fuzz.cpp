@@ -89,14 +89,13 @@ constexpr double kUnverifiedCondition = 1e5 / 3.0;
 
 // The exact unit law's round-off factor over eps times its terms about O
 // (step.cpp, requireExactLawDigits): max(1, diameter^2 / A) for the kernel
-// integrals' cancellation on a sliver, and for a polygon also max|r|^2 / A,
-// the round-off of its Pz from area moments about O (shoelace products of
-// coordinates up to max|r|^2; found: a 23-gon 900 diameters from O whose
-// pure translation gave a unit force of 1 + 1.1e-7). A disk's moments are
-// closed forms about its centre (its Pz 9,000 diameters from O: 3e-13 off).
+// integrals' cancellation on a sliver. (Until the eighth round a polygon
+// also counted max|r|^2 / A, the round-off of its Pz from area moments
+// about O: found, a 23-gon 900 diameters from O whose pure translation gave
+// a unit force of 1 + 1.1e-7. Its moments are now summed about the vertex
+// mean where O is outside it: item 58.)
 double lawRoundOffFactor(const PatchShape& shape) {
-  const double reach = shape.isDisk() ? shape.diameter() : std::max(shape.diameter(), shape.maxDistanceFromOrigin());
-  return std::max(1.0, reach / shape.area() * reach);
+  return std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
 }
 
 void run(ByteReader& in) {

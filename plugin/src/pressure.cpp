@@ -46,7 +46,7 @@ PatchLoads rhsToLoads(const Vec3& r) { return PatchLoads{r[0], -r[2], r[1]}; }
 LinearPressure LinearPressure::fromLoads(const PatchShape& shape, const PatchLoads& loads) {
   requireFiniteLoads(loads);
   // Eq. (94): [Pz, Ty, -Tx] = G (p0, cx, cy)
-  const Vec3 c = shape.loadMatrixInverse() * loadsToRhs(loads);
+  const Vec3 c = shape.solveLoadMatrix(loadsToRhs(loads));
   if (!c.allFinite()) {  // found by fuzzing: loads ~1e308 gave p = -inf
     throw Error("loads out of range: the pressure carrying (Pz, Tx, Ty) = (" +
                 internal::formatDouble(loads.Pz) + ", " + internal::formatDouble(loads.Tx) + ", " +
@@ -70,7 +70,24 @@ double minPressure(const PatchShape& shape, const LinearPressure& p) {
     // min over the disk of an affine function: p(C) - R |grad p|
     lowest = p.at(shape.centre()) - shape.radius() * planarNorm(p.cx, p.cy);
   } else {
-    for (const Vec2& v : shape.vertices()) lowest = std::min(lowest, p.at(v));
+    for (const Vec2& v : shape.vertices()) {
+      double at = p.at(v);
+      // (a product that overflows where the sum does not, cx x = -inf and
+      // cy y = +inf, gave NaN, which std::min passes over: minPressure
+      // returned another vertex's -5e297 where this one's is -2.3e303;
+      // found by fuzzing. Then the sum is taken with the coefficients
+      // scaled by a power of two.)
+      if (!std::isfinite(at)) {
+        const int e = std::ilogb(p.coefficients().cwiseAbs().maxCoeff());
+        const LinearPressure scaled{std::ldexp(p.p0, -e), std::ldexp(p.cx, -e), std::ldexp(p.cy, -e)};
+        at = std::ldexp(scaled.at(v), e);
+        if (!std::isfinite(at)) {
+          lowest = at;
+          break;
+        }
+      }
+      lowest = std::min(lowest, at);
+    }
   }
   // found by fuzzing: finite coefficients whose pressure overflows gave inf
   if (!std::isfinite(lowest)) {
@@ -149,7 +166,16 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
   auto toLoads = [&](const Vec3& l) { return PatchLoads{l[0], l[1] * rho, l[2] * rho}; };
 
   if (!shape.isDisk()) {
-    const Mat3 Minv = M.inverse();
+    // (with O outside the polygon, G^-1 (1, x_i, y_i) by PatchShape's
+    // solve about the vertex mean: M^-1 = G^-1 P^-1, whose cofactor inverse
+    // about a far O loses ~(max|r| / size)^4 eps; P^-1 is exact up to rho's
+    // rounding. A patch about a point inside it keeps M^-1.)
+    const bool aboutMean = shape.maxDistanceFromOrigin() > shape.diameter();
+    Mat3 PinvT;  // P^-T
+    PinvT << 1.0, 0.0, 0.0,  //
+        0.0, 0.0, -rho,      //
+        0.0, rho, 0.0;
+    const Mat3 Minv = aboutMean ? Mat3::Zero() : Mat3(M.inverse());
     // the cone's inward normals a_i and their norms (computed once: the
     // Bullet layer calls this at every pressure refresh of a patch whose
     // centre of pressure is outside its kern)
@@ -160,7 +186,8 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
     std::vector<Row> rows;
     rows.reserve(shape.vertices().size());
     for (const Vec2& v : shape.vertices()) {
-      const Vec3 a = Minv.transpose() * Vec3(1.0, v.x(), v.y());
+      const Vec3 phi(1.0, v.x(), v.y());
+      const Vec3 a = aboutMean ? Vec3(PinvT * shape.solveLoadMatrix(phi)) : Vec3(Minv.transpose() * phi);
       rows.push_back({a, a.norm()});
     }
     // feasibility with a small relative slack for round-off
@@ -231,15 +258,20 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
       0.0, 1.0, 0.0,       //
       0.0, 0.0, 1.0;
   const Mat3 N = M * T.inverse();
+  // (the gain is |y|^2 minus the squared distance to the ray: maximised as
+  // minus that distance itself, taken from y - t N u. As |y|^2 - d^2 it
+  // lost d below sqrt(eps) |y|, where every ray's gain was |y|^2 to the
+  // last bit and the first sample won: found by fuzzing, loads 3e-9 of
+  // their size outside the set projected 33% farther than the nearest ray)
   auto gain = [&](double th) {
     const Vec3 u(1.0, std::cos(th) / R, std::sin(th) / R);
     const Vec3 Nu = N * u;
-    const double proj = Nu.dot(y);
-    return proj > 0.0 ? proj * proj / Nu.squaredNorm() : 0.0;
+    const double t = std::max(0.0, Nu.dot(y) / Nu.squaredNorm());
+    return -(y - t * Nu).squaredNorm();
   };
   constexpr int kSamples = 256;
   int bestIndex = 0;
-  double bestGain = -1.0;
+  double bestGain = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < kSamples; ++i) {
     const double g = gain(2.0 * kPi * i / kSamples);
     if (g > bestGain) {
@@ -263,7 +295,15 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
   const Vec3 u(1.0, std::cos(th) / R, std::sin(th) / R);
   const Vec3 Nu = N * u;
   const double t = std::max(0.0, Nu.dot(y) / Nu.squaredNorm());
-  return toLoads(t * Nu);
+  // the uniform pressure's ray (admissible by construction) and the zero
+  // load, as for polygons (a backstop: the boundary search returns them
+  // only where it misses the nearest ray)
+  Vec3 best = t * Nu;
+  const Vec3 uniform = M.col(0);
+  const Vec3 onRay = std::max(0.0, uniform.dot(y) / uniform.squaredNorm()) * uniform;
+  if ((onRay - y).norm() < (best - y).norm()) best = onRay;
+  if (y.norm() < (best - y).norm()) best = Vec3::Zero();
+  return toLoads(best);
 }
 }  // namespace
 

@@ -370,56 +370,88 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     const double along = out.slip.dot(w);
     return rangeSafeNorm(out.slip - std::max(along, 0.0) * w);
   };
+  // The re-solves: phi(r) = 1 / |v| - 1, v = (rI + A)^-1 b, increasing in
+  // r like f; phi' = v.(rI + A)^-1 v / |v|^3; bracketed and safeguarded as
+  // above. First by pivoted LU of rI + A itself; where that misses too, by
+  // the same root on the impulse's side (below), where K's diagonal scaling
+  // applies; a block that misses even so is refused.
   if (!(backwardError() <= backwardTol)) {
-    // phi(r) = 1 / |v| - 1, v = (rI + A)^-1 b, increasing in r like f;
-    // phi' = v.(rI + A)^-1 v / |v|^3; bracketed and safeguarded as above
-    double plo = std::max(0.0, bNorm - aNorm), phi = scale;
-    double pr = std::max(plo, bNorm - t / 3.0);
-    Vec3 v = in.b;
-    for (int it = 0; it < kMaxIterations; ++it) {
-      ++out.iterations;
-      const Eigen::PartialPivLU<Mat3> lu(pr * Mat3::Identity() + A);
-      v = lu.solve(in.b);
-      const double vn = v.norm();
-      const double g = 1.0 / vn - 1.0;
-      const double dg = v.dot(lu.solve(v)) / (vn * vn * vn);
-      if (!std::isfinite(g) || g < 0.0)
-        plo = pr;
-      else
-        phi = pr;
-      if (std::abs(g) <= tol || phi - plo <= tol * phi) break;
-      const double mid =
-          plo > 0.0 && phi > 4.0 * plo ? std::sqrt(plo) * std::sqrt(phi) : 0.5 * (plo + phi);
-      double next = dg > 0.0 && std::isfinite(g) ? pr - g / dg : mid;
-      if (!(next > plo && next < phi)) next = mid;
-      pr = next;
-    }
-    w = v.normalized();
-    out.impulse = -in.L * (Pi * w);
-    out.slip = in.b + in.K * out.impulse;
-    // |v| itself carries cond(rI + A) eps relative error (a backward stable
-    // solve pins v's residual, not its norm), so the root only makes |v| = 1
-    // to that noise, and w = v / |v| leaves e ~ that noise times |A v|
-    // (found: 1.1e-9 for a slip of 1.1e-9 at cond 2e8). Newton on the
-    // residual F(w, r) = b - L K Pi w - r w with w on the sphere, whose
-    // bordered Jacobian [A + rI, w; w^T, 0] is regular where A + rI is
-    // singular along the slip, brings e to the round-off of the residual.
-    double rr = std::max(out.slip.dot(w), 0.0);
-    for (int k = 0; k < 4 && !(backwardError() <= 1e-3 * backwardTol); ++k) {
-      Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
-      M.topLeftCorner<3, 3>() = A + rr * Mat3::Identity();
-      M.block<3, 1>(0, 3) = w;
-      M.block<1, 3>(3, 0) = w.transpose();
-      Eigen::Vector4d rhs;
-      rhs << out.slip - rr * w, 0.0;
-      const Eigen::Vector4d delta = M.fullPivLu().solve(rhs);
-      if (!delta.allFinite()) break;
-      const Vec3 wNew = (w + delta.head<3>()).normalized();
-      const Vec3 impulseNew = -in.L * (Pi * wNew);
-      const Vec3 slipNew = in.b + in.K * impulseNew;
-      const double eNew = rangeSafeNorm(slipNew - std::max(slipNew.dot(wNew), 0.0) * wNew);
-      if (!(eNew < backwardError())) break;
-      w = wNew, out.impulse = impulseNew, out.slip = slipNew, rr = std::max(rr + delta(3), 0.0);
+    // (rI + A)^-1 x = Pi^-1 M(r)^-1 x / L with M(r) = K + (r / L) Pi^-1:
+    // lambda = -L Pi w solves M(r) lambda = -b. M(r) is K plus a moderate
+    // term, so scaled by D^-1 on both sides (D^2 its diagonal, at least K's)
+    // it has K's unit-diagonal conditioning, not the spread of K's diagonal
+    // that the plain rI + A carries (found by fuzzing: K with a diagonal
+    // spanning 1.2e27 and a unit-diagonal condition of 1.9e9, whose pivoted
+    // rI + A left the slip 4.3e-7 of the slip scale off its law, eps times
+    // that condition; this form: 2.5e-17 of it, the impulse within 6e-17 of
+    // L |Pi| of the block solved in 50 digits). Only where the plain
+    // re-solve misses: blocks it solves are unchanged.
+    const Mat3 Pinv = Pi.inverse();
+    for (const bool onImpulseSide : {false, true}) {
+      if (onImpulseSide && !Pinv.allFinite()) break;
+      double plo = std::max(0.0, bNorm - aNorm), phi = scale;
+      double pr = std::max(plo, bNorm - t / 3.0);
+      Vec3 v = in.b;
+      for (int it = 0; it < kMaxIterations; ++it) {
+        ++out.iterations;
+        double g = 0.0, dg = 0.0;
+        if (!onImpulseSide) {
+          const Eigen::PartialPivLU<Mat3> lu(pr * Mat3::Identity() + A);
+          v = lu.solve(in.b);
+          const double vn = v.norm();
+          g = 1.0 / vn - 1.0;
+          dg = v.dot(lu.solve(v)) / (vn * vn * vn);
+        } else {
+          const Mat3 M = in.K + (pr / in.L) * Pinv;
+          const Vec3 dInv = M.diagonal().cwiseAbs().cwiseMax(in.K.diagonal()).cwiseSqrt().cwiseInverse();
+          const Eigen::PartialPivLU<Mat3> lu(dInv.asDiagonal() * M * dInv.asDiagonal());
+          auto shiftedSolve = [&](const Vec3& x) {
+            return Vec3(Pinv * Vec3(dInv.asDiagonal() * lu.solve(Vec3(dInv.asDiagonal() * x))) / in.L);
+          };
+          v = shiftedSolve(in.b);
+          const double vn = v.norm();
+          g = 1.0 / vn - 1.0;
+          dg = v.dot(shiftedSolve(v)) / (vn * vn * vn);
+        }
+        if (!std::isfinite(g) || g < 0.0)
+          plo = pr;
+        else
+          phi = pr;
+        if (std::abs(g) <= tol || phi - plo <= tol * phi) break;
+        const double mid =
+            plo > 0.0 && phi > 4.0 * plo ? std::sqrt(plo) * std::sqrt(phi) : 0.5 * (plo + phi);
+        double next = dg > 0.0 && std::isfinite(g) ? pr - g / dg : mid;
+        if (!(next > plo && next < phi)) next = mid;
+        pr = next;
+      }
+      w = v.normalized();
+      out.impulse = -in.L * (Pi * w);
+      out.slip = in.b + in.K * out.impulse;
+      // |v| itself carries cond(rI + A) eps relative error (a backward stable
+      // solve pins v's residual, not its norm), so the root only makes |v| = 1
+      // to that noise, and w = v / |v| leaves e ~ that noise times |A v|
+      // (found: 1.1e-9 for a slip of 1.1e-9 at cond 2e8). Newton on the
+      // residual F(w, r) = b - L K Pi w - r w with w on the sphere, whose
+      // bordered Jacobian [A + rI, w; w^T, 0] is regular where A + rI is
+      // singular along the slip, brings e to the round-off of the residual.
+      double rr = std::max(out.slip.dot(w), 0.0);
+      for (int k = 0; k < 4 && !(backwardError() <= 1e-3 * backwardTol); ++k) {
+        Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+        M.topLeftCorner<3, 3>() = A + rr * Mat3::Identity();
+        M.block<3, 1>(0, 3) = w;
+        M.block<1, 3>(3, 0) = w.transpose();
+        Eigen::Vector4d rhs;
+        rhs << out.slip - rr * w, 0.0;
+        const Eigen::Vector4d delta = M.fullPivLu().solve(rhs);
+        if (!delta.allFinite()) break;
+        const Vec3 wNew = (w + delta.head<3>()).normalized();
+        const Vec3 impulseNew = -in.L * (Pi * wNew);
+        const Vec3 slipNew = in.b + in.K * impulseNew;
+        const double eNew = rangeSafeNorm(slipNew - std::max(slipNew.dot(wNew), 0.0) * wNew);
+        if (!(eNew < backwardError())) break;
+        w = wNew, out.impulse = impulseNew, out.slip = slipNew, rr = std::max(rr + delta(3), 0.0);
+      }
+      if (backwardError() <= backwardTol) break;
     }
     // (a block that misses it even so is singular to round-off)
     if (!(backwardError() <= backwardTol))
@@ -1041,31 +1073,30 @@ constexpr double kMinLever = 1e-5, kMaxLever = 1e5;
 // gave a unit law whose torque reached 288 where its bound is 1, and the
 // block torques 100 times outside the set). Ordinary patches are ~1e4 and
 // more below it (a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10).
-// The unit law divides by Pz, and a polygon's Pz comes from its area
-// moments about O (the moment table's shoelace sums), whose terms are
-// products of coordinates up to max|r|^2: relative to the area they round
-// to ~eps max|r|^2 / A, so for a polygon the factor is max(1, diameter^2 /
-// A, max|r|^2 / A) (the law's integral itself is taken about the vertex
-// mean and keeps its digits: found by fuzzing, a 23-gon 900 diameters from
-// O, a 1.2e-8 m quadrilateral 8,800 diameters from O and a 1.7e6 m sliver
-// 9.6e9 m from O whose unit laws in pure translation had a force of 1 +
-// 1.1e-7, 1 + 5.5e-7 and 1 + 1.45e-4, Pz off by as much against a long
-// double sum about the vertex mean, 0.002 to 0.11 of eps max|r|^2 / A
-// times the terms; a disk's moments are closed forms about its centre:
-// its Pz 9,000 diameters from O was 3e-13 off).
+// The unit law divides by Pz, which for a polygon comes from its area
+// moments: summed about O they would round to ~eps max|r|^2 / A (products
+// of coordinates up to max|r|^2), far beyond this model far from O (found
+// by fuzzing: a 23-gon 900 diameters from O, a 1.2e-8 m quadrilateral
+// 8,800 diameters from O and a 1.7e6 m sliver 9.6e9 m from O whose unit
+// laws in pure translation had a force of 1 + 1.1e-7, 1 + 5.5e-7 and 1 +
+// 1.45e-4). PatchShape sums them about the vertex mean where O is outside
+// the patch (geometry.cpp), the frame in which the law integrates, so Pz
+// keeps the law's digits: over 20,000 polygons (3 to 22 vertices, aspect
+// 1 to 1e-6, 0 to 1e4 diameters from O, tilted pressures >= 0) the unit
+// force in pure translation was 1 to 2.8 eps max(1, diameter^2 / A) times
+// the terms over Pz (fuzz/README.md, item 58).
 constexpr double kTermsUlps = 64.0, kLawNoDigits = 1e-6;
 void requireExactLawDigits(const FrictionPatch& patch) {
   const PatchShape& shape = patch.shape();
   const LinearPressure& p = patch.pressure();
   const double rmax = shape.maxDistanceFromOrigin();
   const double terms = shape.area() * (std::abs(p.p0) + (std::abs(p.cx) + std::abs(p.cy)) * rmax) / patch.Pz();
-  const double reach = shape.isDisk() ? shape.diameter() : std::max(shape.diameter(), rmax);
-  const double sliver = std::max(1.0, reach / shape.area() * reach);
+  const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
   const double roundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * terms;
   if (!(roundOff <= kLawNoDigits)) {
     throw Error("friction block: the exact law has no digits for this pressure and patch (round-off ~" +
                 internal::formatDouble(roundOff) + " of its force: terms about O " + internal::formatDouble(terms) +
-                " times Pz on a patch of (its size or distance from O)^2 / area " + internal::formatDouble(sliver) + ")");
+                " times Pz on a patch of diameter^2 / area " + internal::formatDouble(sliver) + ")");
   }
 }
 

@@ -26,101 +26,12 @@ double fieldScaleOf(const FlatBodyModel& model, const std::vector<LimitDirection
   return scale;
 }
 
-// ∫p dA of a linear pressure on a polygon in long double, as shoelace sums
-// about the vertex mean (no product of coordinates beyond the patch's size):
-// independent of the core's moment tables about O.
-long double pressureIntegralAboutVertexMean(const std::vector<Vec2>& v, const LinearPressure& p) {
-  long double gx = 0.0L, gy = 0.0L;
-  for (const Vec2& a : v) gx += a.x(), gy += a.y();
-  gx /= static_cast<long double>(v.size());
-  gy /= static_cast<long double>(v.size());
-  long double area = 0.0L, sx = 0.0L, sy = 0.0L;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec2& a = v[i];
-    const Vec2& b = v[(i + 1) % v.size()];
-    const long double ax = a.x() - gx, ay = a.y() - gy, bx = b.x() - gx, by = b.y() - gy;
-    const long double c = ax * by - ay * bx;
-    area += c / 2.0L, sx += (ax + bx) * c / 6.0L, sy += (ay + by) * c / 6.0L;
-  }
-  const long double p0 = static_cast<long double>(p.p0) + p.cx * gx + p.cy * gy;
-  return p0 * area + p.cx * sx + p.cy * sy;
-}
-
-// A 23-gon of diameter 1.2e-3 m about (0.9936, -0.5126) (fuzz/known_failures
-// of the sixth round), 900 diameters from O.
-std::vector<Vec2> far23gon() {
-  return {{0.99330679445895709, -0.51251019147067856}, {0.99328221757588198, -0.51258869994415635},
-          {0.99327973340295261, -0.51267092787417023}, {0.99329952617991091, -0.51275077679131864},
-          {0.99334012796703552, -0.51282232466670141}, {0.99339852751551672, -0.51288026512171103},
-          {0.99347039359800327, -0.51292030097785934}, {0.99355039623592289, -0.51293946295884774},
-          {0.9936326019996089, -0.51293632990820637},  {0.99371091406363488, -0.51291113418996881},
-          {0.99377952438046591, -0.51286574445529398}, {0.99383334443677396, -0.51280352705315835},
-          {0.99386838264519284, -0.51272909636365238}, {0.99388204038209371, -0.51264797257051975},
-          {0.99387330471561031, -0.51256617225437973}, {0.9938428235301624, -0.51248976217046915},
-          {0.99379285747583324, -0.51242440930515909}, {0.99372711230629251, -0.51237496058149945},
-          {0.99365046404000079, -0.51234508338511164}, {0.99356859732822678, -0.51233699357097273},
-          {0.9934875838504672, -0.51235129112358868},  {0.9934134320057556, -0.51238691565888916},
-          {0.993351641297192, -0.51244122506806211}};
-}
-
 }  // namespace
 
-// 55. The exact polygon law far from O: its integral is taken about the
-// vertex mean and keeps its digits, but the unit law divides it by Pz, which
-// comes from the polygon's area moments about O (shoelace products up to
-// max|r|^2, relative round-off ~eps max|r|^2 / A, times the pressure's
-// terms about O). For this 23-gon the unit law in pure translation had a
-// force of 1 + 1.1e-7 where its bound is 1, so the block's impulse left the
-// limit set. The excess is Pz's error against the long double sum about the
-// vertex mean (checked here to kSameError: the diagnosis), and the block now
-// refuses the patch as a law without digits (its round-off model with
-// max|r|^2 / A: 3.4e-4 of the force, past 1e-6). The same polygon and
-// pressure moved to the vertex mean is accepted, and its unit force in pure
-// translation is 1 to kUnitForce.
-TEST(FuzzRound7, ExactBlockRefusesAPolygonLawWhosePzHasNoDigitsFarFromO) {
-  const std::vector<Vec2> vertices = far23gon();
-  const PatchShape shape = PatchShape::polygon(vertices);
-  const LinearPressure p =
-      LinearPressure::fromLoads(shape, PatchLoads{0.044933735669085033, 0.023031487191871106, 0.04464514278227618});
-  const FrictionPatch far(shape, p, 0.5);
-  const long double integral = pressureIntegralAboutVertexMean(shape.vertices(), p);
-  const Vec3 q = far.unitQ(Model::Exact, Vec3::UnitX());
-  const double excess = std::hypot(q.x(), q.y()) - 1.0;
-  const double pzError = static_cast<double>((integral - far.Pz()) / far.Pz());
-  // the excess is Pz's error (1.1e-7) to the law's own round-off, ~1e-13
-  // here (its integral against the long double one: 4e-14): kSameError
-  constexpr double kSameError = 1e-11;
-  EXPECT_GT(excess, 1e-8);
-  EXPECT_NEAR(excess, pzError, kSameError);
-
-  FrictionBlockInput input;
-  input.b = Vec3(1.0, 0.0, 0.0);
-  input.K = Mat3::Identity();
-  input.L = 0.5;
-  try {
-    solveFrictionBlock(far, Model::Exact, input);
-    ADD_FAILURE() << "a unit law with a force of 1 + " << excess << " was accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no digits"), std::string::npos) << e.what();
-  }
-
-  // the control: the same polygon and pressure about the vertex mean g
-  Vec2 g = Vec2::Zero();
-  for (const Vec2& v : vertices) g += v;
-  g /= static_cast<double>(vertices.size());
-  std::vector<Vec2> local;
-  for (const Vec2& v : vertices) local.push_back(v - g);
-  const PatchShape localShape = PatchShape::polygon(local);
-  const LinearPressure localP{p.p0 + p.cx * g.x() + p.cy * g.y(), p.cx, p.cy};
-  const FrictionPatch near(localShape, localP, 0.5);
-  const Vec3 qNear = near.unitQ(Model::Exact, Vec3::UnitX());
-  // kUnitForce: the law's round-off on this patch (~1e-14) with room
-  constexpr double kUnitForce = 1e-12;
-  EXPECT_NEAR(std::hypot(qNear.x(), qNear.y()), 1.0, kUnitForce);
-  const FrictionBlockResult r = solveFrictionBlock(near, Model::Exact, input);
-  EXPECT_FALSE(r.sticking);
-  EXPECT_LE(std::hypot(r.impulse.x(), r.impulse.y()), input.L * (1.0 + kUnitForce));
-}
+// 55. (The exact polygon law far from O, refused in the seventh round
+// because its Pz, from area moments summed about O, had no digits: since
+// the eighth round the moments are summed about the vertex mean and those
+// blocks are solved; tests/core/fuzz_round8_test.cpp, item 58.)
 
 // 54. mu = 1.7e-279, g = 4.3e300, a centre of mass 1.7e266 m above O with a
 // horizontal force of 0.5 N (fuzz/known_failures of the sixth round): the

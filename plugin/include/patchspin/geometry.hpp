@@ -14,7 +14,10 @@
 
 namespace patchspin {
 
-// Area moments about O.
+// Area moments about O. A polygon's are summed about its vertex mean where O
+// lies outside it, and shifted to O (parallel axes): summed about a far O
+// their products of coordinates would round to ~eps max|r|^2 / A of the
+// area (fuzz/README.md, item 58).
 struct AreaMoments {
   double area = 0.0;          // A = ∫ dA                            [m^2]
   Vec2 first = Vec2::Zero();  // (∫ x dA, ∫ y dA)                    [m^3]
@@ -76,6 +79,12 @@ class PatchShape {
   const AreaMoments& areaMoments() const { return moments_; }
   // Inverse of AreaMoments::loadMatrix(), cached (Eq. (94) solved per call).
   const Mat3& loadMatrixInverse() const { return load_inverse_; }
+  // G^-1 rhs, Eq. (94) solved for the pressure coefficients about O. For a
+  // polygon with O outside it (max|r| > diameter), through the load matrix
+  // about its vertex mean g and exact shifts: loadMatrixInverse() * rhs
+  // rounds p0 and (cx, cy) independently, and about a far O (or beside a
+  // sliver) that leaves the pressure on the patch without digits.
+  Vec3 solveLoadMatrix(const Vec3& rhs) const;
   const MomentTable& momentTable() const { return table_; }
   double area() const { return moments_.area; }
   Vec2 centroid() const { return moments_.first / moments_.area; }
@@ -107,6 +116,10 @@ class PatchShape {
   AreaMoments moments_;
   MomentTable table_;
   Mat3 load_inverse_ = Mat3::Identity();
+  // polygons with O outside: G'^-1 about the vertex mean load_origin_
+  bool loads_about_mean_ = false;
+  Vec2 load_origin_ = Vec2::Zero();
+  Mat3 local_load_inverse_ = Mat3::Identity();
   double max_distance_ = 0.0;
   double diameter_ = 0.0;
 };
