@@ -121,14 +121,19 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
       }
     if (allInside) continue;
     out.clear();
-    out.reserve(subject.size() + 1);
-    for (size_t j = 0; j < subject.size(); ++j) {
+    const size_t n = subject.size();
+    out.reserve(n + 1);
+    // each point's side computed once (the next point's is carried over)
+    const double s0 = cross2(edge, subject[0] - c1);
+    double sp = s0;
+    for (size_t j = 0; j < n; ++j) {
       const Vec2& p = subject[j];
-      const Vec2& q = subject[(j + 1) % subject.size()];
-      const double sp = cross2(edge, p - c1);
-      const double sq = cross2(edge, q - c1);
+      const bool last = j + 1 == n;
+      const Vec2& q = subject[last ? 0 : j + 1];
+      const double sq = last ? s0 : cross2(edge, q - c1);
       if (sp >= 0.0) out.push_back(p);
       if ((sp >= 0.0) != (sq >= 0.0)) out.push_back(p + (q - p) * (sp / (sp - sq)));
+      sp = sq;
     }
     subject.swap(out);
   }
@@ -146,15 +151,17 @@ bool diskInsidePolygon(const Vec2& centre, double radius, const std::vector<Vec2
 }
 
 // The face of a box (half extents h, with margin: the real box).
-Face boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDir, double* cosine) {
+void boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDir, double* cosine,
+             Face& face) {
   int axis = localDir.closestAxis();
   const double sign = localDir[axis] >= 0 ? 1.0 : -1.0;
   btVector3 n(0, 0, 0);
   n[axis] = btScalar(sign);
   if (cosine) *cosine = double(n.dot(localDir));
-  Face face;
   face.kind = Face::Kind::Polygon;
   face.normal = tr.getBasis() * n;
+  face.radius = 0.0;
+  face.vertices.clear();
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   btVector3 c(0, 0, 0);
   c[axis] = btScalar(sign) * h[axis];
@@ -167,29 +174,30 @@ Face boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDi
     p[v] = btScalar(sv[k]) * h[v];
     face.vertices.push_back(tr * p);
   }
-  return face;
 }
 
 }  // namespace
 
-std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
-                                  double* cosine) {
+bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
+                   Face& face) {
   const btCollisionShape* shape = object.getCollisionShape();
   const btTransform& tr = object.getWorldTransform();
   const btVector3 localDir = tr.getBasis().transpose() * direction;
   switch (shape->getShapeType()) {
     case STATIC_PLANE_PROXYTYPE: {
       const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
-      Face face;
       face.kind = Face::Kind::Plane;
       face.normal = tr.getBasis() * plane->getPlaneNormal();
       face.centre = tr * (plane->getPlaneNormal() * plane->getPlaneConstant());
+      face.radius = 0.0;
+      face.vertices.clear();
       if (cosine) *cosine = double(face.normal.dot(direction));
-      return face;
+      return true;
     }
     case BOX_SHAPE_PROXYTYPE: {
       const auto* box = static_cast<const btBoxShape*>(shape);
-      return boxFace(box->getHalfExtentsWithMargin(), tr, localDir, cosine);
+      boxFace(box->getHalfExtentsWithMargin(), tr, localDir, cosine, face);
+      return true;
     }
     case CYLINDER_SHAPE_PROXYTYPE: {
       // btCylinderShape (y up), btCylinderShapeX, btCylinderShapeZ: the caps
@@ -201,12 +209,12 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
       btVector3 n(0, 0, 0);
       n[axis] = btScalar(sign);
       if (cosine) *cosine = double(n.dot(localDir));
-      Face face;
       face.kind = Face::Kind::Disk;
       face.normal = tr.getBasis() * n;
       face.centre = tr * (n * h[axis]);
       face.radius = double(cyl->getRadius());
-      return face;
+      face.vertices.clear();
+      return true;
     }
     case CONVEX_HULL_SHAPE_PROXYTYPE: {
       // Polyhedral features are built once per shape (this writes to the
@@ -214,7 +222,7 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
       auto* hull = const_cast<btConvexHullShape*>(static_cast<const btConvexHullShape*>(shape));
       if (!hull->getConvexPolyhedron()) hull->initializePolyhedralFeatures();
       const btConvexPolyhedron* poly = hull->getConvexPolyhedron();
-      if (!poly || poly->m_faces.size() == 0) return std::nullopt;
+      if (!poly || poly->m_faces.size() == 0) return false;
       int best = -1;
       double bestCos = -2.0;
       for (int i = 0; i < poly->m_faces.size(); ++i) {
@@ -226,9 +234,10 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
         }
       }
       const btFace& f = poly->m_faces[best];
-      Face face;
       face.kind = Face::Kind::Polygon;
       face.normal = tr.getBasis() * btVector3(f.m_plane[0], f.m_plane[1], f.m_plane[2]);
+      face.radius = 0.0;
+      face.vertices.clear();
       btVector3 sum(0, 0, 0);
       for (int k = 0; k < f.m_indices.size(); ++k) {
         // Bullet's hull computer works on a quantized grid (vertices off by
@@ -249,7 +258,7 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
         face.vertices.push_back(p);
         sum += p;
       }
-      if (face.vertices.size() < 3) return std::nullopt;
+      if (face.vertices.size() < 3) return false;
       face.centre = sum / btScalar(face.vertices.size());
       // normal of the snapped face (Newell), with the orientation of Bullet's plane
       btVector3 newell(0, 0, 0);
@@ -260,10 +269,10 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
         face.normal = newell.dot(face.normal) < 0 ? -newell : newell;
       }
       if (cosine) *cosine = bestCos;
-      return face;
+      return true;
     }
     default:
-      return std::nullopt;
+      return false;
   }
 }
 

@@ -27,9 +27,11 @@ struct Face {
 };
 
 // The face of `object` whose outward normal is closest to `direction`
-// (unit), with its cosine; nullopt for shapes without flat faces.
-std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
-                                  double* cosine);
+// (unit), with its cosine, written to `face` (every field; its vertex
+// storage is reused: the solver asks twice per touching manifold and step);
+// false for shapes without flat faces (`face` then unspecified).
+bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
+                   Face& face);
 
 // Outline of a patch in its frame (about O), cheap to build and compare;
 // the PatchShape (moment tables) is built from it only when it changes.
