@@ -120,9 +120,11 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
         break;
       }
     if (allInside) continue;
-    out.clear();
     const size_t n = subject.size();
-    out.reserve(n + 1);
+    // room for every point and crossing (each point gives two at most; a
+    // convex cut gives n + 1, round-off near the line may give more)
+    out.resize(2 * n);
+    size_t k = 0;
     // each point's side computed once (the next point's is carried over)
     const double s0 = cross2(edge, subject[0] - c1);
     double sp = s0;
@@ -131,10 +133,11 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
       const bool last = j + 1 == n;
       const Vec2& q = subject[last ? 0 : j + 1];
       const double sq = last ? s0 : cross2(edge, q - c1);
-      if (sp >= 0.0) out.push_back(p);
-      if ((sp >= 0.0) != (sq >= 0.0)) out.push_back(p + (q - p) * (sp / (sp - sq)));
+      if (sp >= 0.0) out[k++] = p;
+      if ((sp >= 0.0) != (sq >= 0.0)) out[k++] = p + (q - p) * (sp / (sp - sq));
       sp = sq;
     }
+    out.resize(k);
     subject.swap(out);
   }
   return subject;
@@ -162,21 +165,35 @@ void boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDi
   face.normal = tr.getBasis() * n;
   face.radius = 0.0;
   face.vertices.clear();
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   btVector3 c(0, 0, 0);
   c[axis] = btScalar(sign) * h[axis];
   face.centre = tr * c;
-  const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
-  face.vertices.reserve(4);
-  for (int k = 0; k < 4; ++k) {
-    btVector3 p = c;
-    p[u] = btScalar(su[k]) * h[u];
-    p[v] = btScalar(sv[k]) * h[v];
-    face.vertices.push_back(tr * p);
-  }
+  // the vertices when asked for (Face::polygonVertices)
+  face.boxPending = true;
+  face.boxTransform = tr;
+  face.boxCentre = c;
+  face.boxHalf = h;
+  face.boxU = (axis + 1) % 3;
+  face.boxV = (axis + 2) % 3;
 }
 
 }  // namespace
+
+const std::vector<btVector3>& Face::polygonVertices() const {
+  if (boxPending) {
+    const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+    vertices.clear();
+    vertices.reserve(4);
+    for (int k = 0; k < 4; ++k) {
+      btVector3 p = boxCentre;
+      p[boxU] = btScalar(su[k]) * boxHalf[boxU];
+      p[boxV] = btScalar(sv[k]) * boxHalf[boxV];
+      vertices.push_back(boxTransform * p);
+    }
+    boxPending = false;
+  }
+  return vertices;
+}
 
 bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
                    Face& face) {
@@ -191,6 +208,7 @@ bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, 
       face.centre = tr * (plane->getPlaneNormal() * plane->getPlaneConstant());
       face.radius = 0.0;
       face.vertices.clear();
+      face.boxPending = false;
       if (cosine) *cosine = double(face.normal.dot(direction));
       return true;
     }
@@ -214,6 +232,7 @@ bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, 
       face.centre = tr * (n * h[axis]);
       face.radius = double(cyl->getRadius());
       face.vertices.clear();
+      face.boxPending = false;
       return true;
     }
     case CONVEX_HULL_SHAPE_PROXYTYPE: {
@@ -238,6 +257,7 @@ bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, 
       face.normal = tr.getBasis() * btVector3(f.m_plane[0], f.m_plane[1], f.m_plane[2]);
       face.radius = 0.0;
       face.vertices.clear();
+      face.boxPending = false;
       btVector3 sum(0, 0, 0);
       for (int k = 0; k < f.m_indices.size(); ++k) {
         // Bullet's hull computer works on a quantized grid (vertices off by
@@ -326,8 +346,9 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   auto polygonOf = [&](const Face& f) {
     std::vector<Vec2> pts;
     if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius);
-    pts.reserve(f.vertices.size());
-    for (const btVector3& p : f.vertices) pts.push_back(toPlane(p, base, ex, ey));
+    const std::vector<btVector3>& vertices = f.polygonVertices();
+    pts.reserve(vertices.size());
+    for (const btVector3& p : vertices) pts.push_back(toPlane(p, base, ex, ey));
     return counterClockwise(std::move(pts));
   };
   // each face's polygon, built at most once
