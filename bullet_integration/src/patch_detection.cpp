@@ -34,9 +34,9 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 // near-duplicates. Faces and clipped overlaps arrive in cyclic order
 // (box faces, hull faces, Sutherland-Hodgman output): then a reversal, if
 // any, suffices (checked in O(n), no trigonometry). Otherwise they are
-// sorted by their angle about the mean, each angle computed once.
-std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
-  if (pts.size() < 3) return pts;
+// sorted by their angle about the mean, each angle computed once. In place.
+void counterClockwise(std::vector<Vec2>& pts) {
+  if (pts.size() < 3) return;
   Vec2 mean = Vec2::Zero();
   for (const Vec2& p : pts) mean += p;
   mean /= double(pts.size());
@@ -64,13 +64,13 @@ std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
     std::sort(byAngle.begin(), byAngle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (size_t i = 0; i < n; ++i) pts[i] = byAngle[i].second;
   }
-  std::vector<Vec2> out;
-  out.reserve(n);
-  for (const Vec2& p : pts) {
-    if (out.empty() || (p - out.back()).norm() > merge) out.push_back(p);
+  // merged in place: pts[0, kept) are the points kept so far
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (kept == 0 || (pts[i] - pts[kept - 1]).norm() > merge) pts[kept++] = pts[i];
   }
-  while (out.size() > 1 && (out.front() - out.back()).norm() <= merge) out.pop_back();
-  return out;
+  while (kept > 1 && (pts[0] - pts[kept - 1]).norm() <= merge) --kept;
+  pts.resize(kept);
 }
 // Unit circle at kDiskSides points (computed once).
 const std::array<Vec2, kDiskSides>& unitCircle() {
@@ -85,17 +85,25 @@ const std::array<Vec2, kDiskSides>& unitCircle() {
   return table;
 }
 
-std::vector<Vec2> diskPolygon(const Vec2& centre, double radius) {
-  std::vector<Vec2> pts;
-  pts.reserve(kDiskSides + 4);  // room for the clip's new points
+void diskPolygon(const Vec2& centre, double radius, std::vector<Vec2>& pts) {
+  pts.clear();
   for (const Vec2& u : unitCircle()) pts.emplace_back(centre + radius * u);
-  return pts;
+}
+
+// Buffers of buildPatch, kept per thread: their storage is reused from
+// patch to patch (a clipped overlap was six allocations).
+struct Buffers {
+  std::vector<Vec2> a, b, subject, out;
+};
+Buffers& buffers() {
+  static thread_local Buffers b;
+  return b;
 }
 
 // Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
-// (both counter-clockwise).
-std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
-  if (subject.empty()) return subject;
+// (both counter-clockwise), in place (`out`: a buffer).
+void clipConvex(std::vector<Vec2>& subject, const std::vector<Vec2>& clip, std::vector<Vec2>& out) {
+  if (subject.empty()) return;
   // a circle (centre m, radius rMax) around the subject; it also holds every
   // clipped subject (a part of the subject's convex hull)
   Vec2 m = Vec2::Zero();
@@ -103,7 +111,6 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
   m /= double(subject.size());
   double rMax = 0.0;
   for (const Vec2& p : subject) rMax = std::max(rMax, (p - m).norm());
-  std::vector<Vec2> out;
   for (size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
     const Vec2& c1 = clip[i];
     const Vec2& c2 = clip[(i + 1) % clip.size()];
@@ -125,22 +132,25 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
     // convex cut gives n + 1, round-off near the line may give more)
     out.resize(2 * n);
     size_t k = 0;
+    // (through pointers: the two buffers are references that the compiler
+    // must otherwise assume to alias, reloading both at every store)
+    const Vec2* const in = subject.data();
+    Vec2* const o = out.data();
     // each point's side computed once (the next point's is carried over)
-    const double s0 = cross2(edge, subject[0] - c1);
+    const double s0 = cross2(edge, in[0] - c1);
     double sp = s0;
     for (size_t j = 0; j < n; ++j) {
-      const Vec2& p = subject[j];
+      const Vec2& p = in[j];
       const bool last = j + 1 == n;
-      const Vec2& q = subject[last ? 0 : j + 1];
+      const Vec2& q = in[last ? 0 : j + 1];
       const double sq = last ? s0 : cross2(edge, q - c1);
-      if (sp >= 0.0) out[k++] = p;
-      if ((sp >= 0.0) != (sq >= 0.0)) out[k++] = p + (q - p) * (sp / (sp - sq));
+      if (sp >= 0.0) o[k++] = p;
+      if ((sp >= 0.0) != (sq >= 0.0)) o[k++] = p + (q - p) * (sp / (sp - sq));
       sp = sq;
     }
     out.resize(k);
     subject.swap(out);
   }
-  return subject;
 }
 
 // True if the disk (centre, radius) lies inside the convex CCW polygon.
@@ -343,23 +353,22 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     return patch;
   }
 
-  auto polygonOf = [&](const Face& f) {
-    std::vector<Vec2> pts;
-    if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius);
-    const std::vector<btVector3>& vertices = f.polygonVertices();
-    pts.reserve(vertices.size());
-    for (const btVector3& p : vertices) pts.push_back(toPlane(p, base, ex, ey));
-    return counterClockwise(std::move(pts));
+  Buffers& buf = buffers();
+  auto polygonOf = [&](const Face& f, std::vector<Vec2>& pts) {
+    if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius, pts);
+    pts.clear();
+    for (const btVector3& p : f.polygonVertices()) pts.push_back(toPlane(p, base, ex, ey));
+    counterClockwise(pts);
   };
   // each face's polygon, built at most once
-  std::optional<std::vector<Vec2>> polyA, polyB;
+  bool haveA = false, haveB = false;
   auto polygonA = [&]() -> const std::vector<Vec2>& {
-    if (!polyA) polyA = polygonOf(a);
-    return *polyA;
+    if (!haveA) polygonOf(a, buf.a), haveA = true;
+    return buf.a;
   };
   auto polygonB = [&]() -> const std::vector<Vec2>& {
-    if (!polyB) polyB = polygonOf(b);
-    return *polyB;
+    if (!haveB) polygonOf(b, buf.b), haveB = true;
+    return buf.b;
   };
 
   // the overlap, as a disk (centre, radius) or a counter-clockwise polygon
@@ -388,7 +397,10 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
              diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonA())) {
     disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
   } else {
-    poly = counterClockwise(clipConvex(polygonA(), polygonB()));
+    buf.subject = polygonA();
+    clipConvex(buf.subject, polygonB(), buf.out);
+    counterClockwise(buf.subject);
+    poly = buf.subject;
   }
   if (!disk) {
     // area centroid of the polygon (shoelace)
