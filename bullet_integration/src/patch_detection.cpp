@@ -34,9 +34,9 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 // near-duplicates. Faces and clipped overlaps arrive in cyclic order
 // (box faces, hull faces, Sutherland-Hodgman output): then a reversal, if
 // any, suffices (checked in O(n), no trigonometry). Otherwise they are
-// sorted by their angle about the mean, each angle computed once.
-std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
-  if (pts.size() < 3) return pts;
+// sorted by their angle about the mean, each angle computed once. In place.
+void counterClockwise(std::vector<Vec2>& pts) {
+  if (pts.size() < 3) return;
   Vec2 mean = Vec2::Zero();
   for (const Vec2& p : pts) mean += p;
   mean /= double(pts.size());
@@ -64,13 +64,13 @@ std::vector<Vec2> counterClockwise(std::vector<Vec2> pts) {
     std::sort(byAngle.begin(), byAngle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (size_t i = 0; i < n; ++i) pts[i] = byAngle[i].second;
   }
-  std::vector<Vec2> out;
-  out.reserve(n);
-  for (const Vec2& p : pts) {
-    if (out.empty() || (p - out.back()).norm() > merge) out.push_back(p);
+  // merged in place: pts[0, kept) are the points kept so far
+  size_t kept = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (kept == 0 || (pts[i] - pts[kept - 1]).norm() > merge) pts[kept++] = pts[i];
   }
-  while (out.size() > 1 && (out.front() - out.back()).norm() <= merge) out.pop_back();
-  return out;
+  while (kept > 1 && (pts[0] - pts[kept - 1]).norm() <= merge) --kept;
+  pts.resize(kept);
 }
 // Unit circle at kDiskSides points (computed once).
 const std::array<Vec2, kDiskSides>& unitCircle() {
@@ -85,17 +85,25 @@ const std::array<Vec2, kDiskSides>& unitCircle() {
   return table;
 }
 
-std::vector<Vec2> diskPolygon(const Vec2& centre, double radius) {
-  std::vector<Vec2> pts;
-  pts.reserve(kDiskSides + 4);  // room for the clip's new points
+void diskPolygon(const Vec2& centre, double radius, std::vector<Vec2>& pts) {
+  pts.clear();
   for (const Vec2& u : unitCircle()) pts.emplace_back(centre + radius * u);
-  return pts;
+}
+
+// Buffers of buildPatch, kept per thread: their storage is reused from
+// patch to patch (a clipped overlap was six allocations).
+struct Buffers {
+  std::vector<Vec2> a, b, subject, out;
+};
+Buffers& buffers() {
+  static thread_local Buffers b;
+  return b;
 }
 
 // Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
-// (both counter-clockwise).
-std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
-  if (subject.empty()) return subject;
+// (both counter-clockwise), in place (`out`: a buffer).
+void clipConvex(std::vector<Vec2>& subject, const std::vector<Vec2>& clip, std::vector<Vec2>& out) {
+  if (subject.empty()) return;
   // a circle (centre m, radius rMax) around the subject; it also holds every
   // clipped subject (a part of the subject's convex hull)
   Vec2 m = Vec2::Zero();
@@ -103,7 +111,6 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
   m /= double(subject.size());
   double rMax = 0.0;
   for (const Vec2& p : subject) rMax = std::max(rMax, (p - m).norm());
-  std::vector<Vec2> out;
   for (size_t i = 0; i < clip.size() && !subject.empty(); ++i) {
     const Vec2& c1 = clip[i];
     const Vec2& c2 = clip[(i + 1) % clip.size()];
@@ -120,19 +127,30 @@ std::vector<Vec2> clipConvex(std::vector<Vec2> subject, const std::vector<Vec2>&
         break;
       }
     if (allInside) continue;
-    out.clear();
-    out.reserve(subject.size() + 1);
-    for (size_t j = 0; j < subject.size(); ++j) {
-      const Vec2& p = subject[j];
-      const Vec2& q = subject[(j + 1) % subject.size()];
-      const double sp = cross2(edge, p - c1);
-      const double sq = cross2(edge, q - c1);
-      if (sp >= 0.0) out.push_back(p);
-      if ((sp >= 0.0) != (sq >= 0.0)) out.push_back(p + (q - p) * (sp / (sp - sq)));
+    const size_t n = subject.size();
+    // room for every point and crossing (each point gives two at most; a
+    // convex cut gives n + 1, round-off near the line may give more)
+    out.resize(2 * n);
+    size_t k = 0;
+    // (through pointers: the two buffers are references that the compiler
+    // must otherwise assume to alias, reloading both at every store)
+    const Vec2* const in = subject.data();
+    Vec2* const o = out.data();
+    // each point's side computed once (the next point's is carried over)
+    const double s0 = cross2(edge, in[0] - c1);
+    double sp = s0;
+    for (size_t j = 0; j < n; ++j) {
+      const Vec2& p = in[j];
+      const bool last = j + 1 == n;
+      const Vec2& q = in[last ? 0 : j + 1];
+      const double sq = last ? s0 : cross2(edge, q - c1);
+      if (sp >= 0.0) o[k++] = p;
+      if ((sp >= 0.0) != (sq >= 0.0)) o[k++] = p + (q - p) * (sp / (sp - sq));
+      sp = sq;
     }
+    out.resize(k);
     subject.swap(out);
   }
-  return subject;
 }
 
 // True if the disk (centre, radius) lies inside the convex CCW polygon.
@@ -146,50 +164,68 @@ bool diskInsidePolygon(const Vec2& centre, double radius, const std::vector<Vec2
 }
 
 // The face of a box (half extents h, with margin: the real box).
-Face boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDir, double* cosine) {
+void boxFace(const btVector3& h, const btTransform& tr, const btVector3& localDir, double* cosine,
+             Face& face) {
   int axis = localDir.closestAxis();
   const double sign = localDir[axis] >= 0 ? 1.0 : -1.0;
   btVector3 n(0, 0, 0);
   n[axis] = btScalar(sign);
   if (cosine) *cosine = double(n.dot(localDir));
-  Face face;
   face.kind = Face::Kind::Polygon;
   face.normal = tr.getBasis() * n;
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  face.radius = 0.0;
+  face.vertices.clear();
   btVector3 c(0, 0, 0);
   c[axis] = btScalar(sign) * h[axis];
   face.centre = tr * c;
-  const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
-  face.vertices.reserve(4);
-  for (int k = 0; k < 4; ++k) {
-    btVector3 p = c;
-    p[u] = btScalar(su[k]) * h[u];
-    p[v] = btScalar(sv[k]) * h[v];
-    face.vertices.push_back(tr * p);
-  }
-  return face;
+  // the vertices when asked for (Face::polygonVertices)
+  face.boxPending = true;
+  face.boxTransform = tr;
+  face.boxCentre = c;
+  face.boxHalf = h;
+  face.boxU = (axis + 1) % 3;
+  face.boxV = (axis + 2) % 3;
 }
 
 }  // namespace
 
-std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
-                                  double* cosine) {
+const std::vector<btVector3>& Face::polygonVertices() const {
+  if (boxPending) {
+    const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+    vertices.clear();
+    vertices.reserve(4);
+    for (int k = 0; k < 4; ++k) {
+      btVector3 p = boxCentre;
+      p[boxU] = btScalar(su[k]) * boxHalf[boxU];
+      p[boxV] = btScalar(sv[k]) * boxHalf[boxV];
+      vertices.push_back(boxTransform * p);
+    }
+    boxPending = false;
+  }
+  return vertices;
+}
+
+bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
+                   Face& face) {
   const btCollisionShape* shape = object.getCollisionShape();
   const btTransform& tr = object.getWorldTransform();
   const btVector3 localDir = tr.getBasis().transpose() * direction;
   switch (shape->getShapeType()) {
     case STATIC_PLANE_PROXYTYPE: {
       const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
-      Face face;
       face.kind = Face::Kind::Plane;
       face.normal = tr.getBasis() * plane->getPlaneNormal();
       face.centre = tr * (plane->getPlaneNormal() * plane->getPlaneConstant());
+      face.radius = 0.0;
+      face.vertices.clear();
+      face.boxPending = false;
       if (cosine) *cosine = double(face.normal.dot(direction));
-      return face;
+      return true;
     }
     case BOX_SHAPE_PROXYTYPE: {
       const auto* box = static_cast<const btBoxShape*>(shape);
-      return boxFace(box->getHalfExtentsWithMargin(), tr, localDir, cosine);
+      boxFace(box->getHalfExtentsWithMargin(), tr, localDir, cosine, face);
+      return true;
     }
     case CYLINDER_SHAPE_PROXYTYPE: {
       // btCylinderShape (y up), btCylinderShapeX, btCylinderShapeZ: the caps
@@ -201,12 +237,13 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
       btVector3 n(0, 0, 0);
       n[axis] = btScalar(sign);
       if (cosine) *cosine = double(n.dot(localDir));
-      Face face;
       face.kind = Face::Kind::Disk;
       face.normal = tr.getBasis() * n;
       face.centre = tr * (n * h[axis]);
       face.radius = double(cyl->getRadius());
-      return face;
+      face.vertices.clear();
+      face.boxPending = false;
+      return true;
     }
     case CONVEX_HULL_SHAPE_PROXYTYPE: {
       // Polyhedral features are built once per shape (this writes to the
@@ -214,7 +251,7 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
       auto* hull = const_cast<btConvexHullShape*>(static_cast<const btConvexHullShape*>(shape));
       if (!hull->getConvexPolyhedron()) hull->initializePolyhedralFeatures();
       const btConvexPolyhedron* poly = hull->getConvexPolyhedron();
-      if (!poly || poly->m_faces.size() == 0) return std::nullopt;
+      if (!poly || poly->m_faces.size() == 0) return false;
       int best = -1;
       double bestCos = -2.0;
       for (int i = 0; i < poly->m_faces.size(); ++i) {
@@ -226,9 +263,11 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
         }
       }
       const btFace& f = poly->m_faces[best];
-      Face face;
       face.kind = Face::Kind::Polygon;
       face.normal = tr.getBasis() * btVector3(f.m_plane[0], f.m_plane[1], f.m_plane[2]);
+      face.radius = 0.0;
+      face.vertices.clear();
+      face.boxPending = false;
       btVector3 sum(0, 0, 0);
       for (int k = 0; k < f.m_indices.size(); ++k) {
         // Bullet's hull computer works on a quantized grid (vertices off by
@@ -249,7 +288,7 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
         face.vertices.push_back(p);
         sum += p;
       }
-      if (face.vertices.size() < 3) return std::nullopt;
+      if (face.vertices.size() < 3) return false;
       face.centre = sum / btScalar(face.vertices.size());
       // normal of the snapped face (Newell), with the orientation of Bullet's plane
       btVector3 newell(0, 0, 0);
@@ -260,10 +299,10 @@ std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVecto
         face.normal = newell.dot(face.normal) < 0 ? -newell : newell;
       }
       if (cosine) *cosine = bestCos;
-      return face;
+      return true;
     }
     default:
-      return std::nullopt;
+      return false;
   }
 }
 
@@ -314,22 +353,22 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     return patch;
   }
 
-  auto polygonOf = [&](const Face& f) {
-    std::vector<Vec2> pts;
-    if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius);
-    pts.reserve(f.vertices.size());
-    for (const btVector3& p : f.vertices) pts.push_back(toPlane(p, base, ex, ey));
-    return counterClockwise(std::move(pts));
+  Buffers& buf = buffers();
+  auto polygonOf = [&](const Face& f, std::vector<Vec2>& pts) {
+    if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius, pts);
+    pts.clear();
+    for (const btVector3& p : f.polygonVertices()) pts.push_back(toPlane(p, base, ex, ey));
+    counterClockwise(pts);
   };
   // each face's polygon, built at most once
-  std::optional<std::vector<Vec2>> polyA, polyB;
+  bool haveA = false, haveB = false;
   auto polygonA = [&]() -> const std::vector<Vec2>& {
-    if (!polyA) polyA = polygonOf(a);
-    return *polyA;
+    if (!haveA) polygonOf(a, buf.a), haveA = true;
+    return buf.a;
   };
   auto polygonB = [&]() -> const std::vector<Vec2>& {
-    if (!polyB) polyB = polygonOf(b);
-    return *polyB;
+    if (!haveB) polygonOf(b, buf.b), haveB = true;
+    return buf.b;
   };
 
   // the overlap, as a disk (centre, radius) or a counter-clockwise polygon
@@ -358,7 +397,10 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
              diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonA())) {
     disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
   } else {
-    poly = counterClockwise(clipConvex(polygonA(), polygonB()));
+    buf.subject = polygonA();
+    clipConvex(buf.subject, polygonB(), buf.out);
+    counterClockwise(buf.subject);
+    poly = buf.subject;
   }
   if (!disk) {
     // area centroid of the polygon (shoelace)

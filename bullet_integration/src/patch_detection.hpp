@@ -7,6 +7,7 @@
 
 #include <patchspin/geometry.hpp>
 
+#include <LinearMath/btTransform.h>
 #include <LinearMath/btVector3.h>
 
 #include <optional>
@@ -23,13 +24,25 @@ struct Face {
   btVector3 normal{0, 0, 1};        // outward unit normal
   btVector3 centre{0, 0, 0};        // disk centre / polygon centroid / a point of the plane
   double radius = 0.0;              // disk only [m]
-  std::vector<btVector3> vertices;  // polygon only
+  // Polygon only: its vertices. A box face's are made when first asked for:
+  // most lookups (a contact off the faces, an overlap kept from the last
+  // step) need the normal and the centre only.
+  const std::vector<btVector3>& polygonVertices() const;
+
+  // (written by findFaceAlong)
+  mutable std::vector<btVector3> vertices;  // made (hulls), or made on demand (boxes)
+  mutable bool boxPending = false;          // a box face whose vertices are not made yet
+  btTransform boxTransform;                 // the box's world transform
+  btVector3 boxCentre{0, 0, 0}, boxHalf{0, 0, 0};  // face centre, half extents (box frame)
+  int boxU = 0, boxV = 0;                   // the face's in-plane axes (box frame)
 };
 
 // The face of `object` whose outward normal is closest to `direction`
-// (unit), with its cosine; nullopt for shapes without flat faces.
-std::optional<Face> findFaceAlong(const btCollisionObject& object, const btVector3& direction,
-                                  double* cosine);
+// (unit), with its cosine, written to `face` (every field; its vertex
+// storage is reused: the solver asks twice per touching manifold and step);
+// false for shapes without flat faces (`face` then unspecified).
+bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
+                   Face& face);
 
 // Outline of a patch in its frame (about O), cheap to build and compare;
 // the PatchShape (moment tables) is built from it only when it changes.

@@ -376,6 +376,28 @@ struct PatchFrictionSolver::Impl {
     bool wasFlat;
   };
   std::vector<Candidate> candidates;
+  // the two faces of the manifold in hand (convertContacts), kept for their
+  // vertex storage
+  internal::Face faceA, faceB;
+  // disk shapes already built, by radius (PatchShape::disk is a function of
+  // it: a copy is the shape it would build; a pile of equal coins builds
+  // one), at most kDiskShapeCache of them, the oldest replaced
+  static constexpr std::size_t kDiskShapeCache = 8;
+  std::vector<std::pair<double, PatchShape>> diskShapes;
+  std::size_t diskShapeNext = 0;
+  PatchShape shapeOf(const internal::PatchOutline& outline) {
+    if (!outline.disk) return outline.toShape();
+    for (const auto& entry : diskShapes)
+      if (entry.first == outline.radius) return entry.second;
+    PatchShape shape = outline.toShape();
+    if (diskShapes.size() < kDiskShapeCache) {
+      diskShapes.emplace_back(outline.radius, shape);
+    } else {
+      diskShapes[diskShapeNext] = {outline.radius, shape};
+      diskShapeNext = (diskShapeNext + 1) % kDiskShapeCache;
+    }
+    return shape;
+  }
   // options of the island's bodies by solver body id (convertBodies has
   // numbered them before convertContacts), looked up once per body and
   // solve: a manifold's two lookups are then array reads (in a pile, ~4
@@ -1102,21 +1124,25 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
 
       // faces and flatness, with hysteresis
       double cosA = 0.0, cosB = 0.0;
-      const auto faceA = internal::findFaceAlong(*A, -nIntoA, &cosA);
-      const auto faceB = faceA ? internal::findFaceAlong(*B, nIntoA, &cosB) : std::nullopt;
+      internal::Face* const faceA = &im.faceA;
+      internal::Face* const faceB = &im.faceB;
+      // (B's face is looked for whatever A's: for a convex hull that builds
+      // the polyhedral features Bullet's own contact clipping then uses)
+      const bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, *faceA) &&
+                             internal::findFaceAlong(*B, nIntoA, &cosB, *faceB);
       bool flat = false;
       std::optional<internal::DetectedPatch> geo;
       bool kept = false;  // st.geometry is this step's patch (geo unset)
-      if (faceA && faceB && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
+      if (haveFaces && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
         const double c = std::clamp(-double(faceA->normal.dot(faceB->normal)), -1.0, 1.0);
-        const double angle = std::acos(c);
         const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
         // the faces must also face the contact, and the contact must be on
         // them: two coins side by side touch rim to rim, with a normal across
         // their (parallel) faces or, from Bullet's convex test near the rim,
         // along them at a point one coin thickness off the other's face
-        flat = angle < tol && cosA >= kFacingCos && cosB >= kFacingCos &&
-               im.step - st.tipStep > kTipCooldownSteps && contactOnFaces(*m, aIs0, *faceA, *faceB);
+        // (the angle between the faces last of the cheap tests: acos)
+        flat = cosA >= kFacingCos && cosB >= kFacingCos && im.step - st.tipStep > kTipCooldownSteps &&
+               std::acos(c) < tol && contactOnFaces(*m, aIs0, *faceA, *faceB);
         // x axis fixed in the moving body: a box spinning on a plane keeps
         // the same outline, and its cached shape, in this frame
         if (flat) {
@@ -1169,7 +1195,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
           (opt.rho && st.friction->rho() != *opt.rho)) {
         try {
-          const PatchShape shape = outline.toShape();
+          const PatchShape shape = im.shapeOf(outline);
           st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu,
                               opt.rho ? *opt.rho : 0.0);
           st.outline = outline;
