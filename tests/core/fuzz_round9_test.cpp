@@ -1,5 +1,5 @@
-// Ninth fuzz round (issue 6): regression tests for the class decided in it
-// (fuzz/README.md, "Ninth round", item 63).
+// Ninth fuzz round (issue 6): regression tests for the classes decided in
+// it (fuzz/README.md, "Ninth round", items 63-64).
 //
 // Item 63 is undefined behaviour (a signed int overflow in minPressure) that
 // the gcc Release build happens to survive with the right outcome: there,
@@ -13,8 +13,11 @@
 // pass, 2 of 2).
 #include <patchspin/analysis.hpp>
 #include <patchspin/pressure.hpp>
+#include <patchspin/step.hpp>
 
 #include <gtest/gtest.h>
+
+#include "oracle.hpp"
 
 #include <cmath>
 #include <limits>
@@ -109,4 +112,44 @@ TEST(FuzzRound9, RestContactOfAnOverflowingTippingCoupleIsRefused) {
     EXPECT_TRUE(refusedAsNotFinite([&] { flat.contactAtRest(Vec3::Zero(), flat.bodyLoads()); }));
     EXPECT_THROW(findLimitDirections(flat, LimitOptions{}), Error);
   }
+}
+
+// 64. The eighth round's open step input
+// (step_exact_tiny_disk_far_from_O_icr_at_its_centre_law_4e-6_off.bin): a
+// 1e-8 m disk 9,000 diameters from O, rho = 0.5, slipping with its ICR inside
+// the disk. The recentred block (item 56) stopped at 1e-14 of its slip scale
+// |b'| + L' |K'| ~ 12 while |s'| ~ 1e-8: the slip's direction, and the law
+// at it, only to ~1e-5. The slip is now polished relative to |s'|. Fails on
+// ec855f9 (checked, its step.cpp linked in: the impulse is 4.22e-6 of L
+// off the oracle below, above kLaw; now 1.6e-9, ICR 0.12 R from the centre).
+TEST(FuzzRound9, ExactBlockOfATinyDiskWithItsIcrInsideIsTheLawAtItsSlip) {
+  const Vec2 centre(-3.7438506778344681e-05, -8.2157417227233455e-05);
+  const double radius = 1e-8, rho = 0.5;
+  const PatchShape shape = PatchShape::disk(radius, centre);
+  const LinearPressure p = LinearPressure::fromLoads(
+      shape, PatchLoads{1.3513656002999971e+158, 1.1102462453994961e+154, -5.0589732790361525e+153});
+  const FrictionPatch patch(shape, p, 1073217536.0, rho);
+  FrictionBlockInput input;
+  input.b = Vec3(-0.0, 0.5, 0.5);
+  input.L = 23.6484375;
+  input.K = 0.5 * Mat3::Identity();
+  input.warmSlip = Vec3(-524288.0, -524288.0, 10661396480.0);
+  input.warmGauge = Vec3(0.0, 1e-08, 0.00021257251501083374);
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, input);
+  ASSERT_FALSE(r.sticking);
+  // (the ICR c = rho (-s_y, s_x) / s_z lies inside the disk: the law turns
+  // with the slip's direction about g)
+  const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
+  EXPECT_LT((icr - centre).norm(), radius);
+  // slip = b + K impulse to the round-off of one 3x3 product
+  constexpr double kSlip = 1e-14;
+  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(), kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
+  // oracle: Q = -mu ∫ p k dA with mu = 1 by brute-force quadrature of
+  // Eq. (16) at the returned slip, so q = Q / Pz; kLaw is the fuzz target's
+  // tolerance (relative to L times the set's size, ~1 here: lever 1.8e-4)
+  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho,
+                                                     r.slip, 1e-12) / patch.Pz();
+  constexpr double kLaw = 1e-6;
+  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L) << "q " << q.transpose() << ", impulse "
+                                                               << r.impulse.transpose();
 }
