@@ -78,6 +78,15 @@ double minPressure(const PatchShape& shape, const LinearPressure& p) {
       // found by fuzzing. Then the sum is taken with the coefficients
       // scaled by a power of two.)
       if (!std::isfinite(at)) {
+        // a NaN or infinite coefficient has no binary exponent to scale by
+        // (ilogb(NaN) is FP_ILOGBNAN, INT_MIN with glibc on x86, and -e
+        // overflowed int: undefined behaviour, found by fuzzing, `limits`:
+        // FlatBodyModel::contactAtRest with a tipping couple of inf gave a
+        // pressure of NaN): the pressure is not finite on the patch
+        if (!p.coefficients().allFinite()) {
+          lowest = std::numeric_limits<double>::quiet_NaN();
+          break;
+        }
         const int e = std::ilogb(p.coefficients().cwiseAbs().maxCoeff());
         const LinearPressure scaled{std::ldexp(p.p0, -e), std::ldexp(p.cx, -e), std::ldexp(p.cy, -e)};
         at = std::ldexp(scaled.at(v), e);
