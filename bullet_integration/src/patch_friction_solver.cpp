@@ -1126,8 +1126,10 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       double cosA = 0.0, cosB = 0.0;
       internal::Face* const faceA = &im.faceA;
       internal::Face* const faceB = &im.faceB;
-      // (B's face is looked for whatever A's: for a convex hull that builds
-      // the polyhedral features Bullet's own contact clipping then uses)
+      // (B's face is looked up whenever A has one, even when A's face alone
+      // rules a patch out, as before: for a convex hull that lookup builds
+      // the polyhedral features Bullet's own contact clipping then uses, so
+      // skipping it could change a hull scene's contacts)
       const bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, *faceA) &&
                              internal::findFaceAlong(*B, nIntoA, &cosB, *faceB);
       bool flat = false;
