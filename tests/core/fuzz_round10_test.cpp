@@ -240,8 +240,9 @@ TEST(FuzzRound10, FarSliverWithACancellingPressureKeepsPiX0Y0) {
     const double tolerance = kRowTolerance * kEps * terms / static_cast<double>(Pz) +
                              4.0 * kEps * std::max(1.0, D * D / A) * std::abs(static_cast<double>(exact));
     EXPECT_NEAR(got, static_cast<double>(exact), tolerance) << (f == 1 ? "pi_x0" : "pi_y0");
+    std::printf("[ info ] %s %.17g, 50 digits %.17g, off %.2g (tolerance %.2g)\n", f == 1 ? "pi_x0" : "pi_y0", got,
+                static_cast<double>(exact), std::abs(got - static_cast<double>(exact)), tolerance);
   }
   // and so within the target's bound, ∫|p| / Pz as pi_fuzz computes it (its message)
   EXPECT_LE(std::hypot(pm.pi_x0, pm.pi_y0), 9.4583940991483004);
-  std::printf("[ info ] pi_x0 %.17g, pi_y0 %.17g\n", pm.pi_x0, pm.pi_y0);
 }
