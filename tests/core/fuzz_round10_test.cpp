@@ -7,8 +7,9 @@
 // (boost::multiprecision) from the very double vertices: it loses ~offset^3
 // of its 50 digits to cancellation about a far O (at most 1e12 here), and
 // shares nothing with the core's quadrature about the vertex mean but the
-// vertices. (Checked: with 9fe9cd6^'s geometry.cpp linked ahead of the core,
-// these tests fail, 2 of 2; on the final core, 2 of 2 pass.)
+// vertices. (Checked: with 29b3416's geometry.cpp, main's before this round,
+// linked ahead of the core, these tests fail, 2 of 2; on the final core, 2
+// of 2 pass.)
 #include <patchspin/geometry.hpp>
 #include <patchspin/pressure.hpp>
 
