@@ -25,6 +25,21 @@ constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// The rows with r of a table from the eight integrals
+// (r, r x, r y, x/r, x^2/r, xy/r, y/r, y^2/r); xy/r fills two entries.
+void setRRows(const Eigen::Matrix<double, 8, 1>& sum, MomentTable& table) {
+  auto& m = table.m;
+  m(MomentTable::kR, 0) = sum[0];
+  m(MomentTable::kR, 1) = sum[1];
+  m(MomentTable::kR, 2) = sum[2];
+  m(MomentTable::kXOverR, 0) = sum[3];
+  m(MomentTable::kXOverR, 1) = sum[4];
+  m(MomentTable::kXOverR, 2) = sum[5];
+  m(MomentTable::kYOverR, 0) = sum[6];
+  m(MomentTable::kYOverR, 1) = sum[5];
+  m(MomentTable::kYOverR, 2) = sum[7];
+}
+
 // Largest distance between two of the points: over the pairs i < j, as
 // squared norms with one square root at the end (the same value as the
 // largest (u - v).norm() over all ordered pairs: sqrt is monotonic, and
@@ -199,16 +214,7 @@ void farPolygonRRows(const std::vector<Vec2>& v, const Vec2& g, MomentTable& tab
     }
     sum += twiceArea * triangle;
   }
-  auto& m = table.m;
-  m(MomentTable::kR, 0) = sum[0];
-  m(MomentTable::kR, 1) = sum[1];
-  m(MomentTable::kR, 2) = sum[2];
-  m(MomentTable::kXOverR, 0) = sum[3];
-  m(MomentTable::kXOverR, 1) = sum[4];
-  m(MomentTable::kXOverR, 2) = sum[5];
-  m(MomentTable::kYOverR, 0) = sum[6];
-  m(MomentTable::kYOverR, 1) = sum[5];
-  m(MomentTable::kYOverR, 2) = sum[7];
+  setRRows(sum, table);
 }
 
 MomentTable polygonMomentTable(const std::vector<Vec2>& v, bool aboutVertexMean, bool farRows,
@@ -295,7 +301,6 @@ MomentTable diskPolynomialMoments(const Vec2& centre, double R) {
 // phi = alpha - beta, (delta, beta) the polar coordinates of C.
 MomentTable diskMomentTable(const Vec2& centre, double R) {
   MomentTable table = diskPolynomialMoments(centre, R);
-  auto& m = table.m;
   const double cx = centre.x(), cy = centre.y();
 
   const double delta = centre.norm();
@@ -362,15 +367,7 @@ MomentTable diskMomentTable(const Vec2& centre, double R) {
     sum += internal::adaptiveGauss<8>(f, -kPi / 2.0, 0.0, kRelTol);
     sum += internal::adaptiveGauss<8>(f, 0.0, kPi / 2.0, kRelTol);
   }
-  m(MomentTable::kR, 0) = sum[0];
-  m(MomentTable::kR, 1) = sum[1];
-  m(MomentTable::kR, 2) = sum[2];
-  m(MomentTable::kXOverR, 0) = sum[3];
-  m(MomentTable::kXOverR, 1) = sum[4];
-  m(MomentTable::kXOverR, 2) = sum[5];
-  m(MomentTable::kYOverR, 0) = sum[6];
-  m(MomentTable::kYOverR, 1) = sum[5];
-  m(MomentTable::kYOverR, 2) = sum[7];
+  setRRows(sum, table);
   return table;
 }
 
