@@ -156,8 +156,9 @@ void addPolygonPolynomialRows(const std::vector<Vec2>& v, bool aboutVertexMean, 
 // closed form in 50 digits, on 200 polygons per offset (3-10 vertices, aspect
 // 1 to 1e-8), in units of eps A max|f| max|phi| max(1, diameter^2 / A):
 // closed form 3 to 15 at 3-4 diameters, 770 at 16, 4e4 at 100, 1.5e8 at
-// 3560; the fan's 8 x 8 rule below 1.0 from 3 diameters on (at 2, its
-// 8-point rule has not converged: 1.5e4). Patches about a point inside them
+// 3560; the fan's 8 x 8 rule at most 4.1 from 3 diameters on (below 1.0
+// with its nodes in long double; 4.6 on the second round's far heptagon;
+// at 2 diameters its 8-point rule has not converged: 1.5e4). Patches about a point inside them
 // (the Bullet layer's, about their centroid: max|r| <= diameter) never get
 // here: one comparison.
 constexpr double kFarRowsOffset = 4.0;
