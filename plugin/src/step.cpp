@@ -982,9 +982,18 @@ bool solveExactRecentred(const FrictionPatch& patch, const FrictionBlockInput& i
     }
     const PatchShape local = shape.inFrame(g, 0.0);
     const LinearPressure& p = patch.pressure();
+    // (with mu = 1: the block solves the unit law q = Q / (mu Pz), which mu
+    // does not enter, and the patch's own mu times the recentred pressure
+    // may overflow the constructor's scale check where the patch's did not:
+    // its bound mu A max|p| (1 + max|r| / rho) has the factor 2.5 about g
+    // (max|r'| / rho' = 1.5 on a disk) against 1.0002 about O. Found by
+    // fuzzing: mu = 1e300 on a 1e-8 m disk 5,300 diameters from O, a bound
+    // of 1.2e308 about O and 2.9e308 about g; the recentred patch was
+    // refused, the block went back to O, and its impulse was 2.7e-5 of L
+    // off the law at its slip)
     const FrictionPatch recentred =
-        patch.isHertz() ? FrictionPatch(local, HertzPressure{patch.Pz()}, patch.mu())
-                        : FrictionPatch(local, LinearPressure{p.p0 + p.cx * g.x() + p.cy * g.y(), p.cx, p.cy}, patch.mu());
+        patch.isHertz() ? FrictionPatch(local, HertzPressure{patch.Pz()}, 1.0)
+                        : FrictionPatch(local, LinearPressure{p.p0 + p.cx * g.x() + p.cy * g.y(), p.cx, p.cy}, 1.0);
     const double rho = patch.rho();
     Mat3 T = Mat3::Identity();
     T(0, 2) = -g.y() / rho;
