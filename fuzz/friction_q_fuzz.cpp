@@ -61,7 +61,7 @@ void checkExact(const Vec3& Q, const Bounds& b, const char* what) {
 // (|J| << terms) does not shrink (found: Pz/A = 1e-19 from terms 7e-3)
 void checkHomogeneous(const Mat3& J, const Vec3& w, double lever, double terms, const char* what) {
   checkFinite(J, what);
-  const double lhs = Vec3(J * w).stableNorm(), rhs = std::max(J.stableNorm() * w.stableNorm(), terms);
+  const double lhs = Vec3(J * w).stableNorm(), rhs = std::max(stableMatrixNorm(J) * w.stableNorm(), terms);
   if (lhs > kHomogeneitySlack * (1.0 + lever) * rhs + kTiny) {
     fail("%s: |dQ/dw w| = %.17g, not 0 (|dQ/dw| |w| = %.17g)", what, lhs, rhs);
   }
@@ -155,7 +155,7 @@ void run(ByteReader& in) {
     bounds.roundOffForce = mu * termsRoundOff;
     bounds.roundOffTorque = mu * termsRoundOff * lever;
   }
-  const double ellipsoidalBound = mu * Pz * patch.Pi().stableNorm();
+  const double ellipsoidalBound = mu * Pz * stableMatrixNorm(patch.Pi());
   constexpr double kLawNoDigits = 1e-6, kDomainMargin = 1.01;
   const bool lawWithoutDigits =
       !hertz && termsRoundOff / std::abs(Pz) > kLawNoDigits * kDomainMargin;

@@ -61,7 +61,7 @@ void run(ByteReader& in) {
   }();
   const double rmax = shape.maxDistanceFromOrigin();
   const double absP = shape.area() * (std::abs(rest.p0) + (std::abs(rest.cx) + std::abs(rest.cy)) * rmax);
-  const double scale = body.mu * std::max(std::abs(loads.force.z()), absP) * (1.0 + rmax / flat.rho()) * Minv.stableNorm() +
+  const double scale = body.mu * std::max(std::abs(loads.force.z()), absP) * (1.0 + rmax / flat.rho()) * stableMatrixNorm(Minv) +
                        Vec3(Minv * flat.externalWrench(loads)).stableNorm();
   note("field scale %.17g", scale);
   LimitOptions options;

@@ -191,9 +191,9 @@ void run(ByteReader& in) {
     // (and for magnitudes whose products overflow: kRange; and, exact law,
     // for a numerically singular K: scaledCondition)
     constexpr double kRange = 1e100;
-    const double size = input.b.stableNorm() + input.L * input.K.stableNorm() + input.warmSlip.stableNorm();
-    const bool moderate = size < kRange && input.K.stableNorm() < kRange &&
-                          Mat3(input.K.inverse()).stableNorm() < kRange && input.L < kRange;
+    const double size = input.b.stableNorm() + input.L * stableMatrixNorm(input.K) + input.warmSlip.stableNorm();
+    const bool moderate = size < kRange && stableMatrixNorm(input.K) < kRange &&
+                          stableMatrixNorm(Mat3(input.K.inverse())) < kRange && input.L < kRange;
     // (or a pressure whose unscaled terms c_k dF_k, before 1/Pz, are within
     // 1e8 of overflow: the law's Jacobian refuses those, as in friction_q;
     // found, loads ~1e300 on a 0.5 m disk)
@@ -249,8 +249,8 @@ void run(ByteReader& in) {
   // (plus the rounding of slip and impulse to the denormal grid, half a step
   // per entry, the impulse's through K; found: b of denormals against
   // K_xx = 3.8e146, where K^-1 b = 0 in x)
-  const double slipScale = input.b.stableNorm() + input.K.stableNorm() * out.impulse.stableNorm();
-  const double slipDenormals = 4.0 * std::numeric_limits<double>::denorm_min() * (1.0 + input.K.stableNorm());
+  const double slipScale = input.b.stableNorm() + stableMatrixNorm(input.K) * out.impulse.stableNorm();
+  const double slipDenormals = 4.0 * std::numeric_limits<double>::denorm_min() * (1.0 + stableMatrixNorm(input.K));
   if (Vec3(out.slip - input.b - input.K * out.impulse).stableNorm() > kBoundSlack * slipScale + slipDenormals) {
     fail("slip != b + K impulse");
   }
@@ -263,7 +263,7 @@ void run(ByteReader& in) {
   const double L = input.L;
   const double absRatio = absPressureIntegral(shape, patch.pressure(), patch.Pz()) / patch.Pz();
   const double rmax = shape.maxDistanceFromOrigin();
-  const double unitScale = model == Model::Ellipsoidal ? patch.Pi().stableNorm()
+  const double unitScale = model == Model::Ellipsoidal ? stableMatrixNorm(patch.Pi())
                                                        : absRatio * (1.0 + rmax / patch.rho());
   // The exact unit law's own round-off: it sums the pressure's terms about
   // O, each up to A |c_k| max|r|^k / Pz (times the lever for the torque),
@@ -309,7 +309,7 @@ void run(ByteReader& in) {
 
   // slipping: the impulse is the law at the slip direction
   const double s = out.slip.stableNorm();
-  const double scale = input.b.stableNorm() + L * input.K.stableNorm() * unitScale;
+  const double scale = input.b.stableNorm() + L * stableMatrixNorm(input.K) * unitScale;
   // where the law itself has digits (lawRoundOff above)
   const bool lawHasDigits = model == Model::Ellipsoidal || lawRoundOff < kLawSlack / 100.0 * unitScale;
   // (and where the slip's direction survives its rounding to the denormal
@@ -335,7 +335,7 @@ void run(ByteReader& in) {
   if (model == Model::Exact && isSpd(input.K) && lawHasDigits && minPressure(shape, patch.pressure()) >= 0.0) {
     const Eigen::LLT<Mat3> llt(input.K);
     const double e0 = input.b.dot(llt.solve(input.b)), e1 = out.slip.dot(llt.solve(out.slip));
-    if (std::isfinite(e0) && e1 > e0 * (1.0 + kEnergySlack) + kEnergySlack * scale * scale / input.K.stableNorm()) {
+    if (std::isfinite(e0) && e1 > e0 * (1.0 + kEnergySlack) + kEnergySlack * scale * scale / stableMatrixNorm(input.K)) {
       fail("exact block gains energy: %.17g -> %.17g", e0, e1);
     }
   }

@@ -8,7 +8,11 @@
 //    linearised, measured the slip's turn as the difference of two unit
 //    vectors, which has no digits once the step nears eps |s|; with the law
 //    turning across ~1e-11 rad (a long lever, or a huge K) the impulse left
-//    the law at the returned slip.
+//    the law at the returned slip;
+//  * item 68: Eigen 3.4.0's stableNorm() of a fixed-size matrix aborts on an
+//    assertion in builds without NDEBUG (Block.h:120), and the exact block's
+//    verification took it of K. tests/CMakeLists.txt also builds this file
+//    as fuzz_round11_assert_test with step.cpp compiled with assertions on.
 //
 // The oracle is brute-force quadrature of Eq. (16) at the returned slip
 // (tests/support/oracle.hpp), as in item 64's test; kLaw is the fuzz target's
@@ -21,6 +25,7 @@
 #include <patchspin/pressure.hpp>
 #include <patchspin/step.hpp>
 
+#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include "oracle.hpp"
@@ -149,6 +154,34 @@ TEST(FuzzRound11, ExactBlockOfATinyDiskWithAHugeKIsTheLawAtItsSlip) {
                  patch.Pz();
   constexpr double kLaw = 1e-6;
   EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L)
+      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
+}
+
+// 68: an exact block that the core verifies against the law at its slip
+// (requireVerifiedExactSlip: cond(K) max(1, lever, 1 / lever) >= 1e5, here
+// |K|_F |K^-1|_F = 141 times a lever of 1,200), which takes the norm of K.
+// In fuzz_round11_assert_test, with assertions on in step.cpp, 95fd7d7's
+// step.cpp aborts here (checked); the plain build checks the law.
+TEST(FuzzRound11, VerifiedExactBlockIsTheLawAtItsSlip) {
+  const Vec2 centre(600.0, 0.0);
+  const double radius = 0.1, rho = 0.5;
+  const PatchShape shape = PatchShape::disk(radius, centre);
+  const LinearPressure p{1.0 / (M_PI * radius * radius), 0.0, 0.0};  // uniform, Pz = 1 N
+  const FrictionPatch patch(shape, p, 0.5, rho);
+  FrictionBlockInput input;
+  input.b = Vec3(1.0, 0.2, 0.3);
+  input.K = Vec3(1.0, 1.0, 0.01).asDiagonal();
+  input.L = 0.1;
+  const double cond = input.K.norm() * Mat3(input.K.inverse()).norm();
+  const double lever = shape.maxDistanceFromOrigin() / rho;
+  ASSERT_GE(cond * lever, 1e5);  // the verified regime
+  const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, input);
+  ASSERT_FALSE(r.sticking);
+  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho,
+                                                     r.slip, 1e-12) /
+                 patch.Pz();
+  constexpr double kLaw = 1e-6;
+  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L * (1.0 + lever))
       << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
 }
 
