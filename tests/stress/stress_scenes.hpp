@@ -9,6 +9,7 @@
 #include <patchspin/bullet/patch_friction_solver.hpp>
 #include <patchspin/bullet/scene.hpp>
 
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
@@ -53,7 +54,8 @@ inline bool isFinite(const btRigidBody* b) {
 }
 
 // Lowest / highest z of the body's real outline (boxes: corners with margin;
-// Z cylinders: the lowest rim point of a cap), for penetration and stacks.
+// Z cylinders: the lowest rim point of a cap; convex hulls: the extreme
+// point plus the margin), for penetration and stacks.
 inline double extremeZ(const btRigidBody* b, bool lowest) {
   const btCollisionShape* s = b->getCollisionShape();
   const btTransform& t = b->getWorldTransform();
@@ -75,6 +77,16 @@ inline double extremeZ(const btRigidBody* b, bool lowest) {
     const double az = double(t.getBasis().getColumn(axis).z());
     const double reach = std::abs(az) * H + R * std::sqrt(std::max(0.0, 1.0 - az * az));
     return double(t.getOrigin().z()) - sign * reach;
+  }
+  if (s->getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE) {
+    // a hull's outline is its points plus the margin all round
+    const auto* h = static_cast<const btConvexHullShape*>(s);
+    double best = sign * 1e300;
+    for (int i = 0; i < h->getNumPoints(); ++i) {
+      const double z = double((t * h->getScaledPoint(i)).z());
+      best = lowest ? std::min(best, z) : std::max(best, z);
+    }
+    return best - sign * double(h->getMargin());
   }
   btVector3 lo, hi;
   s->getAabb(t, lo, hi);
