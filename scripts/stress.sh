@@ -9,7 +9,9 @@
 #
 # Environment: BUILD_DIR (float build, default ./build), BUILD_DIR_DOUBLE
 # (default $BUILD_DIR-double; the directories of scripts/quickstart.sh test,
-# reused if configured, configured otherwise), OUT (tables file), JOBS.
+# reused if configured, configured otherwise), OUT (tables file), JOBS,
+# PATCHSPIN_POUR_COIN (cylinder, the default, or hull: the pour's coins as
+# 16-gon convex hulls; see tests/stress/scenes_test.cpp).
 # Only the stress test targets are built. Exit status: non-zero if any test
 # failed in either precision (known defects are reported as skipped tests).
 set -euo pipefail
