@@ -36,6 +36,32 @@ using namespace patchspin;
 
 namespace {
 
+// slip = b + K impulse to the round-off of one 3x3 product
+constexpr double kSlip = 1e-14;
+// the fuzz target's tolerance on the law at the slip, relative to L times the
+// limit set's size
+constexpr double kLaw = 1e-6;
+
+void expectSlipIsBPlusKImpulse(const FrictionBlockInput& input, const FrictionBlockResult& r) {
+  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(),
+            kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
+}
+
+// The oracle: Q = -mu ∫ p k dA with mu = 1 by brute-force quadrature of
+// Eq. (16) at the returned slip, so q = Q / Pz.
+Vec3 diskLawByQuadrature(const FrictionPatch& patch, const LinearPressure& p, const Vec3& slip) {
+  const PatchShape& disk = patch.shape();
+  return patchspin::testing::bruteForceQDisk(disk.centre(), disk.radius(), patchspin::testing::linearField(p), 1.0,
+                                             patch.rho(), slip, 1e-12) /
+         patch.Pz();
+}
+
+void expectImpulseIsTheLaw(const FrictionBlockInput& input, const FrictionBlockResult& r, const Vec3& q,
+                           double setSize) {
+  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L * setSize)
+      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
+}
+
 // 66, the tenth round's open input
 // (step_exact_tiny_disk_far_from_O_icr_at_its_centre_law_1.4e-5_off.bin): a
 // 1e-8 m disk 1.05e-4 m (5,300 diameters) from O, rho = 0.5, mu = 1e300,
@@ -69,19 +95,9 @@ TEST(FuzzRound11, ExactBlockOfATinyDiskWithAHugeMuIsTheLawAtItsSlip) {
   // its centre: the law turns with the slip's direction about the centre)
   const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
   EXPECT_LT((icr - centre).norm(), radius);
-  // slip = b + K impulse to the round-off of one 3x3 product
-  constexpr double kSlip = 1e-14;
-  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(),
-            kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
-  // oracle: Q = -mu ∫ p k dA with mu = 1 by brute-force quadrature of
-  // Eq. (16) at the returned slip, so q = Q / Pz; kLaw is the fuzz target's
-  // tolerance (relative to L times the set's size, ~1 here: lever 2.1e-4)
-  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho,
-                                                     r.slip, 1e-12) /
-                 patch.Pz();
-  constexpr double kLaw = 1e-6;
-  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L)
-      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
+  expectSlipIsBPlusKImpulse(input, r);
+  // (the set's size ~1 here: lever 2.1e-4)
+  expectImpulseIsTheLaw(input, r, diskLawByQuadrature(patch, p, r.slip), 1.0);
 }
 
 // 67, first input (step crash 3ab887de): a 1.6 m quadrilateral 2,094 m from
@@ -110,18 +126,13 @@ TEST(FuzzRound11, ExactBlockOfAFarPolygonSpinningAboutAPointInsideIsTheLawAtItsS
   // the ICR, rho (-s_y, s_x) / s_z, is inside the patch
   const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
   EXPECT_TRUE(shape.contains(icr)) << icr.transpose();
-  constexpr double kSlip = 1e-14;
-  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(),
-            kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
+  expectSlipIsBPlusKImpulse(input, r);
   const Vec3 q =
       patchspin::testing::bruteForceQ(shape, patchspin::testing::linearField(p), 1.0, rho, r.slip, 1e-13) / patch.Pz();
   // the set's size (1 + max|r| / rho): the fuzz target's without its factor
   // A max|p| / Pz (2.6 here: min p is -2.8e-12 of the mean, so the target
   // bounds ∫|p| by A max|p|), stricter than the target
-  const double setSize = 1.0 + shape.maxDistanceFromOrigin() / rho;
-  constexpr double kLaw = 1e-6;
-  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L * setSize)
-      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
+  expectImpulseIsTheLaw(input, r, q, 1.0 + shape.maxDistanceFromOrigin() / rho);
 }
 
 // 67, second input (step crash 5ad39424): item 64's tiny disk (1e-8 m, 9,000
@@ -146,15 +157,8 @@ TEST(FuzzRound11, ExactBlockOfATinyDiskWithAHugeKIsTheLawAtItsSlip) {
   input.warmSlip = Vec3(0.5, 4.3910071674220151e+223, 0.0);
   const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, input);
   ASSERT_FALSE(r.sticking);
-  constexpr double kSlip = 1e-14;
-  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(),
-            kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
-  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho,
-                                                     r.slip, 1e-12) /
-                 patch.Pz();
-  constexpr double kLaw = 1e-6;
-  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L)
-      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
+  expectSlipIsBPlusKImpulse(input, r);
+  expectImpulseIsTheLaw(input, r, diskLawByQuadrature(patch, p, r.slip), 1.0);
 }
 
 // 68: an exact block that the core verifies against the law at its slip
@@ -177,12 +181,8 @@ TEST(FuzzRound11, VerifiedExactBlockIsTheLawAtItsSlip) {
   ASSERT_GE(cond * lever, 1e5);  // the verified regime
   const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, input);
   ASSERT_FALSE(r.sticking);
-  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho,
-                                                     r.slip, 1e-12) /
-                 patch.Pz();
-  constexpr double kLaw = 1e-6;
-  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L * (1.0 + lever))
-      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
+  expectSlipIsBPlusKImpulse(input, r);
+  expectImpulseIsTheLaw(input, r, diskLawByQuadrature(patch, p, r.slip), 1.0 + lever);
 }
 
 }  // namespace

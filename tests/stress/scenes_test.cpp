@@ -218,6 +218,15 @@ std::unique_ptr<btConvexHullShape> pourCoinShape() {
   return shape;
 }
 
+const std::vector<std::string> kPourColumns = {"model", "finite", "escaped", "max speed [m/s]",
+                                               "max speed on a patch [m/s]", "patches at the end", "at rest"};
+
+void addPourRow(Table& table, Friction m, const PourResult& r) {
+  table.add({toString(m), passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
+             m == Friction::Stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
+             passFail(r.maxSpeed < kPourRestSpeed)});
+}
+
 bool pourHullCoins() {
   const char* coin = std::getenv("PATCHSPIN_POUR_COIN");
   if (!coin || std::string(coin).empty() || std::string(coin) == "cylinder") return false;
@@ -286,13 +295,10 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   std::string defects;
   Table table("Pour of " + std::to_string(100 * layers) + (pourHullCoins() ? " hull" : "") + " coins into a box, " +
                   fmt("%.0f", kPourTime) + " s",
-              {"model", "finite", "escaped", "max speed [m/s]", "max speed on a patch [m/s]",
-               "patches at the end", "at rest"});
+              kPourColumns);
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
     const PourResult r = pour(layers, m, pourHullCoins());
-    table.add({toString(m), passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
-               m == Friction::Stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch),
-               std::to_string(r.patches), passFail(r.maxSpeed < kPourRestSpeed)});
+    addPourRow(table, m, r);
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_EQ(r.escaped, 0) << toString(m);
@@ -372,13 +378,10 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
 // patches are at rest.
 TEST(StressScenes, HullCoinsPouredIntoABoxComeToRestAndStayInside) {
   Table table("Pour of 100 hull coins into a box, " + fmt("%.0f", kPourTime) + " s",
-              {"model", "finite", "escaped", "max speed [m/s]", "max speed on a patch [m/s]",
-               "patches at the end", "at rest"});
+              kPourColumns);
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
     const PourResult r = pour(1, m, true);
-    table.add({toString(m), passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
-               m == Friction::Stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch),
-               std::to_string(r.patches), passFail(r.maxSpeed < kPourRestSpeed)});
+    addPourRow(table, m, r);
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_EQ(r.escaped, 0) << toString(m);
