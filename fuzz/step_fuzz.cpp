@@ -115,15 +115,26 @@ void run(ByteReader& in) {
   if (mode & 4) input.warmSlip = in.vec3();
   // (read last: the corpus's earlier inputs keep their meaning)
   if (mode & 8) input.warmGauge = in.vec3();
+  // the iterations' stopping tolerance, tighter than the default 1e-14 only
+  // (|t| capped at 1e-14; a non-finite t as it is, to be refused): the
+  // checks below are set for the default, and a tolerance below what double
+  // resolves must still return the law at the slip (found by hand, eleventh
+  // round: 1e-18 on a far polygon, 0.027 of L off). Read after the warm
+  // gauge; corpus files from before this bit that have it set now read one
+  // more number (0, the default, once the bytes run out).
+  if (mode & 16) {
+    const double t = in.number();
+    input.tolerance = std::isfinite(t) ? std::min(std::abs(t), 1e-14) : t;
+  }
   const bool finite = input.b.allFinite() && std::isfinite(input.L) && input.K.allFinite() &&
-                      input.warmSlip.allFinite() && input.warmGauge.allFinite();
+                      input.warmSlip.allFinite() && input.warmGauge.allFinite() && std::isfinite(input.tolerance);
 
   note("mu %.17g, rho %.17g, loads (%.17g %.17g %.17g)", mu, rho, loads.Pz, loads.Tx, loads.Ty);
   note("%s, b (%.17g %.17g %.17g), L %.17g, warm (%.17g %.17g %.17g)", toString(model), input.b.x(),
        input.b.y(), input.b.z(), input.L, input.warmSlip.x(), input.warmSlip.y(), input.warmSlip.z());
   for (int i = 0; i < 3; ++i) note("K (%.17g %.17g %.17g)", input.K(i, 0), input.K(i, 1), input.K(i, 2));
-  note("warm gauge (%.17g %.17g %.17g)", input.warmGauge.x(), input.warmGauge.y(),
-       input.warmGauge.z());
+  note("warm gauge (%.17g %.17g %.17g), tolerance %.17g", input.warmGauge.x(), input.warmGauge.y(),
+       input.warmGauge.z(), input.tolerance);
   // the block's features, for triage: min p over the mean pressure, the
   // lever max|r| / rho, the spread of K's diagonal, K's unit-diagonal cond
   {
