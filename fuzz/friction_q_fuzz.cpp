@@ -17,6 +17,7 @@ namespace {
 
 using namespace patchspin;
 using namespace patchspin::fuzz;
+using patchspin::internal::stableMatrixNorm;
 
 // Relative slack of the bounds: the laws are sums of O(10) terms of the size
 // of the bound, each exact to round-off; 1e-9 leaves room for cancellation in

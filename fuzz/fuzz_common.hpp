@@ -230,13 +230,6 @@ inline double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
 }
 
 // Upper bound of ∫|p| dA: Pz when p >= 0 on the patch, A max|p| otherwise.
-// Frobenius norm without over- or underflow, as the entries' vector norm:
-// Eigen 3.4.0's stableNorm() of a fixed-size matrix aborts on an assertion
-// in builds without NDEBUG (Block.h:120).
-inline double stableMatrixNorm(const Mat3& m) {
-  return Eigen::Map<const Eigen::Matrix<double, 9, 1>>(m.data()).stableNorm();
-}
-
 inline double absPressureIntegral(const PatchShape& shape, const LinearPressure& p, double Pz) {
   return minPressure(shape, p) >= 0.0 ? Pz : shape.area() * maxAbsPressure(shape, p);
 }

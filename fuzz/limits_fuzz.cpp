@@ -16,6 +16,7 @@ namespace {
 
 using namespace patchspin;
 using namespace patchspin::fuzz;
+using patchspin::internal::stableMatrixNorm;
 
 // Fixed points are polished to 1e-11 of the field scale (kResidualTol in
 // analysis_limits.cpp); the eigenvector branch (c = 0) takes singular values
@@ -61,7 +62,8 @@ void run(ByteReader& in) {
   }();
   const double rmax = shape.maxDistanceFromOrigin();
   const double absP = shape.area() * (std::abs(rest.p0) + (std::abs(rest.cx) + std::abs(rest.cy)) * rmax);
-  const double scale = body.mu * std::max(std::abs(loads.force.z()), absP) * (1.0 + rmax / flat.rho()) * stableMatrixNorm(Minv) +
+  const double scale = body.mu * std::max(std::abs(loads.force.z()), absP) * (1.0 + rmax / flat.rho()) *
+                           stableMatrixNorm(Minv) +
                        Vec3(Minv * flat.externalWrench(loads)).stableNorm();
   note("field scale %.17g", scale);
   LimitOptions options;

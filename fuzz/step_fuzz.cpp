@@ -25,6 +25,7 @@ namespace {
 
 using namespace patchspin;
 using namespace patchspin::fuzz;
+using patchspin::internal::stableMatrixNorm;
 
 // Relative slack of the set bounds and of slip = b + K impulse: round-off of
 // a few 3x3 products.
@@ -346,7 +347,8 @@ void run(ByteReader& in) {
   if (model == Model::Exact && isSpd(input.K) && lawHasDigits && minPressure(shape, patch.pressure()) >= 0.0) {
     const Eigen::LLT<Mat3> llt(input.K);
     const double e0 = input.b.dot(llt.solve(input.b)), e1 = out.slip.dot(llt.solve(out.slip));
-    if (std::isfinite(e0) && e1 > e0 * (1.0 + kEnergySlack) + kEnergySlack * scale * scale / stableMatrixNorm(input.K)) {
+    if (std::isfinite(e0) &&
+        e1 > e0 * (1.0 + kEnergySlack) + kEnergySlack * scale * scale / stableMatrixNorm(input.K)) {
       fail("exact block gains energy: %.17g -> %.17g", e0, e1);
     }
   }

@@ -23,11 +23,10 @@ constexpr int kMaxIterations = 100;
 // squares and the sum, halved by the sqrt), Eigen's stableNorm (scaled, no
 // under- or overflow) only outside that range; the zero vector is 0. The
 // plain form saves stableNorm's blockwise scaling and divisions on every
-// block, which the time profile showed. A matrix's (Frobenius) norm is
-// taken as its entries' vector norm: Eigen 3.4.0's stableNorm of a
-// fixed-size matrix aborts on an assertion in builds without NDEBUG
-// (Block.h:120, stable_norm_impl; reproduced with Debian's libeigen3-dev).
-double stableNormOf(const Mat3& m) { return Eigen::Map<const Eigen::Matrix<double, 9, 1>>(m.data()).stableNorm(); }
+// block, which the time profile showed. A matrix's (Frobenius) norm goes
+// through internal::stableMatrixNorm (Eigen's stableNorm of a fixed-size
+// matrix aborts without NDEBUG).
+double stableNormOf(const Mat3& m) { return internal::stableMatrixNorm(m); }
 double stableNormOf(const Vec3& v) { return v.stableNorm(); }
 template <typename Derived>
 double rangeSafeNorm(const Eigen::MatrixBase<Derived>& v) {
@@ -977,7 +976,7 @@ FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
   // size 1e5, was held to 1e-12 of the set, below what the iteration
   // resolves there)
   const double lawSize = 1.0 + lever;
-  const double scale = in.b.stableNorm() + in.L * stableNormOf(in.K) * lawSize;
+  const double scale = in.b.stableNorm() + in.L * internal::stableMatrixNorm(in.K) * lawSize;
   const double miss = (r.impulse / in.L - q).stableNorm();
   if (!(r.slip.stableNorm() > kResolvedSlip * scale) || miss <= kVerifyLaw * lawSize) return r;
   throw Error("friction block: the exact block cannot resolve this K (condition number " +

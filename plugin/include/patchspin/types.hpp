@@ -37,6 +37,12 @@ void requireFinite(const Vec3& value, const char* what);
 // Throws Error unless value is finite and > 0.
 void requirePositive(double value, const char* what);
 std::string formatDouble(double value);
+// The Frobenius norm of m without over- or underflow, as its nine entries'
+// vector norm: Eigen 3.4.0's stableNorm() of a fixed-size matrix aborts on
+// an assertion in builds without NDEBUG (Block.h:120, stable_norm_impl).
+inline double stableMatrixNorm(const Mat3& m) {
+  return Eigen::Map<const Eigen::Matrix<double, 9, 1>>(m.data()).stableNorm();
+}
 }  // namespace internal
 
 }  // namespace patchspin
