@@ -132,12 +132,12 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // ---- coins poured into a box -----------------------------------------------------
 // Coins R = 2 cm, H = 5 mm, 10 g, mu 0.4 (Bullet cylinders; with
 // PATCHSPIN_POUR_COIN=hull, convex hulls of a 16-gon prism, see below),
-// dropped in layers of 10 x 10 over a
-// 0.6 x 0.6 m box (static floor plane and four static walls 0.5 m high),
-// each with a seeded random tilt (up to 0.3 rad), offset and velocity. After
-// kPourTime: none has left the box (inside the walls, above the floor by
-// more than kPourSinkTol: a coin resting on its rim sinks by its margin at
-// most) and all have come to rest (speeds below kPourRestSpeed; coins
+// poured in layers of 10 x 10 (one every kPourInterval, 3 cm above the
+// pile) into a 0.6 x 0.6 m box (static floor plane and four static walls
+// 0.5 m high), each with a seeded random tilt (up to 0.3 rad), offset and
+// velocity. kPourTime after the last layer: none has left the box (inside
+// the walls, above the floor by more than kPourSinkTol: a coin resting on
+// its rim sinks by its margin at most) and all have come to rest (speeds below kPourRestSpeed; coins
 // leaning on others are Bullet point contacts, which settle more slowly
 // than patches, hence 1 cm/s).
 // kPourTime is set by the slowest physics in the pour, not by the solver: a
@@ -150,8 +150,46 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // models are at rest, every coin on a patch (largest speed 2.3e-5 m/s in
 // float, 1e-27 in double), while stock Bullet's float pour is not: its flat
 // coins keep wobbling on their point contacts (1-5 cm/s at 6, 8 and 10 s).
-// In double, stock is at rest too.
-// Hull coins (PATCHSPIN_POUR_COIN=hull), an experiment, not the default:
+// In double, stock is at rest too. (Figures in metres; in decimetres, the
+// float default below: ellipsoidal 1.5e-12 m/s, exact 0, stock 5.6e-2.)
+// Length unit (pourUnit): decimetres in float Bullet, metres in double.
+// Bullet's GJK stops on absolute tolerances (|v|^2 < 1e-6 world units^2 in
+// float, 1e-12 in double), and its manual asks for moving objects of at
+// least ~0.2 units; a coin is 0.04 x 0.005 m. In metres float Bullet
+// reports no contact for 37 % of overlapping coin pairs (census test
+// below), coins landing on coins pass into each other, and Baumgarte
+// velocity, erp |depth| / dt, pushes the interleaved coins apart for as
+// long as the pile holds them together: the 1000-coin pile boiled (at 8 s
+// 953 of 1000 coins above 1 cm/s with stock Bullet, 837 ellipsoidal,
+// ~1 m/s at most, 70-120 coin-coin contacts deeper than 4 mm at every
+// second; one coin 2.2 mm under the floor). In decimetres the census
+// misses none and no coin-coin contact is deeper than ~1 mm; dropped as
+// one column (before kPourInterval), at 8 s 162 (ellipsoidal) and 256
+// (stock) of 1000 coins were above 1 cm/s, at most 0.073 and 0.079 m/s.
+// Not at rest either: run on to 20 s, 86-129 (ellipsoidal) and 149-273
+// (stock) coins keep moving, the fastest tilted coins inside the pile
+// rocking at 1-2 rad/s on 5-10 contact manifolds. Poured layer by layer,
+// 12 s: 202 (ellipsoidal), 171 (exact), 231 (stock) above 1 cm/s, no
+// coin deeper than 0.72 mm under the floor. Tried in metres: CCD
+// (2 mm swept sphere, Bullet's allowed CCD penetration lowered from 4 cm
+// to 0.1 mm), no change; convex-convex multipoint iterations (3, 3),
+// worse (997 coins moving at 2 s, one 5.3 mm under the floor); steps of
+// 1/960 s, worse (largest speed 4 m/s: Baumgarte grows as 1/dt); the
+// layers poured one every 0.4 s from 3 cm above the pile, 942 moving at
+// 12 s. In decimetres: 30 solver iterations, 114 moving at 8 s
+// (ellipsoidal); split impulse at every depth, worse (178 ellipsoidal,
+// 794 stock); centimetres, worse than decimetres (194, ellipsoidal:
+// Bullet's other absolute lengths, the 4 cm split-impulse threshold and
+// the contact thresholds, shrink with the unit). In double Bullet in
+// decimetres, six of the 100 coins still roll on their rims at 8 s, tilt
+// shrinking and spin growing like Euler's disk, with Bullet's own solver
+// too; in metres the double pour is at rest, hence its default.
+// Hull coins (PATCHSPIN_POUR_COIN=hull), an experiment, not the default
+// (the figures in this paragraph are from metres and a hull margin of
+// 0.5 mm, with which the hulls were 1 mm thinner against each other than
+// against the floor, see kPourHullMargin; with 1e-5 m, 1000 hull coins in
+// metres, float, ellipsoidal: 316 above 1 cm/s at 8 s, at most 0.070 m/s,
+// the deepest 0.26 mm under the floor):
 // with btCylinderShapeZ coins Bullet builds a coin-on-coin manifold one GJK
 // point per step (cylinders are not polyhedral), and the 1000-coin pile
 // never comes to rest in any model, stock included: at 8 s in float, 953
@@ -185,13 +223,26 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // patches (19-22 of ~480 in the 1000-coin pours, coins side by side or
 // against a wall, mostly without load).
 constexpr double kPourR = 0.02, kPourH = 0.005, kPourMass = 0.01;
-// Sides of the coins' polygon and their collision margin; the hull's points
-// lie one margin inside R and H/2 (Bullet's contact is one margin outside
-// them), so the outline is R x H like the cylinder's.
-constexpr int kPourCoinSides = 16;
+// The cylinder coins' collision margin (Bullet's cylinder keeps its outline
+// R x H and puts the margin inside it).
 constexpr double kPourMargin = 5e-4;
+// Sides of the hull coins' polygon and their margin. The hull's points lie
+// one margin inside R and H/2 and the margin is tiny: Bullet clips hull
+// against hull (SAT, m_enableSatConvex) on the points alone, margins
+// ignored, while against the floor and the walls the contact is one margin
+// outside the points. With the cylinder's 0.5 mm the coins were 1 mm
+// thinner against each other than against the floor (two coaxial coins
+// overlapping by 1.04 mm: Bullet reported 0.035 mm; with 1e-5 m, 1.016 mm).
+constexpr int kPourCoinSides = 16;
+constexpr double kPourHullMargin = 1e-5;
 constexpr double kBoxHalf = 0.3, kWallH = 0.5;
-constexpr double kPourTime = 8.0;
+constexpr double kPourTime = 8.0;  // after the last layer
+// Layers are poured one by one onto the pile, not dropped as one column:
+// dropped together, each column of ten coins landed within ~0.1 s at up
+// to 2.5 m/s, and in decimetres too one coin was driven through the four
+// below it and the floor (exact model: 5 mm under the floor from 0.15 s
+// on, held there by the coin above it, traced).
+constexpr double kPourInterval = 0.4, kPourDropHeight = 0.03;
 constexpr double kPourSinkTol = 2e-3;
 constexpr double kPourRestSpeed = 1e-2;
 
@@ -204,11 +255,12 @@ struct PourResult {
 };
 
 // A coin as a convex hull of a kPourCoinSides-gon prism with polyhedral
-// features (Bullet clips hull against hull with them).
-std::unique_ptr<btConvexHullShape> pourCoinShape() {
+// features (Bullet clips hull against hull with them); lengths in world
+// units of 1/unit m.
+std::unique_ptr<btConvexHullShape> pourCoinShape(double unit = 1.0) {
   auto shape = std::make_unique<btConvexHullShape>();
-  shape->setMargin(btScalar(kPourMargin));
-  const double r = kPourR - kPourMargin, h = kPourH / 2 - kPourMargin;
+  shape->setMargin(btScalar(unit * kPourHullMargin));
+  const double r = unit * (kPourR - kPourHullMargin), h = unit * (kPourH / 2 - kPourHullMargin);
   for (int k = 0; k < kPourCoinSides; ++k) {
     const double a = 2 * M_PI * k / kPourCoinSides;
     shape->addPoint(bt(r * std::cos(a), r * std::sin(a), -h), false);
@@ -227,6 +279,19 @@ void addPourRow(Table& table, Friction m, const PourResult& r) {
              passFail(r.maxSpeed < kPourRestSpeed)});
 }
 
+// World units per metre of the pour (PATCHSPIN_POUR_UNIT: dm or m; the
+// default is dm in float Bullet, m in double). See the census test below:
+// in metres float Bullet misses a third of the overlaps between cylinder
+// coins and the pile boils; double Bullet misses none in metres, and in
+// decimetres tilted coins on the floor spin up (below).
+double pourUnit() {
+  const char* unit = std::getenv("PATCHSPIN_POUR_UNIT");
+  if (!unit || std::string(unit).empty()) return kDouble ? 1.0 : 10.0;
+  if (std::string(unit) == "dm") return 10.0;
+  if (std::string(unit) == "m") return 1.0;
+  throw std::invalid_argument(std::string("PATCHSPIN_POUR_UNIT: expected dm or m, got '") + unit + "'");
+}
+
 bool pourHullCoins() {
   const char* coin = std::getenv("PATCHSPIN_POUR_COIN");
   if (!coin || std::string(coin).empty() || std::string(coin) == "cylinder") return false;
@@ -234,55 +299,70 @@ bool pourHullCoins() {
   throw std::invalid_argument(std::string("PATCHSPIN_POUR_COIN: expected cylinder or hull, got '") + coin + "'");
 }
 
-PourResult pour(int layers, Friction model, bool hull) {
-  Scene scene(kG, 10);
+// The pour in world units of 1/unit m: lengths, speeds and g scaled, masses
+// and times not (the same motion); the result in metres.
+PourResult pour(int layers, Friction model, bool hull, double unit) {
+  Scene scene(kG * unit, 10);
   if (hull) scene.world().getDispatchInfo().m_enableSatConvex = true;  // hull-hull axes by SAT (see above)
   OwnedBodies owned(scene.world());
   scene.addGroundPlane(1.0);
+  auto at = [unit](double x, double y, double z) { return bt(unit * x, unit * y, unit * z); };
   for (int side = 0; side < 4; ++side) {
     const double sx = side < 2 ? (side == 0 ? -1 : 1) : 0, sy = side >= 2 ? (side == 2 ? -1 : 1) : 0;
-    const btVector3 half = sx != 0 ? bt(0.05, kBoxHalf + 0.1, kWallH / 2) : bt(kBoxHalf + 0.1, 0.05, kWallH / 2);
-    scene.addStaticBox(half, bt(sx * (kBoxHalf + 0.05), sy * (kBoxHalf + 0.05), kWallH / 2), 1.0);
+    const btVector3 half = sx != 0 ? at(0.05, kBoxHalf + 0.1, kWallH / 2) : at(kBoxHalf + 0.1, 0.05, kWallH / 2);
+    scene.addStaticBox(half, at(sx * (kBoxHalf + 0.05), sy * (kBoxHalf + 0.05), kWallH / 2), 1.0);
   }
+  const double R = unit * kPourR, H = unit * kPourH;
   std::mt19937 rng(12345);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<btRigidBody*> coins;
-  for (int layer = 0; layer < layers; ++layer)
+  auto pourLayer = [&](double z0) {  // 10 x 10 coins at height z0 [m]
     for (int i = 0; i < 10; ++i)
       for (int j = 0; j < 10; ++j) {
-        const btVector3 p = bt((i - 4.5) * 0.055 + 0.005 * u(rng), (j - 4.5) * 0.055 + 0.005 * u(rng),
-                               0.03 + 0.03 * layer);
+        const btVector3 p = at((i - 4.5) * 0.055 + 0.005 * u(rng), (j - 4.5) * 0.055 + 0.005 * u(rng), z0);
         btRigidBody* c = nullptr;
         btTransform t;
         if (hull) {
           t.setIdentity();
           t.setOrigin(p);
           // the solid cylinder's inertia, as with the cylinder coins
-          const double jx = kPourMass * (3 * kPourR * kPourR + kPourH * kPourH) / 12;
-          c = owned.add(pourCoinShape(), kPourMass, bt(jx, jx, kPourMass * kPourR * kPourR / 2), t, 0.4);
+          const double jx = kPourMass * (3 * R * R + H * H) / 12;
+          c = owned.add(pourCoinShape(unit), kPourMass, bt(jx, jx, kPourMass * R * R / 2), t, 0.4);
         } else {
-          c = scene.addCylinder(kPourR, kPourH, kPourMass, p, 0.4, kPourMargin);
+          c = scene.addCylinder(R, H, kPourMass, p, 0.4, unit * kPourMargin);
           t = c->getWorldTransform();
         }
         t.setRotation(btQuaternion(bt(u(rng), u(rng), 0).normalized(), btScalar(0.3 * std::abs(u(rng)))));
         c->setWorldTransform(t);
-        c->setLinearVelocity(bt(0.3 * u(rng), 0.3 * u(rng), -0.5));
+        c->setLinearVelocity(at(0.3 * u(rng), 0.3 * u(rng), -0.5));
         c->setAngularVelocity(bt(0, 0, 10 * u(rng)));
         optIn(scene, c, model);
         coins.push_back(c);
       }
-  for (int k = 0; k < int(kPourTime / kDt); ++k) scene.step(kDt);
+  };
+  // a layer every kPourInterval, kPourDropHeight above the highest coin
+  const int steps = int(std::lround((kPourInterval * (layers - 1) + kPourTime) / kDt));
+  for (int k = 0, poured = 0; k < steps; ++k) {
+    if (poured < layers && k * kDt >= poured * kPourInterval - 1e-9) {
+      double top = 0.0;
+      for (const btRigidBody* c : coins) top = std::max(top, extremeZ(c, false) / unit);
+      pourLayer(top + kPourDropHeight);
+      ++poured;
+    }
+    scene.step(kDt);
+  }
   PourResult r;
   for (btRigidBody* c : coins) {
     if (!isFinite(c)) {
       r.finite = false;
       continue;
     }
-    const btVector3 p = c->getWorldTransform().getOrigin();
-    if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf || extremeZ(c, true) < -kPourSinkTol)
+    const btVector3 p = c->getWorldTransform().getOrigin() / btScalar(unit);
+    if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
+        extremeZ(c, true) / unit < -kPourSinkTol)
       ++r.escaped;
     const double speed =
-        double(c->getLinearVelocity().length()) + double(c->getAngularVelocity().length()) * kPourR;
+        (double(c->getLinearVelocity().length()) + double(c->getAngularVelocity().length()) * R) / unit;
     r.maxSpeed = std::max(r.maxSpeed, speed);
     if (scene.solver().findPatchReport(c)) r.maxSpeedOnPatch = std::max(r.maxSpeedOnPatch, speed);
   }
@@ -294,21 +374,21 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   const int layers = stressFull() ? 10 : 1;
   std::string defects;
   Table table("Pour of " + std::to_string(100 * layers) + (pourHullCoins() ? " hull" : "") + " coins into a box, " +
-                  fmt("%.0f", kPourTime) + " s",
+                  fmt("%.0f", kPourTime) + " s, lengths in " + (pourUnit() == 1.0 ? "m" : "dm"),
               kPourColumns);
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
-    const PourResult r = pour(layers, m, pourHullCoins());
+    const PourResult r = pour(layers, m, pourHullCoins(), pourUnit());
     addPourRow(table, m, r);
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_EQ(r.escaped, 0) << toString(m);
     // what the patches carry is at rest (the coins still moving are on
-    // Bullet's point contacts, below). Not in the 1000-coin pour: after 8 s
-    // it is still moving in every model (largest speed, |v| + R |omega|:
-    // stock 0.89 m/s, ellipsoidal 0.92, exact 1.0; 4 s: stock 1.7), coins
-    // on patches included (0.37-0.46 m/s; hull coins, float: 7.6e-2 m/s
-    // ellipsoidal, 5.6e-2 exact, with 116 and 99 coins on patches above
-    // 1 cm/s), so it is reported with the rest.
+    // Bullet's point contacts, below). Not in the 1000-coin pour: 8 s after
+    // its last layer it is still moving in every model (largest speed,
+    // |v| + R |omega|, float, decimetres: ellipsoidal 0.13 m/s, exact 0.12,
+    // stock 0.089; coins on patches included), so it is reported with the
+    // rest. The figures below up to "In double" are from metres, before the
+    // length unit and the layer-by-layer pour (see above the scene).
     // Measured every second (scratch driver, float): the 1000-coin pile does
     // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
     // m/s at 1-16 s. Stock: 992 of 1000 coins above 1 cm/s at 0.5 s, 953 at
@@ -373,14 +453,16 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
 
 // The hull coins' 100-coin pour in every run (the option above is otherwise
 // only taken by hand): no coin escapes or sinks past kPourSinkTol, every
-// patch model ends at rest (measured: largest speed 1.8e-3 m/s ellipsoidal,
-// 2.0e-3 exact, float; 5.7e-11 and 3.4e-11 in double), and the coins on
-// patches are at rest.
+// patch model ends at rest (measured: largest speed 0 in both models in
+// float, in decimetres, stock 3.8e-3 m/s; 1.3e-28 m/s in double, in
+// metres, stock 1.9e-4; every coin on a patch), and the coins on patches
+// are at rest.
 TEST(StressScenes, HullCoinsPouredIntoABoxComeToRestAndStayInside) {
-  Table table("Pour of 100 hull coins into a box, " + fmt("%.0f", kPourTime) + " s",
+  Table table("Pour of 100 hull coins into a box, " + fmt("%.0f", kPourTime) + " s, lengths in " +
+                  (pourUnit() == 1.0 ? "m" : "dm"),
               kPourColumns);
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
-    const PourResult r = pour(1, m, true);
+    const PourResult r = pour(1, m, true, pourUnit());
     addPourRow(table, m, r);
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
@@ -389,6 +471,101 @@ TEST(StressScenes, HullCoinsPouredIntoABoxComeToRestAndStayInside) {
     EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
   }
   table.emit();
+}
+
+// Why the cylinder pour boils: Bullet's float build often reports no contact
+// between two overlapping cylinder coins (btCylinderShapeZ, GJK/EPA), so
+// coins pass into each other where they land. Interleaved coins are then
+// pushed apart by Baumgarte velocity, erp |depth| / dt, for as long as the
+// pile holds them together (traced in the 1000-coin pour: a coin landing
+// at 1.3 m/s on a tilted one, 945 of 11,340 sampled points inside it, up
+// to 2.48 mm deep, and Bullet found no contact; the next step it was
+// through). The census: a seeded sample of coin pairs, each pose checked
+// for overlap independently of Bullet (points of coin B's solid cylinder
+// on a grid, 0.1 R x 0.1 H x 4 degrees, tested against coin A's cylinder),
+// kept if some point lies at least kCensusDepth inside A; then each pair
+// is given to Bullet as cylinders and as the pour's hull coins (SAT).
+// Asserted: the hull coins see every overlap (the 16-gon lies within
+// R (1 - cos(pi/16)) = 0.38 mm of the circle, so an overlap of 1 mm is
+// one of the hulls too). Reported: the cylinders' misses, Bullet's defect
+// (measured: float 1,301 of 3,515 pairs, 37 %, double none).
+TEST(StressScenes, CoinOverlapsSeenByBulletCensus) {
+  constexpr int kCensusPoses = 4000;
+  constexpr double kCensusDepth = 1e-3;
+  auto sampledDepth = [](const btTransform& a, const btTransform& b) {
+    double deepest = -1.0;
+    for (int i = 0; i <= 10; ++i)
+      for (int j = 0; j < (i == 0 ? 1 : 90); ++j)
+        for (int l = 0; l <= 10; ++l) {
+          const double r = kPourR * i / 10, t = 2 * M_PI * j / 90, z = kPourH * (l / 10.0 - 0.5);
+          const btVector3 q = a.invXform(b * bt(r * std::cos(t), r * std::sin(t), z));
+          deepest = std::max(deepest, std::min(kPourH / 2 - std::abs(double(q.z())),
+                                               kPourR - std::hypot(double(q.x()), double(q.y()))));
+        }
+    return deepest;
+  };
+  btDefaultCollisionConfiguration config;
+  btCollisionDispatcher dispatcher(&config);
+  btDbvtBroadphase broadphase;
+  btCollisionWorld world(&dispatcher, &broadphase, &config);
+  world.getDispatchInfo().m_enableSatConvex = true;
+  btCylinderShapeZ cylinder(bt(kPourR, kPourR, kPourH / 2));
+  cylinder.setMargin(btScalar(kPourMargin));
+  // the same coins with lengths in decimetres (Bullet's manual: moving
+  // objects should be at least ~0.2 units; its GJK stops on absolute
+  // tolerances, |v|^2 < 1e-6 in float)
+  constexpr double kDm = 10.0;
+  btCylinderShapeZ cylinderDm(bt(kDm * kPourR, kDm * kPourR, kDm * kPourH / 2));
+  cylinderDm.setMargin(btScalar(kDm * kPourMargin));
+  const std::unique_ptr<btConvexHullShape> hull = pourCoinShape();
+  struct Counter : btCollisionWorld::ContactResultCallback {
+    int touching = 0;
+    btScalar addSingleResult(btManifoldPoint& p, const btCollisionObjectWrapper*, int, int,
+                             const btCollisionObjectWrapper*, int, int) override {
+      touching += p.getDistance() < 0;
+      return 0;
+    }
+  };
+  auto seen = [&](btCollisionShape* shape, const btTransform& ta, const btTransform& tb) {
+    btCollisionObject a, b;
+    a.setCollisionShape(shape);
+    b.setCollisionShape(shape);
+    a.setWorldTransform(ta);
+    b.setWorldTransform(tb);
+    world.addCollisionObject(&a);
+    world.addCollisionObject(&b);
+    Counter c;
+    world.contactPairTest(&a, &b, c);
+    world.removeCollisionObject(&a);
+    world.removeCollisionObject(&b);
+    return c.touching > 0;
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int pairs = 0, cylinderMissed = 0, cylinderDmMissed = 0, hullMissed = 0;
+  for (int k = 0; k < kCensusPoses; ++k) {
+    // A tilted up to 0.3 rad as in the pour; B within 2R and H of it, tilted up to 0.5 rad
+    const btTransform ta(btQuaternion(bt(u(rng), u(rng), 0).normalized(), btScalar(0.3 * std::abs(u(rng)))),
+                         bt(0.1 * u(rng), 0.1 * u(rng), 0.002));
+    const double rho = 2 * kPourR * std::abs(u(rng)), phi = M_PI * u(rng), dz = kPourH * u(rng);
+    const btTransform tb(btQuaternion(bt(u(rng), u(rng), 0).normalized(), btScalar(0.5 * std::abs(u(rng)))),
+                         ta * bt(rho * std::cos(phi), rho * std::sin(phi), dz));
+    if (sampledDepth(ta, tb) < kCensusDepth) continue;
+    ++pairs;
+    cylinderMissed += !seen(&cylinder, ta, tb);
+    cylinderDmMissed += !seen(&cylinderDm, btTransform(ta.getBasis(), ta.getOrigin() * btScalar(kDm)),
+                              btTransform(tb.getBasis(), tb.getOrigin() * btScalar(kDm)));
+    hullMissed += !seen(hull.get(), ta, tb);
+  }
+  Table table("Coin pairs overlapping by at least 1 mm that Bullet reports as not touching",
+              {"coins", "overlapping pairs", "no contact"});
+  table.add({"cylinders (btCylinderShapeZ, GJK/EPA)", std::to_string(pairs), std::to_string(cylinderMissed)});
+  table.add({"the same cylinders, lengths in dm", std::to_string(pairs), std::to_string(cylinderDmMissed)});
+  table.add({"16-gon hulls (SAT and clipping)", std::to_string(pairs), std::to_string(hullMissed)});
+  table.emit();
+  ASSERT_GT(pairs, kCensusPoses / 2);  // the sample is mostly overlaps (3,514 of 4,000)
+  EXPECT_EQ(hullMissed, 0);
+  EXPECT_EQ(cylinderDmMissed, 0);
 }
 
 // ---- incline -----------------------------------------------------------------------
