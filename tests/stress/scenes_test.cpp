@@ -486,10 +486,12 @@ TEST(StressScenes, HullCoinsPouredIntoABoxComeToRestAndStayInside) {
 // on a grid, 0.1 R x 0.1 H x 4 degrees, tested against coin A's cylinder),
 // kept if some point lies at least kCensusDepth inside A; then each pair
 // is given to Bullet as cylinders and as the pour's hull coins (SAT).
-// Asserted: the hull coins see every overlap (the 16-gon lies within
-// R (1 - cos(pi/16)) = 0.38 mm of the circle, so an overlap of 1 mm is
-// one of the hulls too). Reported: the cylinders' misses, Bullet's defect
-// (measured: float 1,301 of 3,515 pairs, 37 %, double none).
+// Asserted: the hull coins see every overlap (each 16-gon lies within
+// R (1 - cos(pi/16)) = 0.38 mm of its circle, so the hulls of two coins
+// overlapping by 1 mm overlap by at least 0.24 mm), and so do the
+// cylinders with lengths in decimetres. Reported: the cylinders' misses in
+// metres, Bullet's defect (measured: float 1,302 of 3,514 pairs, 37 %;
+// double none).
 TEST(StressScenes, CoinOverlapsSeenByBulletCensus) {
   constexpr int kCensusPoses = 4000;
   constexpr double kCensusDepth = 1e-3;
