@@ -137,9 +137,9 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // 0.5 m high), each with a seeded random tilt (up to 0.3 rad), offset and
 // velocity. kPourTime after the last layer: none has left the box (inside
 // the walls, above the floor by more than kPourSinkTol: a coin resting on
-// its rim sinks by its margin at most) and all have come to rest (speeds below kPourRestSpeed; coins
-// leaning on others are Bullet point contacts, which settle more slowly
-// than patches, hence 1 cm/s).
+// its rim sinks by its margin at most) and all have come to rest (speeds
+// below kPourRestSpeed; coins leaning on others are Bullet point contacts,
+// which settle more slowly than patches, hence 1 cm/s).
 // kPourTime is set by the slowest physics in the pour, not by the solver: a
 // coin that lands tilted with spin rolls on its rim like Euler's disk, and
 // rolling without slip dissipates nothing, so it only comes to rest once it
@@ -287,10 +287,11 @@ void addPourRow(Table& table, Friction m, const PourResult& r) {
 // in metres float Bullet misses a third of the overlaps between cylinder
 // coins and the pile boils; double Bullet misses none in metres, and in
 // decimetres tilted coins on the floor spin up (below).
+constexpr double kDecimetres = 10.0;  // world units per metre
 double pourUnit() {
   const char* unit = std::getenv("PATCHSPIN_POUR_UNIT");
-  if (!unit || std::string(unit).empty()) return kDouble ? 1.0 : 10.0;
-  if (std::string(unit) == "dm") return 10.0;
+  if (!unit || std::string(unit).empty()) return kDouble ? 1.0 : kDecimetres;
+  if (std::string(unit) == "dm") return kDecimetres;
   if (std::string(unit) == "m") return 1.0;
   throw std::invalid_argument(std::string("PATCHSPIN_POUR_UNIT: expected dm or m, got '") + unit + "'");
 }
@@ -520,7 +521,7 @@ TEST(StressScenes, CoinOverlapsSeenByBulletCensus) {
   // the same coins with lengths in decimetres (Bullet's manual: moving
   // objects should be at least ~0.2 units; its GJK stops on absolute
   // tolerances, |v|^2 < 1e-6 in float)
-  constexpr double kDm = 10.0;
+  constexpr double kDm = kDecimetres;
   btCylinderShapeZ cylinderDm(bt(kDm * kPourR, kDm * kPourR, kDm * kPourH / 2));
   cylinderDm.setMargin(btScalar(kDm * kPourMargin));
   const std::unique_ptr<btConvexHullShape> hull = pourCoinShape();
