@@ -187,6 +187,19 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // decimetres, six of the 100 coins still roll on their rims at 8 s, tilt
 // shrinking and spin growing like Euler's disk, with Bullet's own solver
 // too; in metres the double pour is at rest, hence its default.
+// The 1000-coin pile creeps; it does not jitter in place (scratch driver,
+// float, decimetres, layer by layer, run on to 20-34 s): the coins' mean
+// height keeps falling, 0.03-0.05 mm/s at 12-30 s with stock Bullet and
+// with the ellipsoidal law, 160-380 coins move by more than 1 mm in every
+// second (the table's creep columns) and the kinetic energy holds at
+// ~1e-4 J: the pile compacts under its own weight, which feeds the motion.
+// Bullet's point-contact friction does not hold it. Bullet's default
+// solver has one friction direction per contact point (along the slip at
+// set-up), none across it; with two (SOLVER_USE_2_FRICTION_DIRECTIONS)
+// 51-161 coins are above 1 cm/s at 16-20 s (stock; ellipsoidal 100-186),
+// with two and 50 iterations 9-41 (stock; ellipsoidal 28-41), the height
+// still falling by 0.01 mm/s; 50 iterations with one direction leave
+// 39-114 (stock); warm starting off, no better (and deeper contacts).
 // Hull coins (PATCHSPIN_POUR_COIN=hull), an experiment, not the default
 // (the figures in this paragraph are from metres and a hull margin of
 // 0.5 mm, with which the hulls were 1 mm thinner against each other than
@@ -248,6 +261,9 @@ constexpr double kPourTime = 8.0;  // after the last layer
 constexpr double kPourInterval = 0.4, kPourDropHeight = 0.03;
 constexpr double kPourSinkTol = 2e-3;
 constexpr double kPourRestSpeed = 1e-2;
+// A pile at rest does not creep: over the last second of the pour no coin
+// moves by more than 1 mm (a coin at kPourRestSpeed would move 10 mm).
+constexpr double kPourCreepWindow = 1.0, kPourCreepTol = 1e-3;
 
 struct PourResult {
   bool finite = true;
@@ -255,6 +271,10 @@ struct PourResult {
   double maxSpeed = 0.0;
   double maxSpeedOnPatch = 0.0;  // over the coins standing on a patch at the end
   int patches = 0;
+  // over the last kPourCreepWindow: coins moved by more than kPourCreepTol
+  // (|dp| + R x rotation angle) and the change of the coins' mean height
+  int crept = 0;
+  double meanHeightRate = 0.0;  // m/s
 };
 
 // A coin as a convex hull of a kPourCoinSides-gon prism with polyhedral
@@ -274,12 +294,15 @@ std::unique_ptr<btConvexHullShape> pourCoinShape(double unit = 1.0) {
 }
 
 const std::vector<std::string> kPourColumns = {"model", "finite", "escaped", "max speed [m/s]",
-                                               "max speed on a patch [m/s]", "patches at the end", "at rest"};
+                                               "max speed on a patch [m/s]", "patches at the end",
+                                               "moved > 1 mm in the last 1 s", "mean height change [mm/s]",
+                                               "at rest"};
 
 void addPourRow(Table& table, Friction m, const PourResult& r) {
   table.add({toString(m), passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
              m == Friction::Stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
-             passFail(r.maxSpeed < kPourRestSpeed)});
+             std::to_string(r.crept), fmt("%.2e", 1e3 * r.meanHeightRate),
+             passFail(r.maxSpeed < kPourRestSpeed && r.crept == 0)});
 }
 
 // World units per metre of the pour (PATCHSPIN_POUR_UNIT: dm or m; the
@@ -346,7 +369,11 @@ PourResult pour(int layers, Friction model, bool hull, double unit) {
   };
   // a layer every kPourInterval, kPourDropHeight above the highest coin
   const int steps = int(std::lround((kPourInterval * (layers - 1) + kPourTime) / kDt));
+  const int creepFrom = steps - int(std::lround(kPourCreepWindow / kDt));
+  std::vector<btTransform> before;  // the coins' poses at creepFrom
   for (int k = 0, poured = 0; k < steps; ++k) {
+    if (k == creepFrom)
+      for (const btRigidBody* c : coins) before.push_back(c->getWorldTransform());
     if (poured < layers && k * kDt >= poured * kPourInterval - 1e-9) {
       double top = 0.0;
       for (const btRigidBody* c : coins) top = std::max(top, extremeZ(c, false) / unit);
@@ -356,11 +383,19 @@ PourResult pour(int layers, Friction model, bool hull, double unit) {
     scene.step(kDt);
   }
   PourResult r;
-  for (btRigidBody* c : coins) {
+  double heightChange = 0.0;
+  for (size_t i = 0; i < coins.size(); ++i) {
+    const btRigidBody* c = coins[i];
     if (!isFinite(c)) {
       r.finite = false;
       continue;
     }
+    const btTransform& now = c->getWorldTransform();
+    const btQuaternion turn = now.getRotation() * before.at(i).getRotation().inverse();
+    const double angle = 2 * std::acos(std::min(1.0, std::abs(double(turn.getW()))));
+    const double moved = (double((now.getOrigin() - before[i].getOrigin()).length()) + R * angle) / unit;
+    if (moved > kPourCreepTol) ++r.crept;
+    heightChange += double(now.getOrigin().z() - before[i].getOrigin().z()) / unit;
     const btVector3 p = c->getWorldTransform().getOrigin() / btScalar(unit);
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
         extremeZ(c, true) / unit < -kPourSinkTol)
@@ -371,6 +406,7 @@ PourResult pour(int layers, Friction model, bool hull, double unit) {
     if (scene.solver().findPatchReport(c)) r.maxSpeedOnPatch = std::max(r.maxSpeedOnPatch, speed);
   }
   r.patches = int(scene.solver().patchReports().size());
+  r.meanHeightRate = heightChange / double(coins.size()) / kPourCreepWindow;
   return r;
 }
 
@@ -391,8 +427,10 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // its last layer it is still moving in every model (largest speed,
     // |v| + R |omega|, float, decimetres: ellipsoidal 0.13 m/s, exact 0.12,
     // stock 0.089; double, metres: 0.086, 0.082, 0.145; coins on patches
-    // included; no coin escapes or sinks in either), so it is reported with the
-    // rest. The figures below up to "In double" are from metres, before the
+    // included; no coin escapes or sinks in either; in its last second, float,
+    // 337, 362 and 540 coins moved by more than 1 mm and the mean height fell
+    // by 0.036, 0.061 and 0.057 mm/s: the pile creeps), so it is reported
+    // with the rest. The figures below up to "In double" are from metres, before the
     // length unit and the layer-by-layer pour (see above the scene).
     // Measured every second (scratch driver, float): the 1000-coin pile does
     // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
@@ -409,13 +447,15 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // 1 cm/s (stock) and 110-186 (ellipsoidal, 507-540 on patches)
     if (!stressFull()) {
       EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
+      EXPECT_EQ(r.crept, 0) << toString(m) << ": the pile creeps";
     } else if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed) {
       defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
                  fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
     }
-    if (r.finite && r.maxSpeed >= kPourRestSpeed)
+    if (r.finite && (r.maxSpeed >= kPourRestSpeed || r.crept > 0))
       defects += std::string("\n  ") + toString(m) + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
-                 fmt("%.0f", kPourTime) + " s";
+                 fmt("%.0f", kPourTime) + " s; in its last second " + std::to_string(r.crept) +
+                 " coins moved by more than 1 mm, mean height " + fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
   }
   table.emit();
   // Fixed defect: in the double build's exact pour one coin (53), flat on a
@@ -474,6 +514,7 @@ TEST(StressScenes, HullCoinsPouredIntoABoxComeToRestAndStayInside) {
     EXPECT_EQ(r.escaped, 0) << toString(m);
     EXPECT_LT(r.maxSpeed, kPourRestSpeed) << toString(m);
     EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
+    EXPECT_EQ(r.crept, 0) << toString(m) << ": the pile creeps";
   }
   table.emit();
 }
