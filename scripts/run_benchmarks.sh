@@ -9,6 +9,8 @@
 #   MIN_TIME=0.2              seconds per micro-benchmark (steadier figures: more)
 #   SKIP_BUILD=1              do not (re)build first (BUILD_DIR must hold the programs)
 #   PATCHSPIN_SCALE_MAX_N=1000  skip the 10000-body world (bench_bullet_scale)
+#   PATCHSPIN_SCALE_REPETITIONS=3  world scale: fastest of 3 repetitions, not 9
+#                             (a third of its time; ratios +-20 % on a noisy machine)
 #   README_FILE=path          refresh this file instead of README.md (to try the script)
 #
 # README sections, each between a pair of markers (a missing pair is reported
