@@ -402,7 +402,7 @@ PourResult pour(int layers, Friction model, bool hull, double unit) {
     const double moved = (double((now.getOrigin() - before[i].getOrigin()).length()) + R * angle) / unit;
     if (moved > kPourCreepTol) ++r.crept;
     heightChange += double(now.getOrigin().z() - before[i].getOrigin().z()) / unit;
-    const btVector3 p = c->getWorldTransform().getOrigin() / btScalar(unit);
+    const btVector3 p = now.getOrigin() / btScalar(unit);
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
         extremeZ(c, true) / unit < -kPourSinkTol)
       ++r.escaped;
