@@ -1489,12 +1489,14 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // solve found lambda0 outside the limit set for the same input, so
         // the test would fail (1000 sliding coins: ~1.3 of 3.6 visits per
         // patch and step; the others are settled skips, solves and sticks).
+        // A patch that ended the last step sticking keeps the test (for the
+        // exact law, with its hull test), as before.
         const bool stuckBefore = pc.stateSticking || (pc.haveLast && pc.last.sticking);
         const bool reuseSlip = pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
                                (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
                                std::abs(L - pc.lastL) <= kReuseRelTol * L;
         bool quick = false;
-        if (settings.quickStick && !(reuseSlip && !stuckBefore)) {
+        if (settings.quickStick && !(reuseSlip && !pc.stateSticking)) {
           if (std::isnan(size)) size = stickSize(lambda0);
           if (std::isfinite(size) &&
               (size <= L || (pc.model == Model::Exact && stuckBefore &&

@@ -404,11 +404,12 @@ PourResult pour(int layers, Friction model, bool hull, double unit) {
       continue;
     }
     const btTransform& now = c->getWorldTransform();
-    const btQuaternion turn = now.getRotation() * before.at(i).getRotation().inverse();
+    const btTransform& was = before.at(i);
+    const btQuaternion turn = now.getRotation() * was.getRotation().inverse();
     const double angle = 2 * std::acos(std::min(1.0, std::abs(double(turn.getW()))));
-    const double moved = (double((now.getOrigin() - before[i].getOrigin()).length()) + R * angle) / unit;
+    const double moved = (double((now.getOrigin() - was.getOrigin()).length()) + R * angle) / unit;
     if (moved > kPourCreepTol) ++r.crept;
-    heightChange += double(now.getOrigin().z() - before[i].getOrigin().z()) / unit;
+    heightChange += double(now.getOrigin().z() - was.getOrigin().z()) / unit;
     const btVector3 p = now.getOrigin() / btScalar(unit);
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
         extremeZ(c, true) / unit < -kPourSinkTol)
