@@ -145,6 +145,9 @@ struct PatchSolverStats {
   long deferredRefreshes = 0;  // visits whose due refresh was deferred (deferStickingRefresh)
   long quickSticks = 0;        // friction visits that stuck by the quick test (no block solve)
   long shapeRebuilds = 0;      // patch shapes and friction laws built anew (outline changed)
+  // patches solved with their support or their load held (supportedStacks;
+  // only where the held body is in no other contact or joint)
+  long stackHolds = 0;
   // friction visits whose law or block refused its input (patchspin::Error);
   // the patch kept its impulse and its manifold went to Bullet's contacts
   long blockErrors = 0;
