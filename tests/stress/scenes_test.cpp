@@ -213,6 +213,26 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // from 337 / 362 to 317 / 193, still creeping; but the 100-coin pour is
 // no longer at rest on its patches: 1.4e-3 m/s (ellipsoidal, every coin
 // on a patch) and 7.2e-3 (exact, 99 on patches) against 1.5e-12 and 0.
+// Not for want of friction: with mu = 1 on every contact (instead of 0.4 on
+// the floor and 0.16 coin on coin, Bullet's product of the two) the pile
+// creeps as much or more (10-14 s: 466-684 coins moved by more than 1 mm
+// in each second with stock Bullet, 313-390 ellipsoidal, the mean height
+// falling by 0.05-0.13 mm/s, against 351-562, 300-368 and 0.03-0.11 with
+// the pour's friction). Not for want of iterations: with two friction
+// directions and 150 iterations, 9-41 (stock) and 17-48 (ellipsoidal)
+// coins are above 1 cm/s at 15-20 s, the height falling by 0.01-0.02
+// mm/s, as with 50. Split impulses at every depth in this pour: stock
+// 669-760 above 1 cm/s at 9-14 s. Bullet's sleeping at its default
+// thresholds (0.8 units/s, here 8 cm/s, and 1 rad/s, for 2 s) puts no coin
+// to sleep in 20 s, stock or ellipsoidal: the pile is one island, and some
+// coin in it is always faster. Traced (mu = 1, ellipsoidal, 13.0-13.3 s):
+// a flat coin resting on its patch (omega = 0) is lifted 0.24 mm when its
+// side neighbour's rim contact appears 0.18 mm deep, its normal 0.06-0.13
+// out of the horizontal; tilted
+// past the flatness hysteresis it loses its patch and falls back at 3.5
+// cm/s 0.14 s later. The full pour adds rows with two friction directions
+// and 50 iterations: Bullet's own contacts at the strongest settings tried
+// do not hold the pile either, stock or under the ellipsoidal law.
 // Hull coins (PATCHSPIN_POUR_COIN=hull), an experiment, not the default
 // (the figures in this paragraph are from metres and a hull margin of
 // 0.5 mm, with which the hulls were 1 mm thinner against each other than
@@ -311,9 +331,9 @@ const std::vector<std::string> kPourColumns = {"model", "finite", "escaped", "ma
                                                "moved > 1 mm in the last 1 s", "mean height change [mm/s]",
                                                "at rest"};
 
-void addPourRow(Table& table, Friction m, const PourResult& r) {
-  table.add({toString(m), passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
-             m == Friction::Stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
+void addPourRow(Table& table, const std::string& label, bool stock, const PourResult& r) {
+  table.add({label, passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
+             stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
              std::to_string(r.crept), fmt("%.2e", 1e3 * r.meanHeightRate),
              passFail(r.maxSpeed < kPourRestSpeed && r.crept == 0)});
 }
@@ -339,10 +359,22 @@ bool pourHullCoins() {
   throw std::invalid_argument(std::string("PATCHSPIN_POUR_COIN: expected cylinder or hull, got '") + coin + "'");
 }
 
+// Bullet's solver settings for the pour: its defaults (one friction
+// direction per contact point, along the slip when the step starts) with
+// the scenes' 10 iterations, or the strongest point contacts tried on the
+// 1000-coin pile (two directions, SOLVER_USE_2_FRICTION_DIRECTIONS, and 50
+// iterations).
+struct PourSolver {
+  bool twoFrictionDirections = false;
+  int iterations = 10;
+};
+constexpr PourSolver kStrongPointContacts{true, 50};
+
 // The pour in world units of 1/unit m: lengths, speeds and g scaled, masses
 // and times not (the same motion); the result in metres.
-PourResult pour(int layers, Friction model, bool hull, double unit) {
-  Scene scene(kG * unit, 10);
+PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver solver = {}) {
+  Scene scene(kG * unit, solver.iterations);
+  if (solver.twoFrictionDirections) scene.world().getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
   if (hull) scene.world().getDispatchInfo().m_enableSatConvex = true;  // hull-hull axes by SAT (see above)
   OwnedBodies owned(scene.world());
   scene.addGroundPlane(1.0);
@@ -430,21 +462,25 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   Table table("Pour of " + std::to_string(100 * layers) + (pourHullCoins() ? " hull" : "") + " coins into a box, " +
                   fmt("%.0f", kPourTime) + " s, lengths in " + (pourUnit() == 1.0 ? "m" : "dm"),
               kPourColumns);
-  for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
-    const PourResult r = pour(layers, m, pourHullCoins(), pourUnit());
-    addPourRow(table, m, r);
+  std::vector<std::pair<Friction, PourResult>> runs;
+  for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock})
+    runs.emplace_back(m, pour(layers, m, pourHullCoins(), pourUnit()));
+  const PourResult& stock = runs.back().second;
+  for (const auto& [m, r] : runs) {
+    addPourRow(table, toString(m), m == Friction::Stock, r);
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_EQ(r.escaped, 0) << toString(m);
     // what the patches carry is at rest (the coins still moving are on
     // Bullet's point contacts, below). Not in the 1000-coin pour: 8 s after
     // its last layer it is still moving in every model (largest speed,
-    // |v| + R |omega|, float, decimetres: ellipsoidal 0.13 m/s, exact 0.12,
-    // stock 0.089; double, metres: 0.086, 0.082, 0.145; coins on patches
-    // included; no coin escapes or sinks in either; in its last second, float,
-    // 337, 362 and 540 coins moved by more than 1 mm and the mean height fell
-    // by 0.036, 0.061 and 0.057 mm/s, double 189, 219 and 464 and 0.025,
-    // 0.052 and 0.13 mm/s: the pile creeps), so it is reported with the
+    // |v| + R |omega|, float, decimetres: ellipsoidal 0.073 m/s, exact
+    // 0.078, stock 0.089; double, metres: 0.062, 0.058, 0.145; coins on
+    // patches included; no coin escapes or sinks in either; in its last
+    // second, float, 271, 296 and 540 coins moved by more than 1 mm and the
+    // mean height fell by 0.036, 0.041 and 0.057 mm/s, double 294, 200 and
+    // 464 and 0.066, 0.026 and 0.13 mm/s: the pile creeps), so it is
+    // reported with the
     // rest. The figures below up to "In double" are from metres, before the
     // length unit and the layer-by-layer pour (see above the scene).
     // Measured every second (scratch driver, float): the 1000-coin pile does
@@ -463,16 +499,54 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     if (!stressFull()) {
       EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
       EXPECT_EQ(r.crept, 0) << toString(m) << ": the pile creeps";
-    } else if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed) {
-      defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
-                 fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
+    } else {
+      // The 1000-coin pile creeps in every model (below), but the patches
+      // do not make it creep more than Bullet's own point contacts do
+      // (measured: float 271 / 296 coins against stock's 540, double 294 /
+      // 200 against 464; before the stack-hold fix, float 337 / 362, double
+      // 189 / 219).
+      EXPECT_LE(r.crept, stock.crept) << toString(m) << ": more coins crept than with stock Bullet";
+      if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed)
+        defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
+                   fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
     }
+  }
+  auto reportMotion = [&defects](const std::string& label, const PourResult& r) {
     if (r.finite && (r.maxSpeed >= kPourRestSpeed || r.crept > 0))
-      defects += std::string("\n  ") + toString(m) + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
-                 fmt("%.0f", kPourTime) + " s; in its last second " + std::to_string(r.crept) +
-                 " coins moved by more than 1 mm, mean height " + fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
+      defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " + fmt("%.0f", kPourTime) +
+                 " s; in its last second " + std::to_string(r.crept) + " coins moved by more than 1 mm, mean height " +
+                 fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
+  };
+  for (const auto& [m, r] : runs)
+    if (m != Friction::Stock) reportMotion(toString(m), r);
+  if (stressFull()) {
+    // Bullet's own limit, shown in the table: with the strongest point
+    // contacts tried (see the comment below) stock Bullet does not hold the
+    // pile either, nor does the ellipsoidal law.
+    for (Friction m : {Friction::Ellipsoidal, Friction::Stock}) {
+      const std::string label = std::string(toString(m)) + ", 2 friction directions, 50 iterations";
+      const PourResult r = pour(layers, m, pourHullCoins(), pourUnit(), kStrongPointContacts);
+      addPourRow(table, label, m == Friction::Stock, r);
+      if (m != Friction::Stock) {
+        EXPECT_TRUE(r.finite) << label;
+        EXPECT_EQ(r.escaped, 0) << label;
+      }
+      reportMotion(label, r);
+    }
   }
   table.emit();
+  // Fixed defect: the first run of the rows with two friction directions
+  // and 50 iterations, in double Bullet, threw coins out of the box under
+  // the ellipsoidal law (174 escaped, largest speed 70 m/s; float: none).
+  // Traced: coin 246 lay between two patches (356 on it, it on 146), the
+  // lower body of a stack solved with its support held, while a
+  // neighbour's point contact (346) pressed on it; within one step it left
+  // at 62 m/s and 2085 rad/s, Bullet's rows on it carrying 1.7 N s. The
+  // hold's fold assumes the held body moves only as its patch lets it, and
+  // the support's share is not projected onto its limits, so with other
+  // rows on that body the held iterations need not converge. Holds are now
+  // taken only where the held body is in none of Bullet's rows
+  // (PatchFrictionSolver.StackHoldsOnlyWhereTheHeldBodyCarriesNothingElse).
   // Fixed defect: in the double build's exact pour one coin (53), flat on a
   // floor patch, hovered, falling at g dt in every step with Pz = 0 while
   // something pushed it back up. The push came from a second "patch" with
@@ -523,7 +597,7 @@ TEST(StressScenes, HullCoinsPouredIntoABoxComeToRestAndStayInside) {
               kPourColumns);
   for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
     const PourResult r = pour(1, m, true, pourUnit());
-    addPourRow(table, m, r);
+    addPourRow(table, toString(m), m == Friction::Stock, r);
     if (m == Friction::Stock) continue;
     EXPECT_TRUE(r.finite) << toString(m);
     EXPECT_EQ(r.escaped, 0) << toString(m);
