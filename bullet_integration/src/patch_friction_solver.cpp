@@ -1651,8 +1651,8 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
                                                             const btContactSolverInfo& info) {
   Impl& im = *impl_;
   im.stats.patches += long(im.patches.size());
-  for (const PatchConstraint& pc : im.patches) im.stats.stackHolds += pc.hold >= 0 || pc.loadHold >= 0;
   for (PatchConstraint& pc : im.patches) {
+    im.stats.stackHolds += pc.hold >= 0 || pc.loadHold >= 0;
     PatchState& st = *pc.state;
     const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
     const Vec3 ex = pc.F.col(0), ey = pc.F.col(1);

@@ -213,26 +213,26 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // from 337 / 362 to 317 / 193, still creeping; but the 100-coin pour is
 // no longer at rest on its patches: 1.4e-3 m/s (ellipsoidal, every coin
 // on a patch) and 7.2e-3 (exact, 99 on patches) against 1.5e-12 and 0.
-// Not for want of friction: with mu = 1 on every contact (instead of 0.4 on
-// the floor and 0.16 coin on coin, Bullet's product of the two) the pile
-// creeps as much or more (10-14 s: 466-684 coins moved by more than 1 mm
-// in each second with stock Bullet, 313-390 ellipsoidal, the mean height
-// falling by 0.05-0.13 mm/s, against 351-562, 300-368 and 0.03-0.11 with
-// the pour's friction). Not for want of iterations: with two friction
-// directions and 150 iterations, 9-41 (stock) and 17-48 (ellipsoidal)
-// coins are above 1 cm/s at 15-20 s, the height falling by 0.01-0.02
-// mm/s, as with 50. Split impulses at every depth in this pour: stock
-// 669-760 above 1 cm/s at 9-14 s. Bullet's sleeping at its default
-// thresholds (0.8 units/s, here 8 cm/s, and 1 rad/s, for 2 s) puts no coin
-// to sleep in 20 s, stock or ellipsoidal: the pile is one island, and some
-// coin in it is always faster. Traced (mu = 1, ellipsoidal, 13.0-13.3 s):
-// a flat coin resting on its patch (omega = 0) is lifted 0.24 mm when its
-// side neighbour's rim contact appears 0.18 mm deep, its normal 0.06-0.13
-// out of the horizontal; tilted
-// past the flatness hysteresis it loses its patch and falls back at 3.5
-// cm/s 0.14 s later. The full pour adds rows with two friction directions
-// and 50 iterations: Bullet's own contacts at the strongest settings tried
-// do not hold the pile either, stock or under the ellipsoidal law.
+// The same driver, before the stack-hold fix (see the pour test's fixed
+// defects). Not for want of friction: with mu = 1 on every contact (instead
+// of 0.4 on the floor and 0.16 coin on coin, Bullet's product of the two)
+// the pile creeps as much or more (10-14 s: 466-684 coins moved by more than
+// 1 mm in each second with stock Bullet, 313-390 ellipsoidal, the mean
+// height falling by 0.05-0.13 mm/s, against 351-562, 300-368 and 0.03-0.11
+// with the pour's friction). Not for want of iterations: with two friction
+// directions and 150 iterations, 9-41 (stock) and 17-48 (ellipsoidal) coins
+// are above 1 cm/s at 15-20 s, the height falling by 0.01-0.02 mm/s, as with
+// 50. Split impulses at every depth in this pour: stock 669-760 above 1 cm/s
+// at 9-14 s. Bullet's sleeping at its default thresholds (0.8 units/s, here
+// 8 cm/s, and 1 rad/s, for 2 s) puts no coin to sleep in 20 s, stock or
+// ellipsoidal: the pile is one island, and some coin in it is always faster.
+// Traced (mu = 1, ellipsoidal, 13.0-13.3 s): a flat coin resting on its
+// patch (omega = 0) is lifted 0.24 mm when its side neighbour's rim contact
+// appears 0.18 mm deep, its normal 0.06-0.13 out of the horizontal; tilted
+// past the flatness hysteresis it loses its patch and falls back at 3.5 cm/s
+// 0.14 s later. The full pour adds rows with two friction directions and 50
+// iterations: Bullet's own contacts at the strongest settings tried do not
+// hold the pile either, stock or under the ellipsoidal law.
 // Hull coins (PATCHSPIN_POUR_COIN=hull), an experiment, not the default
 // (the figures in this paragraph are from metres and a hull margin of
 // 0.5 mm, with which the hulls were 1 mm thinner against each other than
@@ -480,9 +480,9 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // second, float, 271, 296 and 540 coins moved by more than 1 mm and the
     // mean height fell by 0.036, 0.041 and 0.057 mm/s, double 294, 200 and
     // 464 and 0.066, 0.026 and 0.13 mm/s: the pile creeps), so it is
-    // reported with the
-    // rest. The figures below up to "In double" are from metres, before the
-    // length unit and the layer-by-layer pour (see above the scene).
+    // reported with the rest. The figures below up to "In double" are from
+    // metres, before the length unit and the layer-by-layer pour (see above
+    // the scene).
     // Measured every second (scratch driver, float): the 1000-coin pile does
     // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
     // m/s at 1-16 s. Stock: 992 of 1000 coins above 1 cm/s at 0.5 s, 953 at
