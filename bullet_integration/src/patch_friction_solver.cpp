@@ -365,7 +365,7 @@ struct PatchFrictionSolver::Impl {
     return it == options.end() ? nullptr : &it->second;
   }
   std::vector<int> ownPatch, patchesAbove;  // scratch of linkStackedPatches
-  std::vector<char> otherRows;               // by solver body id: in one of Bullet's rows
+  std::vector<char> otherRows;              // by solver body id: in one of Bullet's rows
   // a manifold whose patch is detected, its solver rows pending (convertContacts)
   struct Candidate {
     int index;
@@ -1327,7 +1327,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   if (im.settings.supportedStacks && !im.patches.empty()) {
     // the bodies in Bullet's rows (joints are converted before the contacts)
     im.otherRows.assign(std::size_t(m_tmpSolverBodyPool.size()), 0);
-    for (const btConstraintArray* pool : {&m_tmpSolverContactConstraintPool, &m_tmpSolverNonContactConstraintPool})
+    for (const btConstraintArray* pool :
+         {&m_tmpSolverContactConstraintPool, &m_tmpSolverNonContactConstraintPool})
       for (int i = 0; i < pool->size(); ++i) {
         im.otherRows[std::size_t((*pool)[i].m_solverBodyIdA)] = 1;
         im.otherRows[std::size_t((*pool)[i].m_solverBodyIdB)] = 1;
@@ -1512,7 +1513,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
         // A patch that ended the last step sticking keeps the test (for the
         // exact law, with its hull test), as before.
         const bool stuckBefore = pc.stateSticking || (pc.haveLast && pc.last.sticking);
-        const bool reuseSlip = pc.haveLast && !refreshed && !pc.last.sticking && held == pc.lastHeld &&
+        const bool reuseSlip = pc.haveLast && !refreshed && !pc.last.sticking &&
+                               held == pc.lastHeld &&
                                (in.b - pc.lastB).norm() <= kReuseRelTol * in.b.norm() &&
                                std::abs(L - pc.lastL) <= kReuseRelTol * L;
         bool quick = false;

@@ -561,8 +561,10 @@ TEST(PatchFrictionSolver, StackHoldsOnlyWhereTheHeldBodyCarriesNothingElse) {
   for (Ball ball : {kNone, kOnLower, kOnUpper}) {
     Scene scene(kG);
     scene.addGroundPlane(1.0);
-    btRigidBody* lower = scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 2.0, btVector3(0, 0, 0.05f), 0.5);
-    btRigidBody* upper = scene.addBox(btVector3(0.05f, 0.05f, 0.05f), 1.0, btVector3(0, 0, 0.15f), 0.5);
+    btRigidBody* lower =
+        scene.addBox(btVector3(0.1f, 0.1f, 0.05f), 2.0, btVector3(0, 0, 0.05f), 0.5);
+    btRigidBody* upper =
+        scene.addBox(btVector3(0.05f, 0.05f, 0.05f), 1.0, btVector3(0, 0, 0.15f), 0.5);
     scene.solver().enablePatchFriction(lower, {Model::Ellipsoidal});
     scene.solver().enablePatchFriction(upper, {Model::Ellipsoidal});
     // a 2 cm ball touching the block's side at its mid-height, pressed on
@@ -572,7 +574,8 @@ TEST(PatchFrictionSolver, StackHoldsOnlyWhereTheHeldBodyCarriesNothingElse) {
     long holds = -1;
     for (int k = 0; k < 48; ++k) {
       if (sphere) {
-        sphere->applyCentralForce(btVector3(-1.0f, 0, btScalar(0.1 * kG)));  // against the block, weightless
+        // against the block, weightless
+        sphere->applyCentralForce(btVector3(-1.0f, 0, btScalar(0.1 * kG)));
         sphere->setAngularVelocity(btVector3(0, 0, 0));
       }
       scene.step(kDt);

@@ -374,7 +374,8 @@ constexpr PourSolver kStrongPointContacts{true, 50};
 // and times not (the same motion); the result in metres.
 PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver solver = {}) {
   Scene scene(kG * unit, solver.iterations);
-  if (solver.twoFrictionDirections) scene.world().getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
+  if (solver.twoFrictionDirections)
+    scene.world().getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
   if (hull) scene.world().getDispatchInfo().m_enableSatConvex = true;  // hull-hull axes by SAT (see above)
   OwnedBodies owned(scene.world());
   scene.addGroundPlane(1.0);
@@ -513,8 +514,9 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   }
   auto reportMotion = [&defects](const std::string& label, const PourResult& r) {
     if (r.finite && (r.maxSpeed >= kPourRestSpeed || r.crept > 0))
-      defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " + fmt("%.0f", kPourTime) +
-                 " s; in its last second " + std::to_string(r.crept) + " coins moved by more than 1 mm, mean height " +
+      defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
+                 fmt("%.0f", kPourTime) + " s; in its last second " + std::to_string(r.crept) +
+                 " coins moved by more than 1 mm, mean height " +
                  fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
   };
   for (const auto& [m, r] : runs)
