@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace patchspin::bullet::internal {
 namespace {
@@ -332,12 +333,36 @@ btVector3 setFrame(const Face& a, const Face& b, const btVector3& xHint, Detecte
   return base;
 }
 
+// patch.clearance from its frame, gap, centre and outline: a's face is a
+// plane, so its height above b's plane is linear over the overlap and least
+// at a vertex (polygon) or on the rim (disk).
+void setClearance(const Face& a, DetectedPatch& patch) {
+  const double an = double(a.normal.dot(patch.normal));
+  patch.clearance = patch.gap;
+  if (!(an < -0.5)) return;  // (faces that take part face each other within 45 degrees)
+  // height of a's face above b's plane at in-plane offset p from a's
+  // projected centre: gap - (a.normal . p) / (a.normal . n)
+  const Vec2 slope(-double(a.normal.dot(patch.xAxis)) / an,
+                   -double(a.normal.dot(patch.yAxis)) / an);
+  const PatchOutline& outline = patch.outline;
+  double least = 0.0;
+  if (outline.disk) {
+    least = -outline.radius * slope.norm();
+  } else {
+    least = std::numeric_limits<double>::infinity();
+    for (const Vec2& v : outline.vertices) least = std::min(least, slope.dot(v));
+    if (outline.vertices.empty()) least = 0.0;
+  }
+  patch.clearance = patch.gap + slope.dot(patch.centre) + least;
+}
+
 }  // namespace
 
 void refreshFrame(const Face& a, const Face& b, const btVector3& xHint, DetectedPatch& patch) {
   const btVector3 base = setFrame(a, b, xHint, patch);
   patch.origin =
       base + patch.xAxis * btScalar(patch.centre.x()) + patch.yAxis * btScalar(patch.centre.y());
+  setClearance(a, patch);
 }
 
 std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVector3& xHint,
@@ -350,6 +375,7 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     patch.outline = overlap->outline;
     patch.centre = overlap->centre;
     patch.origin = base + ex * btScalar(patch.centre.x()) + ey * btScalar(patch.centre.y());
+    setClearance(a, patch);
     return patch;
   }
 
@@ -424,6 +450,7 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   patch.outline.vertices = std::move(poly);
   patch.centre = centre;
   patch.origin = base + ex * btScalar(centre.x()) + ey * btScalar(centre.y());
+  setClearance(a, patch);
   return patch;
 }
 

@@ -68,6 +68,10 @@ struct DetectedPatch {
   PatchOutline outline;               // overlap, patch frame about O
   Vec2 centre = Vec2::Zero();         // O in the plane frame about a's projected face centre
   double gap = 0.0;                   // signed distance of a's face centre above b's plane [m]
+  // least distance of a's face above b's plane over the overlap [m]: the
+  // gap where the faces are parallel, less where a is tilted on b (its low
+  // side is the first to touch)
+  double clearance = 0.0;
   btVector3 tilt{0, 0, 0};            // small rotation of a that makes it flat on b [rad]
 };
 

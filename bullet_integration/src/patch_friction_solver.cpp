@@ -58,6 +58,19 @@ constexpr double kOnFaceMargins = 1.5;
 // two boxes with zero margins touch on their faces to ~1e-8 m in float
 // (measured, 10 cm boxes near the origin), which 1.5 x 0 refused.
 constexpr double kOnFaceRoundOffUlps = 64.0;
+// Closing a patch's gap may take the low side of a face tilted on the other
+// (within the flatness tolerance) this far into it, relative to the patch
+// size, no further. Closing the whole gap at O in one step, as the flat
+// model would, took a coin tilted 0.015 rad on a neighbour 0.2 mm deep at
+// its rim and the patch then tipped back to Bullet, whose contacts pushed
+// it out again: a cycle of ~11 steps that kept a 1000-coin pile boiling
+// (scratch trace, coin 916 on 616). Left to reach b exactly (0), the low
+// side of two boxes, one sliding on the other with a tilt of 1e-7 rad, kept
+// no overlap, so Bullet's box-box test gave no contact points and the patch
+// was lost (PatchShapeIsRebuiltOnlyWhenTheOutlineChanges); 1e-3 of the size
+// is the sink of a tilt of 1e-3 rad, a twentieth of the default flatness
+// tolerance.
+constexpr double kLowSideSinkRelTol = 1e-3;
 // Pseudo-velocity iterations of the patch position correction per step.
 constexpr int kPushIterations = 4;
 // A patch outline whose vertices (or radius) are within this fraction of its
@@ -1303,7 +1316,11 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const Vec3 tilt = toEigen(st.geometry.tilt);
       const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
       if (gap > 0.0) {
-        pc.targetN = Vec3(-gap / dt, 0.0, 0.0);  // may close the gap in one step, no more
+        // may close the gap in one step, no more; where a is tilted on b,
+        // only until its low side is kLowSideSinkRelTol of the patch size
+        // into b (the tilt itself is corrected by the push below)
+        const double sink = kLowSideSinkRelTol * st.geometry.outline.size();
+        pc.targetN = Vec3(-std::clamp(st.geometry.clearance + sink, 0.0, gap) / dt, 0.0, 0.0);
       } else if (info.m_splitImpulse) {
         pc.targetPush = (Vec3(-gap, 0.0, 0.0) + tiltRate) * double(info.m_erp) / dt;
       } else {

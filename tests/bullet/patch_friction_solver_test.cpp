@@ -297,6 +297,72 @@ TEST(PatchFrictionSolver, CoinOnTableIsADiskAndOverTheEdgeACutDisk) {
   }
 }
 
+// A coin tilted on a table by less than the flatness tolerance is a patch,
+// and closing the patch's gap must not drive its low rim into the table.
+// The coin (R = 5 cm, tilted 0.015 rad, pressed down at 0.2 m/s, as by a
+// pile above it) starts with its low rim touching; its face centre is then
+// R sin(0.015) = 0.75 mm above the table. Closing that gap at O in one step,
+// as the patch did before it knew the face's clearance, took the rim
+// 0.73 mm deep in the first step (measured in this test), and the tilt
+// correction lifted it by 2 % a step (0.28 mm deep after 48 steps). The
+// patch may now take the rim kLowSideSinkRelTol R = 0.05 mm in (the
+// solver's constant); the depth is the shape's own geometry (lowest point
+// of the rim, or of the box), not Bullet's contact distance. A box of the
+// coin's size, a polygon patch whose clearance is taken at the outline's
+// vertices, may sink 1e-3 of its half diagonal, 0.071 mm. Bound: the coin's
+// sink doubled, 0.1 mm (measured: coin 0.044 mm, box 0.065 mm; before, the
+// box too went 0.73 mm deep).
+constexpr double kTiltedCoinTilt = 0.015, kTiltedCoinPress = 0.2;
+constexpr double kTiltedCoinSinkBound = 2 * 1e-3 * kR;
+
+TEST(PatchFrictionSolver, TiltedPatchDoesNotDriveItsLowEdgeIn) {
+  // the coin, and a box of the coin's size (a polygon patch: its clearance
+  // is taken at the outline's vertices); half extents of the box
+  const btVector3 half{btScalar(kR), btScalar(kR), btScalar(kH / 2)};
+  for (bool box : {false, true}) {
+    Scene scene(kG);
+    scene.addStaticBox(btVector3(0.2f, 0.2f, 0.05f), btVector3(0, 0, -0.05f), 1.0);
+    const double th = kTiltedCoinTilt;
+    const double z0 = kH / 2 * std::cos(th) + kR * std::sin(th);  // low rim (edge) at z = 0
+    btRigidBody* body = box ? scene.addBox(half, kMass, btVector3(0, 0, btScalar(z0)), kMu)
+                            : scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(z0)), kMu);
+    btTransform t = body->getWorldTransform();
+    t.setRotation(btQuaternion(btVector3(1, 0, 0), btScalar(th)));
+    body->setWorldTransform(t);
+    body->setLinearVelocity(btVector3(0, 0, btScalar(-kTiltedCoinPress)));
+    scene.solver().enablePatchFriction(body, {Model::Ellipsoidal});
+    auto depth = [&] {  // of the lowest point below the table, from the shape's geometry
+      const btTransform& tr = body->getWorldTransform();
+      const btVector3 az = tr.getBasis().getRow(2);  // world z in body axes
+      double low = double(tr.getOrigin().z());
+      if (box) {
+        for (int i = 0; i < 3; ++i) low -= double(half[i]) * std::abs(double(az[i]));
+      } else {
+        const double c = std::abs(double(az.z()));
+        low -= kH / 2 * c + kR * std::sqrt(std::max(0.0, 1 - c * c));
+      }
+      return -low;
+    };
+    double deepest = 0.0;
+    int patchSteps = 0;
+    for (int k = 0; k < 48; ++k) {
+      scene.step(kDt);
+      deepest = std::max(deepest, depth());
+      patchSteps += scene.solver().findPatchReport(body) != nullptr;
+    }
+    const double tilt = std::acos(
+        std::min(1.0, std::abs(double(body->getWorldTransform().getBasis().getColumn(2).z()))));
+    const char* what = box ? "box" : "coin";
+    std::printf(
+        "[tilted %s] deepest edge %.3e m (centre gap at the start %.3e m), %d of 48 steps a patch, "
+        "tilt at the end %.2e rad\n",
+        what, deepest, kR * std::sin(th), patchSteps, tilt);
+    EXPECT_EQ(patchSteps, 48) << what;  // a patch from the first step on
+    EXPECT_LT(deepest, kTiltedCoinSinkBound) << what;
+    EXPECT_LT(tilt, th) << what;  // the tilt correction goes on (2 % a step, as before)
+  }
+}
+
 // Box on an offset box: the patch is the rectangle where the faces overlap,
 // x in [-0.05, 0.1], y in [-0.07, 0.1]: 0.15 x 0.17, centroid (0.025, 0.015).
 // The upper box's centre of mass (0.05, 0.03) lies (0.025, 0.015) off it, so
