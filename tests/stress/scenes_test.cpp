@@ -4,22 +4,21 @@
 // a patch shrinking to a point. Each scene also runs with stock Bullet (no
 // body opted in) and prints its figure beside ours; only the patch runs are
 // asserted. Full-size pour behind PATCHSPIN_STRESS_FULL=1.
-#include "stress_scenes.hpp"
-
-#include <closed_forms.hpp>
-
-#include <patchspin/models.hpp>
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <closed_forms.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <patchspin/models.hpp>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "stress_scenes.hpp"
 
 namespace patchspin::bullet::stress {
 namespace {
@@ -372,7 +371,12 @@ constexpr PourSolver kStrongPointContacts{true, 50};
 
 // The pour in world units of 1/unit m: lengths, speeds and g scaled, masses
 // and times not (the same motion); the result in metres.
-PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver solver = {}) {
+// The pour's random layout and throws (the full pour's, and the first of
+// the 100-coin pours' seeds below).
+constexpr unsigned kPourSeed = 12345;
+
+PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver solver = {},
+                unsigned seed = kPourSeed) {
   Scene scene(kG * unit, solver.iterations);
   if (solver.twoFrictionDirections)
     scene.world().getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
@@ -386,7 +390,7 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
     scene.addStaticBox(half, at(sx * (kBoxHalf + 0.05), sy * (kBoxHalf + 0.05), kWallH / 2), 1.0);
   }
   const double R = unit * kPourR, H = unit * kPourH;
-  std::mt19937 rng(12345);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<btRigidBody*> coins;
   auto pourLayer = [&](double z0) {  // 10 x 10 coins at height z0 [m]
@@ -463,55 +467,11 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   Table table("Pour of " + std::to_string(100 * layers) + (pourHullCoins() ? " hull" : "") + " coins into a box, " +
                   fmt("%.0f", kPourTime) + " s, lengths in " + (pourUnit() == 1.0 ? "m" : "dm"),
               kPourColumns);
-  std::vector<std::pair<Friction, PourResult>> runs;
-  for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock})
-    runs.emplace_back(m, pour(layers, m, pourHullCoins(), pourUnit()));
-  const PourResult& stock = runs.back().second;
-  for (const auto& [m, r] : runs) {
-    addPourRow(table, toString(m), m == Friction::Stock, r);
-    if (m == Friction::Stock) continue;
-    EXPECT_TRUE(r.finite) << toString(m);
-    EXPECT_EQ(r.escaped, 0) << toString(m);
-    // what the patches carry is at rest (the coins still moving are on
-    // Bullet's point contacts, below). Not in the 1000-coin pour: 8 s after
-    // its last layer it is still moving in every model (largest speed,
-    // |v| + R |omega|, float, decimetres: ellipsoidal 0.073 m/s, exact
-    // 0.078, stock 0.089; double, metres: 0.062, 0.058, 0.145; coins on
-    // patches included; no coin escapes or sinks in either; in its last
-    // second, float, 271, 296 and 540 coins moved by more than 1 mm and the
-    // mean height fell by 0.036, 0.041 and 0.057 mm/s, double 294, 200 and
-    // 464 and 0.066, 0.026 and 0.13 mm/s: the pile creeps), so it is
-    // reported with the rest. The figures below up to "In double" are from
-    // metres, before the length unit and the layer-by-layer pour (see above
-    // the scene).
-    // Measured every second (scratch driver, float): the 1000-coin pile does
-    // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
-    // m/s at 1-16 s. Stock: 992 of 1000 coins above 1 cm/s at 0.5 s, 953 at
-    // 8 s; 916 at 8 s with 50 solver iterations instead of 10, and 887
-    // with the split-impulse threshold at 0 (no Baumgarte velocity) instead
-    // of Bullet's -4 cm. Ellipsoidal: 897 at 1 s, 837 at 8 s, 810 at 15 s,
-    // with 175 -> 405 coins on patches. Two layers (200 coins) leave 46
-    // (stock) and 22 (ellipsoidal) coins moving at 8 s, four layers 259 and
-    // 161. The patches shrink the number of moving coins, but a pile that
-    // Bullet's own contacts keep boiling (stock, whatever the iterations)
-    // does not come to rest with any friction model. In double Bullet it
-    // boils too, at a lower level: from 15 to 24 s, 141-252 coins above
-    // 1 cm/s (stock) and 110-186 (ellipsoidal, 507-540 on patches)
-    if (!stressFull()) {
-      EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m);
-      EXPECT_EQ(r.crept, 0) << toString(m) << ": the pile creeps";
-    } else {
-      // The 1000-coin pile creeps in every model (below), but the patches
-      // do not make it creep more than Bullet's own point contacts do
-      // (measured: float 271 / 296 coins against stock's 540, double 294 /
-      // 200 against 464; before the stack-hold fix, float 337 / 362, double
-      // 189 / 219).
-      EXPECT_LE(r.crept, stock.crept) << toString(m) << ": more coins crept than with stock Bullet";
-      if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed)
-        defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
-                   fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
-    }
-  }
+  // The 100-coin pour (CI) is run with several seeds: which coins end
+  // leaning on a neighbour on Bullet's point contacts, where a coin rocks
+  // without losing energy (below), is chance, so one seed says little.
+  const std::vector<unsigned> seeds = stressFull() ? std::vector<unsigned>{kPourSeed}
+                                                   : std::vector<unsigned>{kPourSeed, 1, 2, 3, 4};
   auto reportMotion = [&defects](const std::string& label, const PourResult& r) {
     if (r.finite && (r.maxSpeed >= kPourRestSpeed || r.crept > 0))
       defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
@@ -519,24 +479,113 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
                  " coins moved by more than 1 mm, mean height " +
                  fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
   };
-  for (const auto& [m, r] : runs)
-    if (m != Friction::Stock) reportMotion(toString(m), r);
+  auto atRest = [](const PourResult& r) { return r.maxSpeed < kPourRestSpeed && r.crept == 0; };
+  std::map<Friction, int> restingPours;
+  for (unsigned seed : seeds) {
+    const std::string ofSeed = seeds.size() > 1 ? ", seed " + std::to_string(seed) : std::string();
+    std::vector<std::pair<Friction, PourResult>> runs;
+    for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
+      runs.emplace_back(m, pour(layers, m, pourHullCoins(), pourUnit(), {}, seed));
+      restingPours[m] += atRest(runs.back().second);
+    }
+    const PourResult& stock = runs.back().second;
+    for (const auto& [m, r] : runs) {
+      addPourRow(table, toString(m) + ofSeed, m == Friction::Stock, r);
+      if (m == Friction::Stock) continue;
+      EXPECT_TRUE(r.finite) << toString(m) << ofSeed;
+      EXPECT_EQ(r.escaped, 0) << toString(m) << ofSeed;
+      // what the patches carry is at rest (the coins still moving are on
+      // Bullet's point contacts, below). Not in the 1000-coin pour: 8 s after
+      // its last layer it is still moving in every model (largest speed,
+      // |v| + R |omega|, float, decimetres: ellipsoidal 0.035 m/s, exact
+      // 0.049, stock 0.089; double, metres: 0.082, 0.135, 0.145; coins on
+      // patches included; no coin escapes or sinks in either; in its last
+      // second, float, 222, 177 and 540 coins moved by more than 1 mm and the
+      // mean height fell by 0.049, 0.008 and 0.057 mm/s, double 184, 174 and
+      // 464 and 0.030, 0.040 and 0.13 mm/s: the pile creeps; 24 Nov, after
+      // the clearance fix), so it is reported with the rest. The figures below up to "In double"
+      // are from metres, before the length unit and the layer-by-layer pour (see above the scene).
+      // Measured every second (scratch driver, float): the 1000-coin pile does
+      // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
+      // m/s at 1-16 s. Stock: 992 of 1000 coins above 1 cm/s at 0.5 s, 953 at
+      // 8 s; 916 at 8 s with 50 solver iterations instead of 10, and 887
+      // with the split-impulse threshold at 0 (no Baumgarte velocity) instead
+      // of Bullet's -4 cm. Ellipsoidal: 897 at 1 s, 837 at 8 s, 810 at 15 s,
+      // with 175 -> 405 coins on patches. Two layers (200 coins) leave 46
+      // (stock) and 22 (ellipsoidal) coins moving at 8 s, four layers 259 and
+      // 161. The patches shrink the number of moving coins, but a pile that
+      // Bullet's own contacts keep boiling (stock, whatever the iterations)
+      // does not come to rest with any friction model. In double Bullet it
+      // boils too, at a lower level: from 15 to 24 s, 141-252 coins above
+      // 1 cm/s (stock) and 110-186 (ellipsoidal, 507-540 on patches)
+      if (!stressFull()) {
+        // what Bullet's point contacts do (a coin rolling on its rim, or one
+        // bridging the floor and a neighbour, rocking) is compared with stock
+        // Bullet and reported below, not asserted: those coins move without
+        // losing energy in every model (measured, double, seed 3: one coin
+        // rolled at 0.23-0.29 m/s on its rim for 7 s in every model and lay
+        // flat in the last second; float, seed 12345, ellipsoidal: a coin
+        // bridging the floor and a neighbour, 0.13 rad, rocks at 1.3 cm/s; the
+        // same coin slid off flat at 4.2 s before the patch's gap was limited
+        // by the face's clearance, 62aa52e)
+        EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m) << ofSeed;
+        EXPECT_LE(r.crept, stock.crept)
+            << toString(m) << ofSeed << ": more coins crept than with stock Bullet";
+      } else {
+        // The 1000-coin pile creeps in every model (below), but the patches
+        // do not make it creep more than Bullet's own point contacts do
+        // (measured: float 222 / 177 coins against stock's 540, double 184 /
+        // 174 against 464; before the clearance fix, float 271 / 296, double
+        // 294 / 200; before the stack-hold fix, float 337 / 362, double 189 /
+        // 219). With two friction directions and 50 iterations: ellipsoidal
+        // 2 / 3, stock 7 / 9 (before the clearance fix 52 / 23).
+        EXPECT_LE(r.crept, stock.crept)
+            << toString(m) << ": more coins crept than with stock Bullet";
+        if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed)
+          defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
+                     fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
+      }
+    }
+    for (const auto& [m, r] : runs)
+      if (m != Friction::Stock) reportMotion(toString(m) + ofSeed, r);
+  }
+  // the patch laws bring at least as many of the pours to rest as stock
+  // Bullet does
+  for (Friction m : {Friction::Ellipsoidal, Friction::Exact})
+    EXPECT_GE(restingPours[m], restingPours[Friction::Stock]) << toString(m);
+  if (seeds.size() > 1)
+    std::printf("[pour] pours at rest of %zu: ellipsoidal %d, exact %d, stock %d\n", seeds.size(),
+                restingPours[Friction::Ellipsoidal], restingPours[Friction::Exact],
+                restingPours[Friction::Stock]);
   if (stressFull()) {
     // Bullet's own limit, shown in the table: with the strongest point
     // contacts tried (see the comment below) stock Bullet does not hold the
-    // pile either, nor does the ellipsoidal law.
-    for (Friction m : {Friction::Ellipsoidal, Friction::Stock}) {
-      const std::string label = std::string(toString(m)) + ", 2 friction directions, 50 iterations";
-      const PourResult r = pour(layers, m, pourHullCoins(), pourUnit(), kStrongPointContacts);
-      addPourRow(table, label, m == Friction::Stock, r);
-      if (m != Friction::Stock) {
-        EXPECT_TRUE(r.finite) << label;
-        EXPECT_EQ(r.escaped, 0) << label;
-      }
-      reportMotion(label, r);
-    }
+    // pile either, nor does the ellipsoidal law, but it leaves no more coins
+    // creeping than stock (since the clearance fix: 2 / 3 against 7 / 9).
+    const std::string strong = ", 2 friction directions, 50 iterations";
+    const PourResult ell =
+        pour(layers, Friction::Ellipsoidal, pourHullCoins(), pourUnit(), kStrongPointContacts);
+    const PourResult stockStrong =
+        pour(layers, Friction::Stock, pourHullCoins(), pourUnit(), kStrongPointContacts);
+    addPourRow(table, "ellipsoidal" + strong, false, ell);
+    addPourRow(table, "stock" + strong, true, stockStrong);
+    EXPECT_TRUE(ell.finite) << strong;
+    EXPECT_EQ(ell.escaped, 0) << strong;
+    EXPECT_LE(ell.crept, stockStrong.crept)
+        << "ellipsoidal" << strong << ": more coins crept than with stock";
+    reportMotion("ellipsoidal" + strong, ell);
+    reportMotion("stock" + strong, stockStrong);
   }
   table.emit();
+  // Fixed defect (62aa52e): with two friction directions and 50 iterations
+  // the ellipsoidal pile crept more than stock's (52 / 23 coins against
+  // 7 / 9). Traced (scratch driver): coin 916, tilted 0.015 rad on coin 616,
+  // cycled every ~11 steps: its patch formed, closed the gap at its centre
+  // (0.2 mm) in one step, which drove its low rim into 616; the patch
+  // tipped back to Bullet, whose contacts pushed the coin up over ten steps,
+  // and the patch formed again. A patch now closes its gap only until the
+  // low side of a tilted face touches (PatchFrictionSolver.
+  // TiltedPatchDoesNotDriveItsLowEdgeIn).
   // Fixed defect: the first run of the rows with two friction directions
   // and 50 iterations, in double Bullet, threw coins out of the box under
   // the ellipsoidal law (174 escaped, largest speed 70 m/s; float: none).
