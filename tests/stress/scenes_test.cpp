@@ -4,21 +4,23 @@
 // a patch shrinking to a point. Each scene also runs with stock Bullet (no
 // body opted in) and prints its figure beside ours; only the patch runs are
 // asserted. Full-size pour behind PATCHSPIN_STRESS_FULL=1.
+#include "stress_scenes.hpp"
+
+#include <closed_forms.hpp>
+
+#include <patchspin/models.hpp>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <closed_forms.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
-#include <patchspin/models.hpp>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include "stress_scenes.hpp"
 
 namespace patchspin::bullet::stress {
 namespace {
@@ -503,8 +505,9 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
       // second, float, 222, 177 and 540 coins moved by more than 1 mm and the
       // mean height fell by 0.049, 0.008 and 0.057 mm/s, double 184, 174 and
       // 464 and 0.030, 0.040 and 0.13 mm/s: the pile creeps; 24 Nov, after
-      // the clearance fix), so it is reported with the rest. The figures below up to "In double"
-      // are from metres, before the length unit and the layer-by-layer pour (see above the scene).
+      // the clearance fix), so it is reported with the rest. The figures
+      // below up to "In double" are from metres, before the length unit and
+      // the layer-by-layer pour (see above the scene).
       // Measured every second (scratch driver, float): the 1000-coin pile does
       // not settle, it boils at a steady state, vertical speeds of +-0.2-0.4
       // m/s at 1-16 s. Stock: 992 of 1000 coins above 1 cm/s at 0.5 s, 953 at
