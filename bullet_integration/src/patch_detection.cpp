@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 namespace patchspin::bullet::internal {
 namespace {
@@ -345,13 +344,12 @@ void setClearance(const Face& a, DetectedPatch& patch) {
   const Vec2 slope(-double(a.normal.dot(patch.xAxis)) / an,
                    -double(a.normal.dot(patch.yAxis)) / an);
   const PatchOutline& outline = patch.outline;
-  double least = 0.0;
+  double least = 0.0;  // the least of slope . v over the outline (about O)
   if (outline.disk) {
     least = -outline.radius * slope.norm();
-  } else {
-    least = std::numeric_limits<double>::infinity();
+  } else if (!outline.vertices.empty()) {
+    least = slope.dot(outline.vertices[0]);
     for (const Vec2& v : outline.vertices) least = std::min(least, slope.dot(v));
-    if (outline.vertices.empty()) least = 0.0;
   }
   patch.clearance = patch.gap + slope.dot(patch.centre) + least;
 }

@@ -332,11 +332,17 @@ const std::vector<std::string> kPourColumns = {"model", "finite", "escaped", "ma
                                                "moved > 1 mm in the last 1 s", "mean height change [mm/s]",
                                                "at rest"};
 
+// The pour's "at rest": no coin faster than kPourRestSpeed and none moved by
+// more than kPourCreepTol in the last kPourCreepWindow.
+bool pourAtRest(const PourResult& r) {
+  return r.maxSpeed < kPourRestSpeed && r.crept == 0;
+}
+
 void addPourRow(Table& table, const std::string& label, bool stock, const PourResult& r) {
   table.add({label, passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
              stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
              std::to_string(r.crept), fmt("%.2e", 1e3 * r.meanHeightRate),
-             passFail(r.maxSpeed < kPourRestSpeed && r.crept == 0)});
+             passFail(pourAtRest(r))});
 }
 
 // World units per metre of the pour (PATCHSPIN_POUR_UNIT: dm or m; the
@@ -475,20 +481,19 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   const std::vector<unsigned> seeds = stressFull() ? std::vector<unsigned>{kPourSeed}
                                                    : std::vector<unsigned>{kPourSeed, 1, 2, 3, 4};
   auto reportMotion = [&defects](const std::string& label, const PourResult& r) {
-    if (r.finite && (r.maxSpeed >= kPourRestSpeed || r.crept > 0))
+    if (r.finite && !pourAtRest(r))
       defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
                  fmt("%.0f", kPourTime) + " s; in its last second " + std::to_string(r.crept) +
                  " coins moved by more than 1 mm, mean height " +
                  fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
   };
-  auto atRest = [](const PourResult& r) { return r.maxSpeed < kPourRestSpeed && r.crept == 0; };
   std::map<Friction, int> restingPours;
   for (unsigned seed : seeds) {
     const std::string ofSeed = seeds.size() > 1 ? ", seed " + std::to_string(seed) : std::string();
     std::vector<std::pair<Friction, PourResult>> runs;
     for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
       runs.emplace_back(m, pour(layers, m, pourHullCoins(), pourUnit(), {}, seed));
-      restingPours[m] += atRest(runs.back().second);
+      restingPours[m] += pourAtRest(runs.back().second);
     }
     const PourResult& stock = runs.back().second;
     for (const auto& [m, r] : runs) {
