@@ -139,16 +139,24 @@ TEST(StressScenes, PyramidOf55BlocksStands) {
 // velocity. kPourTime after the last layer: none has left the box (inside
 // the walls, above the floor by more than kPourSinkTol: a coin resting on
 // its rim sinks by its margin at most) and all have come to rest (speeds
-// below kPourRestSpeed; coins leaning on others are Bullet point contacts,
-// which settle more slowly than patches, hence 1 cm/s).
+// below kPourRestSpeed at every step of the last kPourCreepWindow; coins
+// leaning on others are Bullet point contacts, which settle more slowly
+// than patches, hence 1 cm/s). The largest speed over the window, not the
+// last step's: a coin rocking in place (float, seed 12345, ellipsoidal, at
+// up to 2.4 cm/s) passed or failed by the phase its rocking was in at the
+// last step (7.6e-3 m/s at 10 s, 1.4e-2 at 8 s).
 // kPourTime is set by the slowest physics in the pour, not by the solver: a
 // coin that lands tilted with spin rolls on its rim like Euler's disk, and
 // rolling without slip dissipates nothing, so it only comes to rest once it
 // lies flat. The slowest one of the 100-coin pour (coin 2: tilted 0.20 rad
 // at landing, 0.11 at 1.6 s, 0.055 at 3.9 s, precessing at 10-16 rad/s,
 // the same in all three models: it is on Bullet's point contacts) lies flat
-// at ~5 s; 4 s, the first choice, caught it mid-roll. After 8 s both patch
-// models are at rest, every coin on a patch (largest speed 2.3e-5 m/s in
+// at ~5 s; 4 s, the first choice, caught it mid-roll. 8 s, the second,
+// caught the slowest of the five seeds' pours (double, seed 3, one coin
+// rolling on its rim at 0.23-0.29 m/s in every model) lying down inside
+// the window: it was last above 1 cm/s 7.73 s after the last layer (patch
+// laws; stock 8.03 s), hence 10 s. With one seed and 8 s, both patch
+// models were at rest, every coin on a patch (largest speed 2.3e-5 m/s in
 // float, 1e-27 in double), while stock Bullet's float pour is not: its flat
 // coins keep wobbling on their point contacts (1-5 cm/s at 6, 8 and 10 s).
 // In double, stock is at rest too. (Figures in metres; in decimetres, the
@@ -286,7 +294,7 @@ constexpr double kPourMargin = 5e-4;
 constexpr int kPourCoinSides = 16;
 constexpr double kPourHullMargin = 1e-5;
 constexpr double kBoxHalf = 0.3, kWallH = 0.5;
-constexpr double kPourTime = 8.0;  // after the last layer
+constexpr double kPourTime = 10.0;  // after the last layer
 // Layers are poured one by one onto the pile, not dropped as one column:
 // dropped together, each column of ten coins landed within ~0.1 s at up
 // to 2.5 m/s, and in decimetres too one coin was driven through the four
@@ -302,8 +310,14 @@ constexpr double kPourCreepWindow = 1.0, kPourCreepTol = 1e-3;
 struct PourResult {
   bool finite = true;
   int escaped = 0;
+  // largest speed |v| + R |omega| over the last kPourCreepWindow: a coin
+  // rocking in place is caught at any phase of its rocking, not only when
+  // the last step finds it fast
   double maxSpeed = 0.0;
-  double maxSpeedOnPatch = 0.0;  // over the coins standing on a patch at the end
+  double maxSpeedOnPatch = 0.0;  // the same, over the steps a coin stood on a patch
+  // the last time, after the last layer, that a coin was faster than
+  // kPourRestSpeed (0 if none was)
+  double settledAt = 0.0;  // s
   int patches = 0;
   // over the last kPourCreepWindow: coins moved by more than kPourCreepTol
   // (|dp| + R x rotation angle) and the change of the coins' mean height
@@ -327,9 +341,16 @@ std::unique_ptr<btConvexHullShape> pourCoinShape(double unit = 1.0) {
   return shape;
 }
 
-const std::vector<std::string> kPourColumns = {"model", "finite", "escaped", "max speed [m/s]",
-                                               "max speed on a patch [m/s]", "patches at the end",
-                                               "moved > 1 mm in the last 1 s", "mean height change [mm/s]",
+static_assert(kPourRestSpeed == 1e-2, "the pour table's column names 1 cm/s");
+const std::vector<std::string> kPourColumns = {"model",
+                                               "finite",
+                                               "escaped",
+                                               "max speed in the last 1 s [m/s]",
+                                               "max speed on a patch [m/s]",
+                                               "patches at the end",
+                                               "moved > 1 mm in the last 1 s",
+                                               "mean height change [mm/s]",
+                                               "last above 1 cm/s [s]",
                                                "at rest"};
 
 // The pour's "at rest": no coin faster than kPourRestSpeed and none moved by
@@ -341,7 +362,7 @@ bool pourAtRest(const PourResult& r) {
 void addPourRow(Table& table, const std::string& label, bool stock, const PourResult& r) {
   table.add({label, passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
              stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
-             std::to_string(r.crept), fmt("%.2e", 1e3 * r.meanHeightRate),
+             std::to_string(r.crept), fmt("%.2e", 1e3 * r.meanHeightRate), fmt("%.2f", r.settledAt),
              passFail(pourAtRest(r))});
 }
 
@@ -428,10 +449,20 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
   // a layer every kPourInterval, kPourDropHeight above the highest coin
   const int steps = int(std::lround((kPourInterval * (layers - 1) + kPourTime) / kDt));
   const int creepFrom = steps - int(std::lround(kPourCreepWindow / kDt));
+  const double lastLayer = kPourInterval * (layers - 1);
+  auto speedOf = [R, unit](const btRigidBody* c) {
+    return (double(c->getLinearVelocity().length()) +
+            double(c->getAngularVelocity().length()) * R) /
+           unit;
+  };
+  PourResult r;
   std::vector<btTransform> before;  // the coins' poses at creepFrom
+  std::vector<double> windowSpeed;  // each coin's largest speed since creepFrom
   for (int k = 0, poured = 0; k < steps; ++k) {
-    if (k == creepFrom)
+    if (k == creepFrom) {
       for (const btRigidBody* c : coins) before.push_back(c->getWorldTransform());
+      windowSpeed.assign(coins.size(), 0.0);
+    }
     if (poured < layers && k * kDt >= poured * kPourInterval - 1e-9) {
       double top = 0.0;
       for (const btRigidBody* c : coins) top = std::max(top, extremeZ(c, false) / unit);
@@ -439,8 +470,17 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
       ++poured;
     }
     scene.step(kDt);
+    const double t = (k + 1) * kDt;
+    for (size_t i = 0; i < coins.size(); ++i) {
+      const double speed = speedOf(coins[i]);
+      if (!windowSpeed.empty()) {
+        windowSpeed[i] = std::max(windowSpeed[i], speed);
+        if (scene.solver().findPatchReport(coins[i]))
+          r.maxSpeedOnPatch = std::max(r.maxSpeedOnPatch, speed);
+      }
+      if (t > lastLayer && speed >= kPourRestSpeed) r.settledAt = t - lastLayer;
+    }
   }
-  PourResult r;
   double heightChange = 0.0;
   for (size_t i = 0; i < coins.size(); ++i) {
     const btRigidBody* c = coins[i];
@@ -459,10 +499,8 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
         extremeZ(c, true) / unit < -kPourSinkTol)
       ++r.escaped;
-    const double speed =
-        (double(c->getLinearVelocity().length()) + double(c->getAngularVelocity().length()) * R) / unit;
+    const double speed = windowSpeed.at(i);
     r.maxSpeed = std::max(r.maxSpeed, speed);
-    if (scene.solver().findPatchReport(c)) r.maxSpeedOnPatch = std::max(r.maxSpeedOnPatch, speed);
   }
   r.patches = int(scene.solver().patchReports().size());
   r.meanHeightRate = heightChange / double(coins.size()) / kPourCreepWindow;
@@ -482,9 +520,11 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
                                                    : std::vector<unsigned>{kPourSeed, 1, 2, 3, 4};
   auto reportMotion = [&defects](const std::string& label, const PourResult& r) {
     if (r.finite && !pourAtRest(r))
-      defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) + " m/s after " +
-                 fmt("%.0f", kPourTime) + " s; in its last second " + std::to_string(r.crept) +
-                 " coins moved by more than 1 mm, mean height " +
+      defects += "\n  " + label + ": max speed " + fmt("%.2e", r.maxSpeed) +
+                 " m/s in the last second of " + fmt("%.0f", kPourTime) + " s, " +
+                 fmt("%.2f", r.settledAt) + " s the last time above " +
+                 fmt("%.0f", 1e2 * kPourRestSpeed) + " cm/s; in its last second " +
+                 std::to_string(r.crept) + " coins moved by more than 1 mm, mean height " +
                  fmt("%+.2e", 1e3 * r.meanHeightRate) + " mm/s";
   };
   std::map<Friction, int> restingPours;
@@ -532,10 +572,15 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
         // Bullet and reported below, not asserted: those coins move without
         // losing energy in every model (measured, double, seed 3: one coin
         // rolled at 0.23-0.29 m/s on its rim for 7 s in every model and lay
-        // flat in the last second; float, seed 12345, ellipsoidal: a coin
-        // bridging the floor and a neighbour, 0.13 rad, rocks at 1.3 cm/s; the
-        // same coin slid off flat at 4.2 s before the patch's gap was limited
-        // by the face's clearance, 62aa52e)
+        // flat at 7.73 s; float, seed 12345, ellipsoidal: a coin bridging the
+        // floor and a neighbour, tilted 0.13 rad, its rim on each, rocks in
+        // place about the line through its two supports, +-0.008 rad with a
+        // period of 0.12 s, at up to 2.4 cm/s; it slid off flat at 4.2 s
+        // before the patch's gap was limited by the face's clearance,
+        // 62aa52e. Bullet's, not the patches': the pour's end handed to stock
+        // Bullet (patch friction disabled on every coin) and run on for 6 s,
+        // it rocks on at 1.1-1.8 cm/s; with Bullet's warm starting off it
+        // stops within 1.25 s and lies flat. Scratch runs, 24 Nov)
         EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m) << ofSeed;
         EXPECT_LE(r.crept, stock.crept)
             << toString(m) << ofSeed << ": more coins crept than with stock Bullet";
@@ -551,7 +596,8 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
             << toString(m) << ": more coins crept than with stock Bullet";
         if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed)
           defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
-                     fmt("%.2e", r.maxSpeedOnPatch) + " m/s after " + fmt("%.0f", kPourTime) + " s";
+                     fmt("%.2e", r.maxSpeedOnPatch) + " m/s in the last second of " +
+                     fmt("%.0f", kPourTime) + " s";
       }
     }
     for (const auto& [m, r] : runs)
