@@ -450,11 +450,6 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
   const int steps = int(std::lround((kPourInterval * (layers - 1) + kPourTime) / kDt));
   const int creepFrom = steps - int(std::lround(kPourCreepWindow / kDt));
   const double lastLayer = kPourInterval * (layers - 1);
-  auto speedOf = [R, unit](const btRigidBody* c) {
-    return (double(c->getLinearVelocity().length()) +
-            double(c->getAngularVelocity().length()) * R) /
-           unit;
-  };
   PourResult r;
   std::vector<btTransform> before;  // the coins' poses at creepFrom
   std::vector<double> windowSpeed;  // each coin's largest speed since creepFrom
@@ -472,10 +467,13 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
     scene.step(kDt);
     const double t = (k + 1) * kDt;
     for (size_t i = 0; i < coins.size(); ++i) {
-      const double speed = speedOf(coins[i]);
+      const btRigidBody* c = coins[i];
+      const double speed =
+          (double(c->getLinearVelocity().length()) + double(c->getAngularVelocity().length()) * R) /
+          unit;
       if (!windowSpeed.empty()) {
         windowSpeed[i] = std::max(windowSpeed[i], speed);
-        if (scene.solver().findPatchReport(coins[i]))
+        if (scene.solver().findPatchReport(c))
           r.maxSpeedOnPatch = std::max(r.maxSpeedOnPatch, speed);
       }
       if (t > lastLayer && speed >= kPourRestSpeed) r.settledAt = t - lastLayer;
@@ -683,14 +681,14 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
   // 0.12-0.17 rad within that step; the next step hands them to Bullet).
   // The coins standing on a patch are at rest (asserted above: at most
   // 1.1e-3 m/s over the last second of the five 100-coin pours); the
-  // moving ones are on Bullet's point
-  // contacts, which do not dissipate a wobble on the rim (rolling without
-  // slip loses no energy). Tried: Bullet's rolling and spinning friction
-  // (1e-3 m) on the coins brings stock's 100-coin pour to rest but not the
-  // patch pours: a coin tilted 0.035 rad with its rim on a flat neighbour's,
-  // still a patch within the flatness hysteresis, is turned flat by the
-  // patch's tilt correction into the neighbour's point contact and hops off
-  // the floor every 0.4 s (1.5 cm/s).
+  // moving ones are on Bullet's point contacts, which do not dissipate a
+  // wobble on the rim (rolling without slip loses no energy). Tried:
+  // Bullet's rolling and spinning friction (1e-3 m) on the coins brings
+  // stock's 100-coin pour to rest but not the patch pours: a coin tilted
+  // 0.035 rad with its rim on a flat neighbour's, still a patch within the
+  // flatness hysteresis, is turned flat by the patch's tilt correction into
+  // the neighbour's point contact and hops off the floor every 0.4 s
+  // (1.5 cm/s).
   if (!defects.empty())
     GTEST_SKIP() << "known defect: poured coins not at rest after " << kPourTime
                  << " s (see the test's comment)" << defects;
