@@ -578,10 +578,12 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
         // place about the line through its two supports, +-0.008 rad with a
         // period of 0.12 s, at up to 2.4 cm/s; it slid off flat at 4.2 s
         // before the patch's gap was limited by the face's clearance,
-        // 62aa52e. Bullet's, not the patches': the pour's end handed to stock
-        // Bullet (patch friction disabled on every coin) and run on for 6 s,
-        // it rocks on at 1.1-1.8 cm/s; with Bullet's warm starting off it
-        // stops within 1.25 s and lies flat. Scratch runs, 24 Nov)
+        // 62aa52e. It has no patch, only Bullet's point contacts; run on from
+        // the pour's end, it stops within 1.25 s and lies flat with Bullet's
+        // warm starting off, slows to ~2e-3 m/s with 50 iterations, and
+        // handed to stock Bullet (patch friction disabled on every coin)
+        // rocks on at 1.1-1.8 cm/s for 6 s, among stock's flat coins
+        // wobbling at up to 6 cm/s. Scratch runs, 24 Nov)
         EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m) << ofSeed;
         EXPECT_LE(r.crept, stock.crept)
             << toString(m) << ofSeed << ": more coins crept than with stock Bullet";
