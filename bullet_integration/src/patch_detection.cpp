@@ -338,7 +338,9 @@ btVector3 setFrame(const Face& a, const Face& b, const btVector3& xHint, Detecte
 void setClearance(const Face& a, DetectedPatch& patch) {
   const double an = double(a.normal.dot(patch.normal));
   patch.clearance = patch.gap;
-  if (!(an < -0.5)) return;  // (faces that take part face each other within 45 degrees)
+  // a patch's faces are parallel within the flatness tolerance; this only
+  // keeps the division below away from faces that do not face each other
+  if (!(an < -0.5)) return;
   // height of a's face above b's plane at in-plane offset p from a's
   // projected centre: gap - (a.normal . p) / (a.normal . n)
   const Vec2 slope(-double(a.normal.dot(patch.xAxis)) / an,
