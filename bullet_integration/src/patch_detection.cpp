@@ -5,6 +5,7 @@
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/CollisionShapes/btConvexPolyhedron.h>
+#include <BulletCollision/CollisionShapes/btConvexShape.h>
 #include <BulletCollision/CollisionShapes/btCylinderShape.h>
 #include <BulletCollision/CollisionShapes/btStaticPlaneShape.h>
 
@@ -203,6 +204,47 @@ const std::vector<btVector3>& Face::polygonVertices() const {
     boxPending = false;
   }
   return vertices;
+}
+
+bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& support,
+                      btVector3* normal, double* clearance, btVector3* lowest) {
+  const btCollisionShape* bodyShape = body.getCollisionShape();
+  if (!bodyShape->isConvex()) return false;
+  const btTransform& trB = support.getWorldTransform();
+  const btVector3 centre = body.getWorldTransform().getOrigin();
+  btVector3 n, onFace;
+  switch (support.getCollisionShape()->getShapeType()) {
+    case STATIC_PLANE_PROXYTYPE: {
+      const auto* plane = static_cast<const btStaticPlaneShape*>(support.getCollisionShape());
+      n = trB.getBasis() * plane->getPlaneNormal();
+      onFace = trB * (plane->getPlaneNormal() * plane->getPlaneConstant());
+      break;
+    }
+    case BOX_SHAPE_PROXYTYPE: {
+      const auto* box = static_cast<const btBoxShape*>(support.getCollisionShape());
+      const btVector3 h = box->getHalfExtentsWithMargin();
+      const btVector3 p = trB.invXform(centre);
+      int axis = 0;
+      for (int i = 1; i < 3; ++i)
+        if (btFabs(p[i]) - h[i] > btFabs(p[axis]) - h[axis]) axis = i;
+      btVector3 local(0, 0, 0);
+      local[axis] = p[axis] >= 0 ? btScalar(1) : btScalar(-1);
+      n = trB.getBasis() * local;
+      onFace = trB * (local * h[axis]);
+      break;
+    }
+    default:
+      return false;
+  }
+  // the body's lowest point along n, with its margin
+  const btTransform& trA = body.getWorldTransform();
+  const btVector3 low =
+      trA * static_cast<const btConvexShape*>(bodyShape)->localGetSupportingVertex(
+                trA.getBasis().transpose() * -n);
+  *normal = n;
+  *clearance = double(n.dot(low - onFace));
+  *lowest = low;
+  return true;
 }
 
 bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,

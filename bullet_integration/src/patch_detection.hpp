@@ -44,6 +44,16 @@ struct Face {
 bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
                    Face& face);
 
+// For a pair Bullet reports no contact for (an empty manifold): the face of
+// `support` (a static plane or a box) whose outside `body`'s centre lies
+// furthest in, as a contact normal (unit, out of `support`, into `body`),
+// and the clearance of `body`'s lowest point along it above that face's
+// plane [m] (negative: below it), both with collision margins, and that
+// lowest point (world). False for other support shapes and for a body that
+// is not convex.
+bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& support,
+                      btVector3* normal, double* clearance, btVector3* lowest);
+
 // Outline of a patch in its frame (about O), cheap to build and compare;
 // the PatchShape (moment tables) is built from it only when it changes.
 struct PatchOutline {

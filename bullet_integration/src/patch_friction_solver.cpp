@@ -1138,26 +1138,40 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // bounding boxes overlap (~10 per touching one in a pile). Every
       // manifold that is not a candidate goes to Bullet in the second pass.
       // A patch that ended the last step flat outlives an empty manifold
-      // while its faces still touch (below): float Bullet's convex test
-      // finds no contact between a coin and a box face longer than wide
-      // while the coin is less than ~2.5 mm in (a known GJK miss on parallel
-      // faces), and a patch that lifted the coin out of it lost its one point
-      // in the next step, so the coin stayed 2.5 mm in.
+      // while its faces still touch (below), and a body opted in on a static
+      // or kinematic plane or box gets its patch there without Bullet's
+      // contact: float Bullet's convex test finds no contact between a coin
+      // and a box face longer than wide until the coin is ~2.5 mm in (a
+      // known GJK miss on parallel faces), and drops the one point it then
+      // finds as soon as the coin is lifted out.
       const bool empty = m->getNumContacts() == 0;
-      if (empty && !im.mayHaveBeenFlat(m)) continue;
-      PatchState* persisting = nullptr;
-      if (empty) {
-        const auto it = im.states.find(m);
-        // (the same pair: a manifold deleted in this step's broadphase may
-        // have been reused for another)
-        if (it == im.states.end() || !it->second.flat || it->second.lastSeen != im.step - 1 ||
-            !((it->second.body == m->getBody0() && it->second.other == m->getBody1()) ||
-              (it->second.body == m->getBody1() && it->second.other == m->getBody0())))
-          continue;
-        persisting = &it->second;
-      }
       const btCollisionObject* o0 = m->getBody0();
       const btCollisionObject* o1 = m->getBody1();
+      PatchState* persisting = nullptr;
+      bool probed = false;  // an empty manifold whose faces touch (probeSupportFace)
+      btVector3 probeNormal(0, 0, 0);
+      // an empty manifold's patch: the furthest its low side may be above the
+      // other face
+      double reach = 0.0;
+      if (empty) reach = double(m->getContactBreakingThreshold());
+      if (empty) {
+        if (im.mayHaveBeenFlat(m)) {
+          const auto it = im.states.find(m);
+          // (the same pair: a manifold deleted in this step's broadphase may
+          // have been reused for another)
+          if (it != im.states.end() && it->second.flat && it->second.lastSeen == im.step - 1 &&
+              ((it->second.body == o0 && it->second.other == o1) ||
+               (it->second.body == o1 && it->second.other == o0)))
+            persisting = &it->second;
+        }
+        if (!persisting) {
+          // one body static or kinematic (a flag test: most empty manifolds
+          // of a pile are between two dynamic bodies)
+          const bool support0 = o0->isStaticOrKinematicObject();
+          if (support0 == o1->isStaticOrKinematicObject()) continue;
+          probed = true;
+        }
+      }
       // the patch belongs to an opted-in dynamic body (a static or kinematic
       // body opted in has no patch of its own: what stands on it decides)
       auto dynamicOptions = [&](const btCollisionObject* o) -> const PatchOptions* {
@@ -1182,6 +1196,28 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         (body0 ? opt1 : opt0) = nullptr;
         if (!(body0 ? opt0 : opt1)) continue;  // no longer opted in
       }
+      // a probed one: the support's face that the body's centre is outside
+      // of, and the body's lowest point within the distance at which Bullet
+      // keeps a contact point of it (either side), or one it would close in
+      // this step at its present speed (a landing: the patch is then a
+      // speculative contact and stops the fall at the face)
+      if (probed) {
+        double clearance = 0.0;
+        btVector3 lowest;
+        const btCollisionObject* body = opt0 ? o0 : o1;
+        const btCollisionObject* support = opt0 ? o1 : o0;
+        if (!internal::probeSupportFace(*body, *support, &probeNormal, &clearance, &lowest))
+          continue;
+        auto pointVelocity = [&](const btCollisionObject* o) {
+          const btRigidBody* rb = btRigidBody::upcast(o);
+          return rb ? rb->getVelocityInLocalPoint(lowest - o->getWorldTransform().getOrigin())
+                    : btVector3(0, 0, 0);
+        };
+        const double approach =
+            std::max(0.0, -double(probeNormal.dot(pointVelocity(body) - pointVelocity(support))));
+        if (!(clearance >= -reach && clearance <= reach + approach * dt)) continue;
+        reach += approach * dt;
+      }
       // both opted in (a stack): the patch is the upper body's, the one the
       // normal enters against its gravity (findPatchReport(upper) then finds
       // it); without gravity, body0's. Manifold normal: from body1 to body0.
@@ -1197,6 +1233,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const btCollisionObject* B = aIs0 ? o1 : o0;
       // manifold normal points from body1 to body0
       const btVector3 nIntoA = persisting ? persisting->geometry.normal
+                               : probed   ? probeNormal
                                : aIs0     ? m->getContactPoint(0).m_normalWorldOnB
                                           : -m->getContactPoint(0).m_normalWorldOnB;
       PatchState& st = im.states[m];
@@ -1261,10 +1298,9 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       st.flat = flat && (kept || geo.has_value());
       // without Bullet's contact, the faces themselves must touch: the
       // patch's low side no further above the other face than the distance
-      // at which Bullet drops a contact point
-      if (st.flat && empty &&
-          !((kept ? st.geometry : *geo).clearance <= double(m->getContactBreakingThreshold())))
-        st.flat = false;
+      // at which Bullet drops a contact point (and, for a first contact,
+      // what the body closes in this step)
+      if (st.flat && empty && !((kept ? st.geometry : *geo).clearance <= reach)) st.flat = false;
       // (the warm start is read only after a step that ended flat, whose end
       // wrote it: a contact that is not flat leaves it as it is)
       if (!st.flat) {
@@ -1282,8 +1318,9 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       }
 
       if (!kept) st.geometry = std::move(*geo);
+      // (Bullet's combined friction of the pair, as its contact points get it)
       const double mu = opt.mu  ? *opt.mu
-                        : empty ? st.friction->mu()
+                        : empty ? double(gCalculateCombinedFrictionCallback(o0, o1))
                                 : double(m->getContactPoint(0).m_combinedFriction);
       // shape and friction law: rebuilt only when the outline changes
       const internal::PatchOutline& outline = st.geometry.outline;

@@ -730,14 +730,12 @@ TEST(PatchFrictionSolver, HeavyBlockOnLightBlockSlidesAsOneBody) {
 // whose interval holds t* is not compared (v(t) has its corner there).
 // kBeltSpinTol: a flat coin sliding under uniform pressure feels no torque
 // about any axis (measured 0 in float, 4e-30 rad/s in double).
-// The belt is square. On a box longer than wide (half 0.25 x 0.2 m and up,
-// the 1 x 0.2 m belt first tried, static or kinematic) float Bullet's
-// narrowphase reports no contact for a coin set down at its centre for
-// five steps, then one point 1.1 mm apart while the coin is 2.5 mm in.
-// Stock Bullet's coin sinks to ~3.6 mm before deeper points push it out;
-// a patch begins only at that first point, so the coin would be five steps
-// without one (CoinKeepsItsPatchWhereBulletLosesTheContact: after that the
-// patch holds). Double Bullet reports the contact from the first step.
+// The belt is longer than wide (half 1 x 0.2 m), where float Bullet's
+// narrowphase reports no contact for a coin set down on it until the coin
+// is ~2.5 mm in (CoinHasItsPatchWhereBulletMissesTheContact): the patch is
+// found from the faces (a kinematic box is probed as a static one is), and
+// stock Bullet's coin, which sinks and tumbles, is 7e-2 m/s off and spins
+// up to 6.4 rad/s (2.6 rad/s on a square belt).
 TEST(PatchFrictionSolver, CoinOnAKinematicConveyorIsCarriedAlong) {
   constexpr double kBeltSpeed = 0.5;
   constexpr double kBeltSpeedTol = 1e-4, kBeltSpinTol = 1e-6;
@@ -747,7 +745,7 @@ TEST(PatchFrictionSolver, CoinOnAKinematicConveyorIsCarriedAlong) {
     for (Model model : {Model::Ellipsoidal, Model::Exact}) {
       if (!patch && model == Model::Exact) continue;  // stock Bullet once
       Scene scene(kG);
-      const btVector3 half(0.3f, 0.3f, 0.05f);
+      const btVector3 half(1.0f, 0.2f, 0.05f);
       btRigidBody* belt = scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
       scene.world().removeRigidBody(belt);
       belt->setCollisionFlags(belt->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
@@ -787,33 +785,33 @@ TEST(PatchFrictionSolver, CoinOnAKinematicConveyorIsCarriedAlong) {
 
 // ---- a patch without Bullet's contact points -----------------------------------------
 // Float Bullet's convex test misses a coin lying on a box face longer than
-// wide (see the conveyor test above): no contact for the first five steps,
-// then one point that is dropped again in the next step. A patch that ended
-// a step flat outlives its empty manifold while the faces still touch
-// (within the distance at which Bullet drops a point). The coin is set down
-// on a 2 x 0.4 m table, falls ~2.5 mm into it before the first contact,
-// and is then lifted out and held; after a quarter second it is sent
-// sliding and spinning. The same run on a square table, where Bullet finds
-// the contact in every step, is the comparison. Asserted for both laws:
-//   * a patch in every step from the first contact on (before: one in
-//     three, the coin staying 2.5 mm in);
-//   * the coin's face within kHeldDepthTol of the table's top while it
-//     slides: the position correction takes 20 % of the depth per step
-//     (erp), 2.5 mm -> 1e-8 m in the 55 steps before the slide (measured
-//     1.1e-8 m in float); float round-off of the coin's height is ~3e-10 m;
+// wide: no contact until the coin is ~2.5 mm in, then one point that is
+// dropped again as soon as the coin is lifted out. A body opted in on a
+// static or kinematic plane or box gets its patch from the faces (probed
+// where the manifold is empty), and a patch that ended a step flat
+// outlives an empty manifold while the faces still touch. The coin is set
+// down 1e-5 m into a 2 x 0.4 m table and, after a quarter second, sent
+// sliding and spinning. The same run on a square table is the comparison.
+// Asserted for both laws:
+//   * a patch from the first step on, in every step (before the probe: from
+//     step 5; before the patch outlived its manifold: one step in three);
+//   * the coin never deeper than it was set down (+ kHeldDepthTol; before:
+//     2.5 mm), and its face within kHeldDepthTol of the table's top while
+//     it slides: the position correction takes 20 % of the depth per step
+//     (erp), 1e-5 m -> 1e-11 m in the 60 steps before the slide, below
+//     the float round-off of the coin's height, ~3e-10 m (measured 2e-9 m);
 //   * the coin, sliding and spinning until it stops, ends where the square
-//     table's ends, to kTrackTol: the faces, the pressure and the law are
-//     the same once both coins are held, so what is left is round-off
-//     (measured 4.7e-10 m in float, 0 in double).
-constexpr double kHeldDepthTol = 1e-6, kTrackTol = 1e-6;
+//     table's ends, to kTrackTol: same faces, pressure and law, so what is
+//     left is round-off (measured 0: the runs agree to the bit).
+constexpr double kHeldDepthTol = 1e-6, kTrackTol = 1e-6, kSetDownDepth = 1e-5;
 
-TEST(PatchFrictionSolver, CoinKeepsItsPatchWhereBulletLosesTheContact) {
+TEST(PatchFrictionSolver, CoinHasItsPatchWhereBulletMissesTheContact) {
   const int settleSteps = int(std::lround(0.25 / kDt));
   const int slideSteps = int(std::lround(1.0 / kDt));
   for (Model model : {Model::Ellipsoidal, Model::Exact}) {
     struct Run {
       int firstPatch = -1, missing = 0;
-      double worstDepth = 0.0;
+      double worstSink = 0.0, worstDepth = 0.0;
       btVector3 end{0, 0, 0};
     };
     auto run = [&](double halfLength, bool patch = true) {
@@ -822,7 +820,7 @@ TEST(PatchFrictionSolver, CoinKeepsItsPatchWhereBulletLosesTheContact) {
       const btVector3 half(btScalar(halfLength), 0.2f, 0.05f);
       btRigidBody* table = scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
       btRigidBody* coin =
-          scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 - 1e-5)), kMu);
+          scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 - kSetDownDepth)), kMu);
       if (patch) scene.solver().enablePatchFriction(coin, {model});
       for (int k = 0; k < settleSteps + slideSteps; ++k) {
         if (k == settleSteps) {
@@ -834,9 +832,9 @@ TEST(PatchFrictionSolver, CoinKeepsItsPatchWhereBulletLosesTheContact) {
         const bool on = p != nullptr && p->other == table;
         if (on && r.firstPatch < 0) r.firstPatch = k;
         r.missing += r.firstPatch >= 0 && !on;
-        if (k >= settleSteps)
-          r.worstDepth = std::max(
-              r.worstDepth, std::abs(double(coin->getWorldTransform().getOrigin().z()) - kH / 2));
+        const double z = double(coin->getWorldTransform().getOrigin().z());
+        r.worstSink = std::max(r.worstSink, kH / 2 - z);
+        if (k >= settleSteps) r.worstDepth = std::max(r.worstDepth, std::abs(z - kH / 2));
       }
       r.end = coin->getWorldTransform().getOrigin();
       return r;
@@ -844,19 +842,78 @@ TEST(PatchFrictionSolver, CoinKeepsItsPatchWhereBulletLosesTheContact) {
     const Run longTable = run(1.0), square = run(0.2), stock = run(1.0, false);
     const double track = double((longTable.end - square.end).length());
     std::printf(
-        "[lost contact] %s (%s): long table: first patch at step %d, %d steps without one after "
-        "it, depth while sliding %.2e m; square table: first patch at step %d, depth %.2e m; end "
-        "points %.2e m apart (slid %.4f m); stock Bullet on the long table: depth %.2e m, slid "
-        "%.4f m\n",
+        "[missed contact] %s (%s): long table: first patch at step %d, %d steps without one "
+        "after it, sank %.2e m, depth while sliding %.2e m; square table: first patch at step "
+        "%d; end points %.2e m apart (slid %.4f m); stock Bullet on the long table: sank %.2e "
+        "m, height off by up to %.2e m while sliding, slid %.4f m\n",
         toString(model), kDouble ? "double" : "float", longTable.firstPatch, longTable.missing,
-        longTable.worstDepth, square.firstPatch, square.worstDepth, track, double(square.end.x()),
-        stock.worstDepth, double(stock.end.x()));
-    EXPECT_GE(longTable.firstPatch, 0) << toString(model);
+        longTable.worstSink, longTable.worstDepth, square.firstPatch, track, double(square.end.x()),
+        stock.worstSink, stock.worstDepth, double(stock.end.x()));
+    EXPECT_EQ(longTable.firstPatch, 0) << toString(model);
     EXPECT_EQ(longTable.missing, 0) << toString(model);
+    EXPECT_LT(longTable.worstSink, kSetDownDepth + kHeldDepthTol) << toString(model);
     EXPECT_LT(longTable.worstDepth, kHeldDepthTol) << toString(model);
     EXPECT_LT(track, kTrackTol) << toString(model);
     EXPECT_GT(double(square.end.x()), 0.01) << toString(model) << ": the coin slid";
   }
+}
+
+// A coin dropped flat (or tilted within the flatness tolerance) from 5 cm
+// onto the long table, sliding at 0.2 m/s and spinning at 5 rad/s, lands on
+// its face: the probe finds the face in the step that would take the coin
+// through it (a speculative contact: the gap may close, no further), so it
+// never sinks below the top by more than kHeldDepthTol (measured 1e-9 m in
+// float), and stands on a patch from its landing to the end. Stock Bullet
+// sinks 12 mm (7.4 mm in double) before its points push the coin out. The
+// tilted drop (0.01 rad) checks the same for a coin whose low side lands
+// first, its sink measured at that low side: closing a tilted patch's gap
+// may take the low side 1e-3 of the patch size into the table, no further
+// (the solver's kLowSideSinkRelTol, see TiltedPatchDoesNotDriveItsLowEdgeIn; 4.99e-5
+// m for R = 5 cm), so the bound is that plus kHeldDepthTol.
+TEST(PatchFrictionSolver, ACoinDroppedOnATableLandsOnItsFace) {
+  constexpr double kDrop = 0.05, kTilt = 0.01, kLowSideSink = 1e-3 * kR;
+  const int steps = int(std::lround(1.0 / kDt));
+  for (Model model : {Model::Ellipsoidal, Model::Exact})
+    for (double tilt : {0.0, kTilt})
+      for (bool patch : {true, false}) {
+        if (!patch && model == Model::Exact) continue;  // stock Bullet once per tilt
+        Scene scene(kG);
+        const btVector3 half(1.0f, 0.2f, 0.05f);
+        btRigidBody* table = scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
+        btRigidBody* coin =
+            scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 + kDrop)), kMu);
+        btTransform start = coin->getWorldTransform();
+        start.setRotation(btQuaternion(btVector3(1, 0, 0), btScalar(tilt)));
+        coin->setWorldTransform(start);
+        coin->setLinearVelocity(btVector3(0.2f, 0, 0));
+        coin->setAngularVelocity(btVector3(0, 0, 5));
+        if (patch) scene.solver().enablePatchFriction(coin, {model});
+        double worstSink = 0.0;
+        int landed = -1, withoutPatch = 0;
+        for (int k = 0; k < steps; ++k) {
+          scene.step(kDt);
+          // the coin's lowest point: its bottom face's centre less the tilt's drop at the rim
+          const btTransform& t = coin->getWorldTransform();
+          const btVector3 axis = t.getBasis().getColumn(2);
+          const double low = double(t.getOrigin().z()) - kH / 2 * double(axis.z()) -
+                             kR * std::sqrt(std::max(0.0, 1.0 - double(axis.z() * axis.z())));
+          worstSink = std::max(worstSink, -low);
+          const PatchReport* p = scene.solver().findPatchReport(coin);
+          const bool on = p != nullptr && p->other == table;
+          if (on && landed < 0) landed = k;
+          withoutPatch += landed >= 0 && !on;
+        }
+        std::printf(
+            "[drop] %s (%s), tilt %.2f rad: landed on a patch at step %d, %d steps without "
+            "one after it, sank %.2e m\n",
+            patch ? toString(model) : "stock", kDouble ? "double" : "float", tilt, landed,
+            withoutPatch, worstSink);
+        if (!patch) continue;
+        EXPECT_GE(landed, 0) << toString(model) << ", tilt " << tilt;
+        EXPECT_EQ(withoutPatch, 0) << toString(model) << ", tilt " << tilt;
+        EXPECT_LT(worstSink, (tilt > 0 ? kLowSideSink : 0.0) + kHeldDepthTol)
+            << toString(model) << ", tilt " << tilt;
+      }
 }
 
 // The same long table: a patch kept without contact points is only the
