@@ -1153,23 +1153,25 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // an empty manifold's patch: the furthest its low side may be above the
       // other face
       double reach = 0.0;
-      if (empty) reach = double(m->getContactBreakingThreshold());
       if (empty) {
-        if (im.mayHaveBeenFlat(m)) {
+        // one body static or kinematic, a plane or a box: its faces are
+        // probed below (flag and type tests: most empty manifolds of a pile
+        // are between two dynamic bodies)
+        const bool support0 = o0->isStaticOrKinematicObject();
+        if (support0 != o1->isStaticOrKinematicObject()) {
+          const int type = (support0 ? o0 : o1)->getCollisionShape()->getShapeType();
+          probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE;
+        }
+        if (!probed) {
+          if (!im.mayHaveBeenFlat(m)) continue;
           const auto it = im.states.find(m);
           // (the same pair: a manifold deleted in this step's broadphase may
           // have been reused for another)
-          if (it != im.states.end() && it->second.flat && it->second.lastSeen == im.step - 1 &&
-              ((it->second.body == o0 && it->second.other == o1) ||
-               (it->second.body == o1 && it->second.other == o0)))
-            persisting = &it->second;
-        }
-        if (!persisting) {
-          // one body static or kinematic (a flag test: most empty manifolds
-          // of a pile are between two dynamic bodies)
-          const bool support0 = o0->isStaticOrKinematicObject();
-          if (support0 == o1->isStaticOrKinematicObject()) continue;
-          probed = true;
+          if (it == im.states.end() || !it->second.flat || it->second.lastSeen != im.step - 1 ||
+              !((it->second.body == o0 && it->second.other == o1) ||
+                (it->second.body == o1 && it->second.other == o0)))
+            continue;
+          persisting = &it->second;
         }
       }
       // the patch belongs to an opted-in dynamic body (a static or kinematic
@@ -1201,6 +1203,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // keeps a contact point of it (either side), or one it would close in
       // this step at its present speed (a landing: the patch is then a
       // speculative contact and stops the fall at the face)
+      if (empty) reach = double(m->getContactBreakingThreshold());
       if (probed) {
         double clearance = 0.0;
         btVector3 lowest;
