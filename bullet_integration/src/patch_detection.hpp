@@ -45,7 +45,7 @@ bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, 
                    Face& face);
 
 // For a pair Bullet reports no contact for (an empty manifold): the face of
-// `support` (a static plane or a box) whose outside `body`'s centre lies
+// `support` (a plane or a box) whose outside `body`'s centre lies
 // furthest in, as a contact normal (unit, out of `support`, into `body`),
 // and the clearance of `body`'s lowest point along it above that face's
 // plane [m] (negative: below it), both with collision margins, and that
