@@ -1141,8 +1141,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // while its faces still touch (below), and a body opted in on a static
       // or kinematic plane or box gets its patch there without Bullet's
       // contact: float Bullet's convex test finds no contact between a coin
-      // and a box face longer than wide until the coin is ~2.5 mm in (a
-      // known GJK miss on parallel faces), and drops the one point it then
+      // and a box face longer than wide until the coin is ~2.5 mm in
+      // (reproduced with plain Bullet), and drops the one point it then
       // finds as soon as the coin is lifted out.
       const bool empty = m->getNumContacts() == 0;
       const btCollisionObject* o0 = m->getBody0();
@@ -1150,9 +1150,6 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       PatchState* persisting = nullptr;
       bool probed = false;  // an empty manifold whose faces touch (probeSupportFace)
       btVector3 probeNormal(0, 0, 0);
-      // an empty manifold's patch: the furthest its low side may be above the
-      // other face
-      double reach = 0.0;
       if (empty) {
         // one body static or kinematic, a plane or a box: its faces are
         // probed below (flag and type tests: most empty manifolds of a pile
@@ -1203,7 +1200,9 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // keeps a contact point of it (either side), or one it would close in
       // this step at its present speed (a landing: the patch is then a
       // speculative contact and stops the fall at the face)
-      if (empty) reach = double(m->getContactBreakingThreshold());
+      // an empty manifold's patch: the furthest its low side may be above the
+      // other face
+      double reach = empty ? double(m->getContactBreakingThreshold()) : 0.0;
       if (probed) {
         double clearance = 0.0;
         btVector3 lowest;

@@ -38,6 +38,23 @@ struct Coin {
   }
 };
 
+// A static box whose top face is the plane z = 0, half halfLength x 0.2 x
+// 0.05 m, friction 1: with the default 1 m, a face longer than wide, on
+// which float Bullet's narrowphase misses a coin lying flat
+// (CoinHasItsPatchWhereBulletMissesTheContact).
+constexpr float kTableHalfZ = 0.05f;
+btRigidBody* addTable(Scene& scene, double halfLength = 1.0) {
+  return scene.addStaticBox(btVector3(btScalar(halfLength), 0.2f, kTableHalfZ),
+                            btVector3(0, 0, -kTableHalfZ), 1.0);
+}
+// The coin set down on the plane z = top, kSetDownDepth into it: Bullet
+// finds no contact between faces that exactly touch.
+constexpr double kSetDownDepth = 1e-5;
+btRigidBody* addSetDownCoin(Scene& scene, double top = 0.0) {
+  return scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(top + kH / 2 - kSetDownDepth)),
+                           kMu);
+}
+
 // ---- no creep ---------------------------------------------------------------
 // A force inside the friction limit leaves the body exactly at rest: the
 // friction block sticks (s = 0 for all six patch DOFs), so the centre of mass
@@ -745,21 +762,18 @@ TEST(PatchFrictionSolver, CoinOnAKinematicConveyorIsCarriedAlong) {
     for (Model model : {Model::Ellipsoidal, Model::Exact}) {
       if (!patch && model == Model::Exact) continue;  // stock Bullet once
       Scene scene(kG);
-      const btVector3 half(1.0f, 0.2f, 0.05f);
-      btRigidBody* belt = scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
+      btRigidBody* belt = addTable(scene);
       scene.world().removeRigidBody(belt);
       belt->setCollisionFlags(belt->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
       belt->setActivationState(DISABLE_DEACTIVATION);
       scene.world().addRigidBody(belt);
-      // starts overlapping by 1e-5 m: Bullet finds no contact between faces that exactly touch
-      btRigidBody* coin =
-          scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 - 1e-5)), kMu);
+      btRigidBody* coin = addSetDownCoin(scene);
       if (patch) scene.solver().enablePatchFriction(coin, {model});
       double worstSpeed = 0.0, worstSpin = 0.0;
       int onPatch = 0;
       for (int k = 0; k < steps; ++k) {
         btTransform t = belt->getWorldTransform();
-        t.setOrigin(btVector3(btScalar(kBeltSpeed * (k + 1) * kDt), 0, -half.z()));
+        t.setOrigin(btVector3(btScalar(kBeltSpeed * (k + 1) * kDt), 0, -kTableHalfZ));
         belt->setWorldTransform(t);
         scene.step(kDt);
         const double t0 = k * kDt, t1 = (k + 1) * kDt;
@@ -803,7 +817,7 @@ TEST(PatchFrictionSolver, CoinOnAKinematicConveyorIsCarriedAlong) {
 //   * the coin, sliding and spinning until it stops, ends where the square
 //     table's ends, to kTrackTol: same faces, pressure and law, so what is
 //     left is round-off (measured 0: the runs agree to the bit).
-constexpr double kHeldDepthTol = 1e-6, kTrackTol = 1e-6, kSetDownDepth = 1e-5;
+constexpr double kHeldDepthTol = 1e-6, kTrackTol = 1e-6;
 
 TEST(PatchFrictionSolver, CoinHasItsPatchWhereBulletMissesTheContact) {
   const int settleSteps = int(std::lround(0.25 / kDt));
@@ -817,10 +831,8 @@ TEST(PatchFrictionSolver, CoinHasItsPatchWhereBulletMissesTheContact) {
     auto run = [&](double halfLength, bool patch = true) {
       Run r;
       Scene scene(kG);
-      const btVector3 half(btScalar(halfLength), 0.2f, 0.05f);
-      btRigidBody* table = scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
-      btRigidBody* coin =
-          scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 - kSetDownDepth)), kMu);
+      btRigidBody* table = addTable(scene, halfLength);
+      btRigidBody* coin = addSetDownCoin(scene);
       if (patch) scene.solver().enablePatchFriction(coin, {model});
       for (int k = 0; k < settleSteps + slideSteps; ++k) {
         if (k == settleSteps) {
@@ -878,8 +890,7 @@ TEST(PatchFrictionSolver, ACoinDroppedOnATableLandsOnItsFace) {
       for (bool patch : {true, false}) {
         if (!patch && model == Model::Exact) continue;  // stock Bullet once per tilt
         Scene scene(kG);
-        const btVector3 half(1.0f, 0.2f, 0.05f);
-        btRigidBody* table = scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
+        btRigidBody* table = addTable(scene);
         btRigidBody* coin =
             scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 + kDrop)), kMu);
         btTransform start = coin->getWorldTransform();
@@ -935,8 +946,7 @@ TEST(PatchFrictionSolver, ACoinOnADynamicBoxKeepsItsPatchWhenBulletDropsThePoint
     scene.addGroundPlane(1.0);
     const btVector3 half(1.0f, 0.2f, 0.05f);
     btRigidBody* box = scene.addBox(half, 100.0, btVector3(0, 0, half.z()), 1.0);
-    btRigidBody* coin = scene.addCylinder(
-        kR, kH, kMass, btVector3(0, 0, btScalar(2 * half.z() + kH / 2 - kSetDownDepth)), kMu);
+    btRigidBody* coin = addSetDownCoin(scene, 2 * double(half.z()));
     coin->setLinearVelocity(btVector3(0.5f, 0, 0));
     coin->setAngularVelocity(btVector3(0, 0, 10));
     scene.solver().enablePatchFriction(coin, {model});
@@ -972,7 +982,7 @@ TEST(PatchFrictionSolver, ACoinOnADynamicBoxKeepsItsPatchWhenBulletDropsThePoint
 // flight as semi-implicit Euler integrates it, z_k = z0 + vz k dt - g dt^2
 // k (k + 1) / 2, and no friction while the coin is above the table (speed
 // and spin unchanged). Bounds: kFlightTol 1e-7 m, float round-off of the
-// height ~3e-10 m per step over ~3 steps (measured 2.5e-9 m); kRubTol 1e-6
+// height ~3e-10 m per step over ~3 steps (measured 2.1e-10 m; 2.5e-9 m before the probe); kRubTol 1e-6
 // m/s and rad/s, the velocities' float round-off (measured 1.2e-8). After
 // the flight the coin lands on the patch, at the table's top within
 // kHeldDepthTol, and stays on a patch.
@@ -983,10 +993,8 @@ TEST(PatchFrictionSolver, APatchWithoutContactPointsNeitherPullsNorRubs) {
   constexpr double kUp = 0.1, kSlide = 0.3, kSpin = 10.0;
   for (Model model : {Model::Ellipsoidal, Model::Exact}) {
     Scene scene(kG);
-    const btVector3 half(1.0f, 0.2f, 0.05f);
-    scene.addStaticBox(half, btVector3(0, 0, -half.z()), 1.0);
-    btRigidBody* coin =
-        scene.addCylinder(kR, kH, kMass, btVector3(0, 0, btScalar(kH / 2 - 1e-5)), kMu);
+    addTable(scene);
+    btRigidBody* coin = addSetDownCoin(scene);
     scene.solver().enablePatchFriction(coin, {model});
     for (int k = 0; k < settleSteps; ++k) scene.step(kDt);
     const double z0 = double(coin->getWorldTransform().getOrigin().z());
