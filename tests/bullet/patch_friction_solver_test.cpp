@@ -982,10 +982,10 @@ TEST(PatchFrictionSolver, ACoinOnADynamicBoxKeepsItsPatchWhenBulletDropsThePoint
 // flight as semi-implicit Euler integrates it, z_k = z0 + vz k dt - g dt^2
 // k (k + 1) / 2, and no friction while the coin is above the table (speed
 // and spin unchanged). Bounds: kFlightTol 1e-7 m, float round-off of the
-// height ~3e-10 m per step over ~3 steps (measured 2.1e-10 m; 2.5e-9 m before the probe); kRubTol 1e-6
-// m/s and rad/s, the velocities' float round-off (measured 1.2e-8). After
-// the flight the coin lands on the patch, at the table's top within
-// kHeldDepthTol, and stays on a patch.
+// height ~3e-10 m per step over ~3 steps (measured 2.1e-10 m; 2.5e-9 m
+// before the probe); kRubTol 1e-6 m/s and rad/s, the velocities' float
+// round-off (measured 1.2e-8). After the flight the coin lands on the
+// patch, at the table's top within kHeldDepthTol, and stays on a patch.
 constexpr double kFlightTol = 1e-7, kRubTol = 1e-6;
 
 TEST(PatchFrictionSolver, APatchWithoutContactPointsNeitherPullsNorRubs) {
