@@ -233,6 +233,23 @@ bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& su
       onFace = trB * (local * h[axis]);
       break;
     }
+    case CYLINDER_SHAPE_PROXYTYPE: {
+      // the caps are the flat faces; a body further outside the side than
+      // outside the caps has none to probe
+      const auto* cyl = static_cast<const btCylinderShape*>(support.getCollisionShape());
+      const int axis = cyl->getUpAxis();
+      const btVector3 h = cyl->getHalfExtentsWithMargin();
+      const btVector3 p = trB.invXform(centre);
+      const double axial = double(btFabs(p[axis]) - h[axis]);
+      const double radial = std::sqrt(std::max(0.0, double(p.length2() - p[axis] * p[axis]))) -
+                            double(cyl->getRadius());
+      if (!(axial >= radial)) return false;
+      btVector3 local(0, 0, 0);
+      local[axis] = p[axis] >= 0 ? btScalar(1) : btScalar(-1);
+      n = trB.getBasis() * local;
+      onFace = trB * (local * h[axis]);
+      break;
+    }
     default:
       return false;
   }

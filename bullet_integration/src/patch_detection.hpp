@@ -45,12 +45,13 @@ bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, 
                    Face& face);
 
 // For a pair Bullet reports no contact for (an empty manifold): the face of
-// `support` (a plane or a box) whose outside `body`'s centre lies
-// furthest in, as a contact normal (unit, out of `support`, into `body`),
-// and the clearance of `body`'s lowest point along it above that face's
-// plane [m] (negative: below it), both with collision margins, and that
-// lowest point (world). False for other support shapes and for a body that
-// is not convex.
+// `support` (a plane, a box or a cylinder's cap) whose outside `body`'s
+// centre lies furthest in, as a contact normal (unit, out of `support`,
+// into `body`), and the clearance of `body`'s lowest point along it above
+// that face's plane [m] (negative: below it), both with collision margins,
+// and that lowest point (world). False for other support shapes, for a
+// body further outside a cylinder's side than outside its caps, and for a
+// body that is not convex.
 bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& support,
                       btVector3* normal, double* clearance, btVector3* lowest);
 

@@ -1139,11 +1139,12 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       // manifold that is not a candidate goes to Bullet in the second pass.
       // A patch that ended the last step flat outlives an empty manifold
       // while its faces still touch (below), and a body opted in on a static
-      // or kinematic plane or box gets its patch there without Bullet's
-      // contact: float Bullet's convex test finds no contact between a coin
-      // and a box face longer than wide until the coin is ~2.5 mm in
-      // (reproduced with plain Bullet), and drops the one point it then
-      // finds as soon as the coin is lifted out.
+      // or kinematic plane, box or cylinder gets its patch there without
+      // Bullet's contact: float Bullet's convex test finds no contact between
+      // a coin and a box face longer than wide, or a cylinder's cap of radius
+      // 0.2 m and more, until the coin is ~2.3 mm in (reproduced with plain
+      // Bullet), and drops the one point it then finds as soon as the coin
+      // is lifted out.
       const bool empty = m->getNumContacts() == 0;
       const btCollisionObject* o0 = m->getBody0();
       const btCollisionObject* o1 = m->getBody1();
@@ -1151,13 +1152,14 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       bool probed = false;  // an empty manifold whose faces touch (probeSupportFace)
       btVector3 probeNormal(0, 0, 0);
       if (empty) {
-        // one body static or kinematic, a plane or a box: its faces are
-        // probed below (flag and type tests: most empty manifolds of a pile
-        // are between two dynamic bodies)
+        // one body static or kinematic, a plane, a box or a cylinder: its
+        // faces are probed below (flag and type tests: most empty manifolds
+        // of a pile are between two dynamic bodies)
         const bool support0 = o0->isStaticOrKinematicObject();
         if (support0 != o1->isStaticOrKinematicObject()) {
           const int type = (support0 ? o0 : o1)->getCollisionShape()->getShapeType();
-          probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE;
+          probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE ||
+                   type == CYLINDER_SHAPE_PROXYTYPE;
         }
         if (!probed) {
           if (!im.mayHaveBeenFlat(m)) continue;
