@@ -34,7 +34,7 @@ mkdir -p "$(dirname "$out")"
   echo "# patchspin stress tables"
   echo
   echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown),"
-  echo "PATCHSPIN_STRESS_FULL=1 (full matrix and scenes). Stock Bullet rows are the reference point: printed, not asserted themselves (the 1000-coin pour asserts that the patch models leave no more coins creeping than stock)."
+  echo "PATCHSPIN_STRESS_FULL=1 (full matrix and scenes). Stock Bullet rows are the reference point: printed, not asserted themselves (the 1000-coin pour asserts that the patch models leave no more coins creeping than stock, counted over the last five seconds)."
 } > "$out"
 
 status=0

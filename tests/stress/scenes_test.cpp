@@ -306,6 +306,11 @@ constexpr double kPourRestSpeed = 1e-2;
 // A pile at rest does not creep: over the last second of the pour no coin
 // moves by more than 1 mm (a coin at kPourRestSpeed would move 10 mm).
 constexpr double kPourCreepWindow = 1.0, kPourCreepTol = 1e-3;
+// The 1000-coin pile's creep is compared with stock Bullet's over the last
+// kPourCreepWindows windows, not the last alone: in a creeping pile the
+// count of coins moved changes by tens from one window to the next (the
+// pour test's figures), so one window's comparison sits at that noise.
+constexpr int kPourCreepWindows = 5;
 
 struct PourResult {
   bool finite = true;
@@ -323,6 +328,10 @@ struct PourResult {
   // (|dp| + R x rotation angle) and the change of the coins' mean height
   int crept = 0;
   double meanHeightRate = 0.0;  // m/s
+  // coins moved by more than kPourCreepTol in each of the last
+  // kPourCreepWindows windows, the last window last, and their mean
+  std::vector<int> creptPerWindow;
+  double creptMean = 0.0;
 };
 
 // A coin as a convex hull of a kPourCoinSides-gon prism with polyhedral
@@ -341,7 +350,8 @@ std::unique_ptr<btConvexHullShape> pourCoinShape(double unit = 1.0) {
   return shape;
 }
 
-static_assert(kPourRestSpeed == 1e-2, "the pour table's column names 1 cm/s");
+static_assert(kPourRestSpeed == 1e-2 && kPourCreepWindow == 1.0 && kPourCreepWindows == 5,
+              "the pour table's columns name 1 cm/s, 1 s and 5 s");
 const std::vector<std::string> kPourColumns = {"model",
                                                "finite",
                                                "escaped",
@@ -349,6 +359,7 @@ const std::vector<std::string> kPourColumns = {"model",
                                                "max speed on a patch [m/s]",
                                                "patches at the end",
                                                "moved > 1 mm in the last 1 s",
+                                               "the same, each of the last 5 s (mean)",
                                                "mean height change [mm/s]",
                                                "last above 1 cm/s [s]",
                                                "at rest"};
@@ -359,11 +370,18 @@ bool pourAtRest(const PourResult& r) {
   return r.maxSpeed < kPourRestSpeed && r.crept == 0;
 }
 
+// "a / b / c / d / e (mean)", the counts of the creep windows, oldest first
+std::string creptPerWindow(const PourResult& r) {
+  std::string s;
+  for (int n : r.creptPerWindow) s += (s.empty() ? "" : " / ") + std::to_string(n);
+  return s + fmt(" (%.1f)", r.creptMean);
+}
+
 void addPourRow(Table& table, const std::string& label, bool stock, const PourResult& r) {
   table.add({label, passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
              stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
-             std::to_string(r.crept), fmt("%.2e", 1e3 * r.meanHeightRate), fmt("%.2f", r.settledAt),
-             passFail(pourAtRest(r))});
+             std::to_string(r.crept), creptPerWindow(r), fmt("%.2e", 1e3 * r.meanHeightRate),
+             fmt("%.2f", r.settledAt), passFail(pourAtRest(r))});
 }
 
 // World units per metre of the pour (PATCHSPIN_POUR_UNIT: dm or m; the
@@ -448,16 +466,33 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
   };
   // a layer every kPourInterval, kPourDropHeight above the highest coin
   const int steps = int(std::lround((kPourInterval * (layers - 1) + kPourTime) / kDt));
-  const int creepFrom = steps - int(std::lround(kPourCreepWindow / kDt));
+  const int windowSteps = int(std::lround(kPourCreepWindow / kDt));
+  const int creepFrom = steps - windowSteps;
   const double lastLayer = kPourInterval * (layers - 1);
   PourResult r;
-  std::vector<btTransform> before;  // the coins' poses at creepFrom
+  // a coin's motion since a pose: |dp| + R x rotation angle [m]
+  auto movedSince = [R, unit](const btRigidBody* c, const btTransform& was) {
+    const btTransform& now = c->getWorldTransform();
+    const btQuaternion turn = now.getRotation() * was.getRotation().inverse();
+    const double angle = 2 * std::acos(std::min(1.0, std::abs(double(turn.getW()))));
+    return (double((now.getOrigin() - was.getOrigin()).length()) + R * angle) / unit;
+  };
+  // the coins' poses at the start of the current creep window
+  std::vector<btTransform> windowStart;
+  auto countCrept = [&]() {
+    int n = 0;
+    for (size_t i = 0; i < windowStart.size(); ++i)
+      n += movedSince(coins[i], windowStart[i]) > kPourCreepTol;
+    return n;
+  };
   std::vector<double> windowSpeed;  // each coin's largest speed since creepFrom
   for (int k = 0, poured = 0; k < steps; ++k) {
-    if (k == creepFrom) {
-      for (const btRigidBody* c : coins) before.push_back(c->getWorldTransform());
-      windowSpeed.assign(coins.size(), 0.0);
+    if (k >= steps - kPourCreepWindows * windowSteps && (steps - k) % windowSteps == 0) {
+      if (!windowStart.empty()) r.creptPerWindow.push_back(countCrept());
+      windowStart.clear();
+      for (const btRigidBody* c : coins) windowStart.push_back(c->getWorldTransform());
     }
+    if (k == creepFrom) windowSpeed.assign(coins.size(), 0.0);
     if (poured < layers && k * kDt >= poured * kPourInterval - 1e-9) {
       double top = 0.0;
       for (const btRigidBody* c : coins) top = std::max(top, extremeZ(c, false) / unit);
@@ -487,11 +522,8 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
       continue;
     }
     const btTransform& now = c->getWorldTransform();
-    const btTransform& was = before.at(i);
-    const btQuaternion turn = now.getRotation() * was.getRotation().inverse();
-    const double angle = 2 * std::acos(std::min(1.0, std::abs(double(turn.getW()))));
-    const double moved = (double((now.getOrigin() - was.getOrigin()).length()) + R * angle) / unit;
-    if (moved > kPourCreepTol) ++r.crept;
+    const btTransform& was = windowStart.at(i);  // the poses at creepFrom
+    if (movedSince(c, was) > kPourCreepTol) ++r.crept;
     heightChange += double(now.getOrigin().z() - was.getOrigin().z()) / unit;
     const btVector3 p = now.getOrigin() / btScalar(unit);
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
@@ -500,6 +532,9 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
     const double speed = windowSpeed.at(i);
     r.maxSpeed = std::max(r.maxSpeed, speed);
   }
+  r.creptPerWindow.push_back(countCrept());
+  for (int n : r.creptPerWindow) r.creptMean += n;
+  r.creptMean /= double(r.creptPerWindow.size());
   r.patches = int(scene.solver().patchReports().size());
   r.meanHeightRate = heightChange / double(coins.size()) / kPourCreepWindow;
   return r;
@@ -540,19 +575,26 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
       EXPECT_TRUE(r.finite) << toString(m) << ofSeed;
       EXPECT_EQ(r.escaped, 0) << toString(m) << ofSeed;
       // no more coins creep than with Bullet's own point contacts (figures
-      // in the two branches below)
-      EXPECT_LE(r.crept, stock.crept)
-          << toString(m) << ofSeed << ": more coins crept than with stock Bullet";
+      // in the two branches below): in the 1000-coin pour, which creeps in
+      // every model, the mean over the last kPourCreepWindows seconds; in
+      // the 100-coin pours, which still settle then, the last second
+      if (stressFull())
+        EXPECT_LE(r.creptMean, stock.creptMean)
+            << toString(m) << ": more coins crept than with stock Bullet";
+      else
+        EXPECT_LE(r.crept, stock.crept)
+            << toString(m) << ofSeed << ": more coins crept than with stock Bullet";
       // what the patches carry is at rest (the coins still moving are on
       // Bullet's point contacts, below). Not in the 1000-coin pour: 10 s
       // after its last layer it is still moving in every model (largest
       // speed over the last second, |v| + R |omega|, float, decimetres:
-      // ellipsoidal 0.34 m/s, exact 0.39, stock 0.39; double, metres: 0.36,
-      // 0.42, 0.47; coins on patches up to 0.17 / 0.23 m/s; no coin escapes or
-      // sinks in either; in its last second, float, 207, 202 and 512 coins
-      // moved by more than 1 mm and the mean height fell by 0.039, 0.036
-      // and 0.078 mm/s, double 191, 182 and 404 and 0.046, 0.045 and 0.076
-      // mm/s: the pile creeps; 24 Nov), so it is reported with the rest.
+      // ellipsoidal 0.34 m/s, exact 0.34, stock 0.39; double, metres: 0.53,
+      // 0.30, 0.47; coins on patches up to 0.27 / 0.16 m/s and 0.33 / 0.15;
+      // no coin escapes or sinks in either; in its last second, float, 283,
+      // 323 and 512 coins moved by more than 1 mm and the mean height fell
+      // by 0.042, 0.042 and 0.078 mm/s, double 128, 145 and 404 and 0.048,
+      // 0.035 and 0.076 mm/s: the pile creeps; 24 Nov), so it is reported
+      // with the rest.
       // (8 s after the last layer, with the last step's speeds, after the
       // clearance fix: float 0.035, 0.049 and 0.089 m/s, 222, 177 and 540
       // coins moved; double 0.082, 0.135, 0.145 m/s, 184, 174, 464.) The figures
@@ -591,18 +633,27 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
         EXPECT_LT(r.maxSpeedOnPatch, kPourRestSpeed) << toString(m) << ofSeed;
       } else {
         // The 1000-coin pile creeps in every model (below), but the patches
-        // do not make it creep more than Bullet's own point contacts do
-        // (measured, 10 s: float 283 / 323 coins against stock's 512, double
-        // 128 / 145 against 404; before patches were made without Bullet's
-        // points (24 Nov), float 207 / 202 and double 191 / 182; at 8 s: 222
-        // / 177 against 540 and 184 / 174 against 464; before the clearance
-        // fix, float 271 / 296, double 294 / 200; before the stack-hold fix,
-        // float 337 / 362, double 189 / 219). With two friction directions
-        // and 50 iterations: ellipsoidal 17 / 4, stock 26 / 4 (before 24 Nov
-        // 17 / 3; at 8 s 2 / 3 and 7 / 9; before the clearance fix 52 / 23).
-        // These counts move by tens from one second to the next, so the
-        // strong rows' comparison (4 against 4 in double) is at that noise:
-        // an intermediate build of 24 Nov read 6 against 4 there and failed.
+        // do not make it creep more than Bullet's own point contacts do.
+        // Coins moved by more than 1 mm in each of the last five seconds,
+        // oldest first (mean), 10 s after the last layer, 24 Nov: float,
+        // ellipsoidal 327 / 254 / 254 / 267 / 283 (277.0), exact 369 / 318
+        // / 333 / 316 / 323 (331.8), stock 696 / 584 / 540 / 575 / 512
+        // (581.4); double 205 / 217 / 150 / 137 / 128 (167.4), 193 / 164 /
+        // 139 / 113 / 145 (150.8), 558 / 490 / 464 / 413 / 404 (465.8).
+        // With two friction directions and 50 iterations, float,
+        // ellipsoidal 29 / 14 / 12 / 12 / 17 (16.8) against stock's 26 / 34
+        // / 7 / 5 / 26 (19.6); double 9 / 7 / 5 / 1 / 4 (5.2) against 13 /
+        // 5 / 9 / 3 / 4 (6.8). One window's count moves by tens from one
+        // second to the next (stock, strong, float: 34 then 7), so the last
+        // second alone compared at that noise (double, strong: 4 against 4;
+        // an intermediate build of 24 Nov read 6 against 4 and failed); the
+        // five seconds' mean is compared. Last second, earlier builds:
+        // before patches were made without Bullet's points (24 Nov), float
+        // 207 / 202 and double 191 / 182, strong 17 / 3; at 8 s: 222 / 177
+        // against 540 and 184 / 174 against 464, strong 2 / 3 and 7 / 9;
+        // before the clearance fix, float 271 / 296, double 294 / 200,
+        // strong 52 / 23; before the stack-hold fix, float 337 / 362,
+        // double 189 / 219.
         if (r.finite && r.maxSpeedOnPatch >= kPourRestSpeed)
           defects += std::string("\n  ") + toString(m) + ": max speed on a patch " +
                      fmt("%.2e", r.maxSpeedOnPatch) + " m/s in the last second of " +
@@ -624,7 +675,8 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     // Bullet's own limit, shown in the table: with the strongest point
     // contacts tried (see the comment below) stock Bullet does not hold the
     // pile either, nor does the ellipsoidal law, but it leaves no more coins
-    // creeping than stock (10 s: 17 / 4 against 26 / 4).
+    // creeping than stock (mean of the last 5 s, float 16.8 against 19.6,
+    // double 5.2 against 6.8; above).
     const std::string strong = ", 2 friction directions, 50 iterations";
     const PourResult ell =
         pour(layers, Friction::Ellipsoidal, pourHullCoins(), pourUnit(), kStrongPointContacts);
@@ -634,7 +686,7 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
     addPourRow(table, "stock" + strong, true, stockStrong);
     EXPECT_TRUE(ell.finite) << strong;
     EXPECT_EQ(ell.escaped, 0) << strong;
-    EXPECT_LE(ell.crept, stockStrong.crept)
+    EXPECT_LE(ell.creptMean, stockStrong.creptMean)
         << "ellipsoidal" << strong << ": more coins crept than with stock";
     reportMotion("ellipsoidal" + strong, ell);
     reportMotion("stock" + strong, stockStrong);
