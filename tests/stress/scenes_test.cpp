@@ -371,7 +371,7 @@ bool pourAtRest(const PourResult& r) {
 }
 
 // "a / b / c / d / e (mean)", the counts of the creep windows, oldest first
-std::string creptPerWindow(const PourResult& r) {
+std::string windowCounts(const PourResult& r) {
   std::string s;
   for (int n : r.creptPerWindow) s += (s.empty() ? "" : " / ") + std::to_string(n);
   return s + fmt(" (%.1f)", r.creptMean);
@@ -380,7 +380,7 @@ std::string creptPerWindow(const PourResult& r) {
 void addPourRow(Table& table, const std::string& label, bool stock, const PourResult& r) {
   table.add({label, passFail(r.finite), std::to_string(r.escaped), fmt("%.3e", r.maxSpeed),
              stock ? "-" : fmt("%.3e", r.maxSpeedOnPatch), std::to_string(r.patches),
-             std::to_string(r.crept), creptPerWindow(r), fmt("%.2e", 1e3 * r.meanHeightRate),
+             std::to_string(r.crept), windowCounts(r), fmt("%.2e", 1e3 * r.meanHeightRate),
              fmt("%.2f", r.settledAt), passFail(pourAtRest(r))});
 }
 
@@ -523,7 +523,6 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
     }
     const btTransform& now = c->getWorldTransform();
     const btTransform& was = windowStart.at(i);  // the poses at creepFrom
-    if (movedSince(c, was) > kPourCreepTol) ++r.crept;
     heightChange += double(now.getOrigin().z() - was.getOrigin().z()) / unit;
     const btVector3 p = now.getOrigin() / btScalar(unit);
     if (std::abs(double(p.x())) > kBoxHalf || std::abs(double(p.y())) > kBoxHalf ||
@@ -533,6 +532,7 @@ PourResult pour(int layers, Friction model, bool hull, double unit, PourSolver s
     r.maxSpeed = std::max(r.maxSpeed, speed);
   }
   r.creptPerWindow.push_back(countCrept());
+  r.crept = r.creptPerWindow.back();  // the last window's
   for (int n : r.creptPerWindow) r.creptMean += n;
   r.creptMean /= double(r.creptPerWindow.size());
   r.patches = int(scene.solver().patchReports().size());
@@ -577,7 +577,9 @@ TEST(StressScenes, CoinsPouredIntoABoxComeToRestAndStayInside) {
       // no more coins creep than with Bullet's own point contacts (figures
       // in the two branches below): in the 1000-coin pour, which creeps in
       // every model, the mean over the last kPourCreepWindows seconds; in
-      // the 100-coin pours, which still settle then, the last second
+      // the 100-coin pours, whose earlier windows still hold coins settling
+      // (float, seed 1, ellipsoidal: 0.2 against stock's 0.0), the last
+      // second
       if (stressFull())
         EXPECT_LE(r.creptMean, stock.creptMean)
             << toString(m) << ": more coins crept than with stock Bullet";
