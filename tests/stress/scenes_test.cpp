@@ -834,7 +834,7 @@ TEST(StressScenes, ARollingCoinSunkPastBulletsSplitThresholdStaysInTheFloor) {
               {"run", "lowest point [mm]", "tilt [rad]", "max speed in the last 1 s [m/s]"});
   for (const Run& run : runs) {
     const double unit = run.unit;
-    Scene scene(kG * unit, 10);
+    Scene scene(kG * unit, PourSolver{}.iterations);  // the pours' solver settings
     scene.world().getSolverInfo().m_splitImpulseTurnErp = btScalar(run.turnErp);
     scene.addGroundPlane(1.0);
     btRigidBody* coin = scene.addCylinder(unit * kPourR, unit * kPourH, kPourMass, bt(0, 0, 0), 0.4,
