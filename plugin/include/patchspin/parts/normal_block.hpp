@@ -1,0 +1,77 @@
+// Normal block part: the 3-DOF normal block of a flat patch (DESIGN item 5;
+// docs/solver.md, Eqs. (S6)-(S9)): the normal velocity at O and the two tilt
+// rates, held by the impulse (Lambda_z, Lambda_Tx, Lambda_Ty) while its centre
+// of pressure lies on the patch; off the patch the centre of pressure is
+// clamped to it and the body is tipping.
+//
+// Life cycle per step (Jolt-style): normalTargets (properties) -> warm start
+// (the adapter applies the last step's impulse) -> solveNormalVelocity in
+// every iteration -> solveNormalPosition in the split-impulse iterations.
+#pragma once
+
+#include <patchspin/geometry.hpp>
+#include <patchspin/pressure.hpp>
+
+namespace patchspin::parts {
+
+// Distance of the centre of pressure beyond the patch, relative to the patch
+// diameter, beyond which the body counts as tipping: small against 1, large
+// against round-off (normal_block_test).
+constexpr double kTipRelTol = 1e-3;
+// Closing a patch's gap may take the low side of a face tilted on the other
+// (within the flatness tolerance) this far into it, relative to the patch
+// size (1e-3: the sink of a tilt of 1e-3 rad, a twentieth of the default
+// flatness tolerance; guarded by PatchShapeIsRebuiltOnlyWhenTheOutlineChanges
+// and the pour tests).
+constexpr double kLowSideSinkRelTol = 1e-3;
+
+// What the normal block reads of the patch's outline (fixed within a step).
+struct PatchOutlineSummary {
+  bool disk = true;
+  Vec2 centre = Vec2::Zero();  // disk centre in the patch frame [m]
+  double radius = 0.0, diameter = 0.0;  // [m]
+  // squared radius of the largest disk about O inside a polygon patch [m^2]:
+  // a centre of pressure within it is on the patch without the edge tests
+  double innerRadius2 = 0.0;
+};
+PatchOutlineSummary summarizeOutline(const PatchShape& shape);
+
+// Normal impulses (Lambda_z, couple about x, couple about y) on the moving
+// body <-> loads of Eq. (94): the pressure's couple on the body is
+// (int y p, -int x p) = (-Tx, -Ty) with Tx = -int y p, Ty = int x p (Eq. (3)). (S6)
+inline PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lamN[2]}; }
+
+// The point of the patch nearest to p (p itself if inside).
+Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p);
+// Squared distance from O to the nearest edge line of a polygon patch, less
+// a relative 1e-9 for round-off (0 if O is not inside; disks: 0).
+double innerRadiusSquared(const PatchShape& shape);
+
+// Velocity targets from the position error: gap at O (< 0 penetrating) and
+// tilt rate (0, tilt.ex, tilt.ey) of the face.                             (S7)
+//   gap > 0:        close at most the gap in one step, no deeper than
+//                   kLowSideSinkRelTol * size past the low side (clearance)
+//   split impulse:  pseudo-velocity target (-gap, tilt) * erp / dt
+//   otherwise:      Baumgarte, (-gap, tilt) * erp2 / dt in the velocity target
+struct NormalTargets {
+  Vec3 velocity = Vec3::Zero();  // of the iterations [m/s, rad/s, rad/s]
+  Vec3 push = Vec3::Zero();      // of the split-impulse iterations
+};
+NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size, double dt,
+                            bool splitImpulse, double erp, double erp2);
+
+struct NormalImpulse {
+  Vec3 lamN = Vec3::Zero();  // accumulated (Lambda_z, Lambda_Tx, Lambda_Ty) [N s, N m s]
+  bool interior = false;     // centre of pressure on the patch: the block held bilateral
+  bool tipping = false;      // clamped by more than kTipRelTol of the diameter
+};
+// One velocity solve:                                                     (S8)
+//   y = lamN - W^-1 (c_n - target),  accepted while y_z > 0 and its centre of
+//   pressure (-y2 / y0, y1 / y0) is on the patch; else clamped onto it.
+NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn, const Vec3& target,
+                                  const PatchOutlineSummary& outline, const PatchShape& shape);
+
+// One position solve on the pseudo velocities: pushes only apart.          (S9)
+Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c, const Vec3& target);
+
+}  // namespace patchspin::parts

@@ -1,0 +1,104 @@
+// Normal block part (normal_block.hpp; docs/solver.md (S6)-(S9)).
+#include <patchspin/parts/normal_block.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace patchspin::parts {
+
+PatchOutlineSummary summarizeOutline(const PatchShape& shape) {
+  PatchOutlineSummary s;
+  s.disk = shape.isDisk();
+  if (s.disk) {
+    s.centre = shape.centre();
+    s.radius = shape.radius();
+  }
+  s.diameter = shape.diameter();
+  return s;
+}
+
+Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
+  if (shape.isDisk()) {
+    const Vec2 d = p - shape.centre();
+    const double n = d.norm();
+    return n <= shape.radius() ? p : Vec2(shape.centre() + d * (shape.radius() / n));
+  }
+  if (shape.contains(p)) return p;
+  const auto& v = shape.vertices();
+  Vec2 best = v[0];
+  double bestDist = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec2 a = v[i], e = v[(i + 1) % v.size()] - a;
+    const double t = std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+    const Vec2 q = a + t * e;
+    if ((q - p).norm() < bestDist) {
+      bestDist = (q - p).norm();
+      best = q;
+    }
+  }
+  return best;
+}
+
+double innerRadiusSquared(const PatchShape& shape) {
+  if (shape.isDisk()) return 0.0;
+  const auto& v = shape.vertices();
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0, prev = v.size() - 1; i < v.size(); prev = i++) {
+    const Vec2 e = v[i] - v[prev];
+    const double len = e.norm();
+    if (!(len > 0.0)) continue;
+    // signed distance of O from the edge line, > 0 on the inner side (counter-clockwise)
+    const double d = (e.x() * -v[prev].y() - e.y() * -v[prev].x()) / len;
+    best = std::min(best, d);
+  }
+  if (!(best > 0.0) || !std::isfinite(best)) return 0.0;
+  const double r = best * (1.0 - 1e-9);
+  return r * r;
+}
+
+NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size, double dt,
+                            bool splitImpulse, double erp, double erp2) {
+  NormalTargets t;
+  if (gap > 0.0) {
+    // where a is tilted on b, only until its low side is kLowSideSinkRelTol
+    // of the patch size into b (the tilt itself is corrected by the push)
+    const double sink = kLowSideSinkRelTol * size;
+    t.velocity = Vec3(-std::clamp(clearance + sink, 0.0, gap) / dt, 0.0, 0.0);
+  } else if (splitImpulse) {
+    t.push = (Vec3(-gap, 0.0, 0.0) + tiltRate) * erp / dt;
+  } else {
+    t.velocity = (Vec3(-gap, 0.0, 0.0) + tiltRate) * erp2 / dt;
+  }
+  if (gap > 0.0 && splitImpulse) t.push = tiltRate * erp / dt;
+  return t;
+}
+
+NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn, const Vec3& target,
+                                  const PatchOutlineSummary& outline, const PatchShape& shape) {
+  const Vec3 y = lamN - Winv * (cn - target);
+  NormalImpulse out;
+  if (y[0] > 0.0) {
+    // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
+    const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
+    const bool onPatch = outline.disk ? (cop - outline.centre).squaredNorm() <= outline.radius * outline.radius
+                                      : cop.squaredNorm() <= outline.innerRadius2 || shape.contains(cop);
+    if (onPatch) {
+      out.lamN = y;
+      out.interior = true;
+    } else {
+      const Vec2 clamped = nearestPointOn(shape, cop);
+      out.lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
+      out.tipping = (cop - clamped).norm() > kTipRelTol * outline.diameter;
+    }
+  }
+  return out;
+}
+
+Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c, const Vec3& target) {
+  Vec3 lam = lamPush - Winv * (c - target);
+  if (lam[0] < 0.0) lam.setZero();
+  return lam;
+}
+
+}  // namespace patchspin::parts
