@@ -30,6 +30,7 @@
 #pragma once
 
 #include <patchspin/models.hpp>
+#include <patchspin/parts/friction_block_part.hpp>
 #include <patchspin/pressure.hpp>
 #include <patchspin/types.hpp>
 
@@ -135,22 +136,23 @@ struct PatchSolverSettings {
   bool deferStickingRefresh = true;
 };
 
-// What the solver did in the last step (all islands), for profiling.
-struct PatchSolverStats {
+// What the solver did in the last step (all islands), for profiling. The
+// friction block's counters (blockSolves, pressureRefreshes,
+// deferredRefreshes, quickSticks, blockErrors) are those of
+// parts::FrictionPartCounters: block solves (the others reused the last
+// solution or stuck by the quick test), Pi / exact-law pressure refreshes,
+// visits whose due refresh was deferred (deferStickingRefresh), visits that
+// stuck by the quick test, and visits whose law or block refused its input
+// (patchspin::Error: the patch kept its impulse and its manifold went to
+// Bullet's contacts).
+struct PatchSolverStats : parts::FrictionPartCounters {
   long patches = 0;          // active patches
   long visits = 0;           // patch visits in the solver iterations
   long skippedVisits = 0;    // visits skipped (settled patch, bodies untouched)
-  long blockSolves = 0;      // friction block solves (others reused the last solution)
-  long pressureRefreshes = 0;  // Pi / exact-law pressure refreshes
-  long deferredRefreshes = 0;  // visits whose due refresh was deferred (deferStickingRefresh)
-  long quickSticks = 0;        // friction visits that stuck by the quick test (no block solve)
-  long shapeRebuilds = 0;      // patch shapes and friction laws built anew (outline changed)
+  long shapeRebuilds = 0;    // patch shapes and friction laws built anew (outline changed)
   // patches solved with their support or their load held (supportedStacks;
   // only where the held body is in no other contact or joint)
   long stackHolds = 0;
-  // friction visits whose law or block refused its input (patchspin::Error);
-  // the patch kept its impulse and its manifold went to Bullet's contacts
-  long blockErrors = 0;
   // largest distance, relative to the patch diameter, between a patch's
   // centre of pressure at the end of the step and the one its friction law
   // was last refreshed with [-]

@@ -1,0 +1,122 @@
+// Patch constraint set-up (patch_constraint.hpp).
+#include "patch_constraint.hpp"
+
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace patchspin::bullet::internal {
+
+BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r) {
+  BodyTerms t;
+  t.id = id;
+  t.body.dynamic = sb.m_originalBody != nullptr;
+  if (!t.body.dynamic) return t;
+  t.v0 = sb.m_linearVelocity + sb.m_externalForceImpulse;
+  t.w0 = sb.m_angularVelocity + sb.m_externalTorqueImpulse;
+  t.body.r = r;
+  t.body.invM = toEigen(sb.m_invMass).cwiseProduct(toEigen(sb.m_linearFactor));
+  const btMatrix3x3& I = sb.m_originalBody->getInvInertiaTensorWorld();
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) t.body.invI(i, k) = double(I[i][k]);
+  const Vec3 af = toEigen(sb.m_angularFactor);
+  if (!(af.x() == 1.0 && af.y() == 1.0 && af.z() == 1.0))  // (times 1: unchanged)
+    t.body.invI = af.asDiagonal() * t.body.invI * af.asDiagonal();
+  return t;
+}
+
+bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
+                         const btContactSolverInfo& info, PatchConstraint& pc) {
+  PatchState& st = *cand.state;
+  const double dt = double(info.m_timeStep);
+  pc.state = &st;
+  pc.fb.model = cand.options->model;
+  pc.fb.dt = dt;
+  pc.fb.mu = cand.mu;
+  pc.fb.rho = st.friction->rho();
+  pc.fb.stateSticking = st.sticking;
+  pc.fb.law = st.law;
+  pc.shape = parts::summarizeOutline(st.friction->shape());
+  pc.shape.innerRadius2 = st.innerRadius2;
+  const Vec3 O = toEigen(st.geometry.origin);
+  const Vec3 ex = toEigen(st.geometry.xAxis);
+  const Vec3 ey = toEigen(st.geometry.yAxis);
+  pc.F.col(0) = ex;
+  pc.F.col(1) = ey;
+  pc.F.col(2) = toEigen(st.geometry.normal);
+  pc.a = makeBodyTerms(sbA, idA, O - toEigen(sbA.m_worldTransform.getOrigin()));
+  pc.b = makeBodyTerms(sbB, idB, O - toEigen(sbB.m_worldTransform.getOrigin()));
+  pc.ids[0] = idA;
+  pc.ids[1] = idB;
+  // effective masses of the 6 DOFs and the friction block's Schur
+  // complement (normal block held bilateral)
+  if (!parts::makePatchBlocks(parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho), pc.k)) return false;
+  // position error: gap at O (< 0 penetrating) and tilt of the face
+  const Vec3 tilt = toEigen(st.geometry.tilt);
+  const parts::NormalTargets targets = parts::normalTargets(
+      st.geometry.gap, st.geometry.clearance, Vec3(0.0, tilt.dot(ex), tilt.dot(ey)), st.geometry.outline.size(),
+      dt, info.m_splitImpulse != 0, double(info.m_erp), double(info.m_erp2));
+  pc.targetN = targets.velocity;
+  pc.targetPush = targets.push;
+  return true;
+}
+
+bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc, Vec6& lam) {
+  if (!(info.m_solverMode & SOLVER_USE_WARMSTARTING) || !cand.wasFlat) return false;
+  const PatchState& st = *cand.state;
+  const Vec3 ex = pc.F.col(0), ey = pc.F.col(1);
+  const double f = kPatchWarmStartFactor;
+  pc.lamN = f * Vec3(st.normal, st.couple.dot(ex), st.couple.dot(ey));
+  pc.lamF = f * Vec3(st.frictionT.dot(ex), st.frictionT.dot(ey), st.frictionSpin);
+  pc.fb.warmSlip = Vec3(st.slipT.dot(ex), st.slipT.dot(ey), st.slipSpin);
+  lam << pc.lamN, pc.lamF;
+  return true;
+}
+
+void storePatchState(const PatchConstraint& pc, const Vec6& c, long step) {
+  PatchState& st = *pc.state;
+  const Vec3 ex = pc.F.col(0), ey = pc.F.col(1);
+  st.normal = pc.lamN[0];
+  st.couple = pc.lamN[1] * ex + pc.lamN[2] * ey;
+  st.frictionT = pc.lamF[0] * ex + pc.lamF[1] * ey;
+  st.frictionSpin = pc.lamF[2];
+  st.slipT = c[3] * ex + c[4] * ey;
+  st.slipSpin = c[5];
+  st.sticking = pc.fb.sticking;
+  st.law.pressureCop = pc.fb.law.pressureCop;
+  st.law.piInvValid = pc.fb.law.piInvValid;
+  if (pc.fb.law.piInvValid) st.law.piInv = pc.fb.law.piInv;
+  if (pc.tipping || pc.fb.failed) {
+    st.tipStep = step;
+    st.flat = false;
+  }
+}
+
+void flushCrumbs(btRigidBody& body) {
+  const btScalar tiny = std::sqrt(std::numeric_limits<btScalar>::min());
+  auto flushVector = [&](const btVector3& v) {
+    const btScalar cut = std::max(tiny, btScalar(1e-12) * v.length());
+    btVector3 out = v;
+    bool changed = false;
+    for (int i = 0; i < 3; ++i)
+      if (out[i] != 0 && std::abs(out[i]) < cut) out[i] = 0, changed = true;
+    return std::make_pair(out, changed);
+  };
+  const auto w = flushVector(body.getAngularVelocity());
+  if (w.second) body.setAngularVelocity(w.first);
+  const auto v = flushVector(body.getLinearVelocity());
+  if (v.second) body.setLinearVelocity(v.first);
+  btTransform tr = body.getWorldTransform();
+  btMatrix3x3& basis = tr.getBasis();
+  bool changed = false;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (basis[i][k] != 0 && std::abs(basis[i][k]) < tiny) basis[i][k] = 0, changed = true;
+  if (changed) {
+    body.setWorldTransform(tr);
+    body.setInterpolationWorldTransform(tr);
+  }
+}
+
+}  // namespace patchspin::bullet::internal

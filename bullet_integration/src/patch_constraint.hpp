@@ -1,0 +1,40 @@
+// Patch constraint set-up (internal): a selected patch's constraint for one
+// island solve — bodies, frame, effective-mass blocks, position targets and
+// the warm start — and the end-of-step write-back of its state.
+#pragma once
+
+#include "solver_data.hpp"
+
+#include <BulletDynamics/ConstraintSolver/btContactSolverInfo.h>
+
+class btRigidBody;
+
+namespace patchspin::bullet::internal {
+
+// Warm start of the patch blocks: the full impulses of the last step (each
+// block is solved directly, so a steadily sliding or resting patch converges
+// in one visit and is then skipped), not Bullet's m_warmstartingFactor.
+constexpr double kPatchWarmStartFactor = 1.0;
+
+// The constraint of `cand` between solver bodies sbA (id idA) and sbB (idB);
+// false if its effective mass has no usable blocks (e.g. a body with locked
+// rotation: the manifold goes to Bullet).
+bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
+                         const btContactSolverInfo& info, PatchConstraint& pc);
+
+// The warm start of a patch that ended the last step flat (false otherwise
+// or without SOLVER_USE_WARMSTARTING): sets pc.lamN, pc.lamF and the friction
+// block's warm slip, and `lam`, the impulse to apply.
+bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc, Vec6& lam);
+
+// The end of the step: warm start, stick state, the law's pressure record
+// and tipping into the PatchState; c is the patch's final DOF velocity.
+void storePatchState(const PatchConstraint& pc, const Vec6& c, long step);
+
+// Velocity components far below their vector's precision, or whose square
+// is subnormal, set to exactly zero after the write-back (a patch holds its
+// body flat: the tilt crumbs it leaves make float arithmetic ~100x slower).
+// Nothing representable changes.
+void flushCrumbs(btRigidBody& body);
+
+}  // namespace patchspin::bullet::internal

@@ -1,0 +1,352 @@
+// Patch selection (patch_selection.hpp): manifold -> candidate patch.
+#include "patch_selection.hpp"
+
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
+#include <BulletDynamics/Dynamics/btRigidBody.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace patchspin::bullet::internal {
+namespace {
+
+// A face takes part in a patch only while the contact normal is within 45
+// degrees of its normal (cosine): between the faces' own flatness (<= 2 x
+// 0.02 rad by default) and a rim contact (~90 degrees) any cut separates them.
+constexpr double kFacingCos = 0.70710678118654752;
+// A contact point lies on a face when it is within this many times the two
+// shapes' summed collision margins of the face's plane: box and cylinder
+// points lie within 0.05 of the summed margins, a hull's one margin outside
+// (1.0); rim and side contacts lie at 1.86 and beyond (the pour and ConvexHull
+// tests; docs/notes/solver-work-saving.md).
+constexpr double kOnFaceMargins = 1.5;
+// ... plus this many ulps of Bullet's scalar times the coordinates' size
+// (two boxes with zero margins touch to ~1e-8 m in float).
+constexpr double kOnFaceRoundOffUlps = 64.0;
+// A patch outline within this fraction of its size of the outline its shape
+// and law were built from keeps them (the law is then off by ~1e-4 relative at
+// most, ten times below pressureLagTolerance); compared with the last
+// rebuild's outline, so the drift does not accumulate
+// (PatchShapeIsRebuiltOnlyWhenTheOutlineChanges).
+constexpr double kOutlineRelTol = 1e-4;
+// Bodies that moved relative to each other by less than this (translation
+// relative to the patch size, rotation in radians) since their overlap was
+// clipped keep that overlap (outline and O; ten times below kOutlineRelTol);
+// the frame, gap and tilt are recomputed every step.
+constexpr double kOverlapRelTol = 1e-5;
+
+// Every point of the manifold lies on both faces (A's point on A's face
+// plane, B's on B's) to within kOnFaceMargins times the summed margins: a
+// contact anywhere else (a rim, a side) is not the faces touching.
+bool contactOnFaces(const btPersistentManifold& m, bool aIs0, const internal::Face& faceA,
+                    const internal::Face& faceB) {
+  const btScalar tol = btScalar(kOnFaceMargins) * (m.getBody0()->getCollisionShape()->getMargin() +
+                                                   m.getBody1()->getCollisionShape()->getMargin());
+  const btScalar ulps = btScalar(kOnFaceRoundOffUlps) * SIMD_EPSILON;
+  for (int k = 0; k < m.getNumContacts(); ++k) {
+    const btManifoldPoint& p = m.getContactPoint(k);
+    const btVector3& onA = aIs0 ? p.m_positionWorldOnA : p.m_positionWorldOnB;
+    const btVector3& onB = aIs0 ? p.m_positionWorldOnB : p.m_positionWorldOnA;
+    if (btFabs(faceA.normal.dot(onA - faceA.centre)) > tol + ulps * (onA.length() + faceA.centre.length()) ||
+        btFabs(faceB.normal.dot(onB - faceB.centre)) > tol + ulps * (onB.length() + faceB.centre.length()))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+PatchSelection::PatchSelection() {
+  for (auto& filter : flatFilter_) filter.assign(std::size_t(1) << (kFlatFilterLog2 - 6), 0);
+}
+
+void PatchSelection::setOptions(const btCollisionObject* body, const PatchOptions& options) {
+  options_[body] = options;
+  ++optionsVersion_;
+}
+void PatchSelection::eraseOptions(const btCollisionObject* body) {
+  options_.erase(body);
+  ++optionsVersion_;
+}
+const PatchOptions* PatchSelection::optionsOf(const btCollisionObject* o) const {
+  auto it = options_.find(o);
+  return it == options_.end() ? nullptr : &it->second;
+}
+
+// An entry holds for the same object (address) while the options are
+// unchanged (optionsVersion_).
+const PatchOptions* PatchSelection::cachedOptionsOf(const btCollisionObject* o) {
+  const int ix = o->getWorldArrayIndex();
+  if (ix < 0) return optionsOf(o);
+  if (std::size_t(ix) >= optionsByIndex_.size()) optionsByIndex_.resize(std::size_t(ix) + 1);
+  OptionsEntry& e = optionsByIndex_[std::size_t(ix)];
+  if (e.object != o || e.version != optionsVersion_) {
+    e.object = o;
+    e.options = optionsOf(o);
+    e.version = optionsVersion_;
+  }
+  return e.options;
+}
+
+// The options of an opted-in dynamic body (a static or kinematic body opted
+// in has no patch of its own: what stands on it decides).
+const PatchOptions* PatchSelection::dynamicOptions(const btCollisionObject* o) {
+  const btRigidBody* rb = btRigidBody::upcast(o);
+  if (!rb || !(rb->getInvMass() > 0)) return nullptr;
+  const int id = o->getCompanionId();
+  if (id < 0 || std::size_t(id) >= optionsById_.size()) return cachedOptionsOf(o);
+  if (!optionsKnown_[std::size_t(id)]) {
+    optionsById_[std::size_t(id)] = cachedOptionsOf(o);
+    optionsKnown_[std::size_t(id)] = 1;
+  }
+  return optionsById_[std::size_t(id)];
+}
+
+// PatchShape::disk is a function of the radius: a copy is the shape it would
+// build; at most kDiskShapeCache are kept, the oldest replaced.
+PatchShape PatchSelection::shapeOf(const internal::PatchOutline& outline) {
+  if (!outline.disk) return outline.toShape();
+  for (const auto& entry : diskShapes_)
+    if (entry.first == outline.radius) return entry.second;
+  PatchShape shape = outline.toShape();
+  if (diskShapes_.size() < kDiskShapeCache) {
+    diskShapes_.emplace_back(outline.radius, shape);
+  } else {
+    diskShapes_[diskShapeNext_] = {outline.radius, shape};
+    diskShapeNext_ = (diskShapeNext_ + 1) % kDiskShapeCache;
+  }
+  return shape;
+}
+
+std::size_t PatchSelection::flatBit(const btPersistentManifold* m) {
+  return std::size_t((std::uint64_t(reinterpret_cast<std::uintptr_t>(m)) * 0x9E3779B97F4A7C15ull) >>
+                     (64 - kFlatFilterLog2));
+}
+void PatchSelection::markFlat(const btPersistentManifold* m) {
+  const std::size_t bit = flatBit(m);
+  std::uint64_t& word = flatFilter_[step_ & 1][bit >> 6];
+  if (word == 0) flatWords_[step_ & 1].push_back(bit >> 6);
+  word |= std::uint64_t(1) << (bit & 63);
+}
+bool PatchSelection::mayHaveBeenFlat(const btPersistentManifold* m) const {
+  const std::size_t bit = flatBit(m);
+  return (flatFilter_[(step_ - 1) & 1][bit >> 6] >> (bit & 63)) & 1;
+}
+// (cleared word by word where it was written, not as an 8 KB fill)
+void PatchSelection::clearFlatFilter(int k) {
+  for (const std::size_t word : flatWords_[k]) flatFilter_[k][word] = 0;
+  flatWords_[k].clear();
+}
+
+void PatchSelection::beginStep(long step) {
+  step_ = step;
+  clearFlatFilter(int(step & 1));
+}
+
+void PatchSelection::beginIsland(int numSolverBodies) {
+  optionsById_.assign(std::size_t(numSolverBodies), nullptr);
+  optionsKnown_.assign(std::size_t(numSolverBodies), 0);
+}
+
+void PatchSelection::endStep(long step) {
+  if (step % kSweepSteps != 0) return;
+  for (auto it = states_.begin(); it != states_.end();) {
+    if (isStale(it->second, step))
+      it = states_.erase(it);
+    else
+      ++it;
+  }
+}
+
+bool PatchSelection::select(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
+                            std::vector<Candidate>& out) {
+  // Empty manifolds (the broadphase keeps one for every pair whose bounding
+  // boxes overlap, ~10 per touching one in a pile) become patches two ways:
+  // a patch that ended the last step flat outlives an empty manifold while
+  // its faces still touch (persistence), and a body opted in on a static or
+  // kinematic plane, box or cylinder gets its patch without Bullet's contact
+  // (probe: float Bullet misses a coin on a long box face or a large
+  // cylinder cap until ~2.3 mm in; CoinHasItsPatchWhereBulletMissesTheContact).
+  const bool empty = m->getNumContacts() == 0;
+  const btCollisionObject* o0 = m->getBody0();
+  const btCollisionObject* o1 = m->getBody1();
+  PatchState* persisting = nullptr;
+  bool probed = false;  // an empty manifold whose faces touch (probeSupportFace)
+  btVector3 probeNormal(0, 0, 0);
+  if (empty) {
+    // one body static or kinematic, a plane, a box or a cylinder: its faces
+    // are probed below (most empty manifolds of a pile are dynamic pairs)
+    const bool support0 = o0->isStaticOrKinematicObject();
+    if (support0 != o1->isStaticOrKinematicObject()) {
+      const int type = (support0 ? o0 : o1)->getCollisionShape()->getShapeType();
+      probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE;
+    }
+    if (!probed) {
+      if (!mayHaveBeenFlat(m)) return false;
+      const auto it = states_.find(m);
+      // (the same pair: a manifold deleted in this step's broadphase may
+      // have been reused for another)
+      if (it == states_.end() || !it->second.flat || it->second.lastSeen != step_ - 1 ||
+          !((it->second.body == o0 && it->second.other == o1) || (it->second.body == o1 && it->second.other == o0)))
+        return false;
+      persisting = &it->second;
+    }
+  }
+  const PatchOptions* opt0 = dynamicOptions(o0);
+  const PatchOptions* opt1 = dynamicOptions(o1);
+  if (!opt0 && !opt1) return false;
+  // a persisting patch stays the same body's, with the last step's normal
+  if (persisting) {
+    const bool body0 = persisting->body == o0;
+    (body0 ? opt1 : opt0) = nullptr;
+    if (!(body0 ? opt0 : opt1)) return false;  // no longer opted in
+  }
+  // an empty manifold's patch: the furthest its low side may be above the
+  // other face (Bullet's contact-breaking distance)
+  double reach = empty ? double(m->getContactBreakingThreshold()) : 0.0;
+  if (probed) {
+    // the support's face that the body's centre is outside of, and the
+    // body's lowest point within that distance (either side), or one it
+    // closes in this step at its present speed (a speculative contact)
+    double clearance = 0.0;
+    btVector3 lowest;
+    const btCollisionObject* body = opt0 ? o0 : o1;
+    const btCollisionObject* support = opt0 ? o1 : o0;
+    if (!internal::probeSupportFace(*body, *support, &probeNormal, &clearance, &lowest)) return false;
+    auto pointVelocity = [&](const btCollisionObject* o) {
+      const btRigidBody* rb = btRigidBody::upcast(o);
+      return rb ? rb->getVelocityInLocalPoint(lowest - o->getWorldTransform().getOrigin()) : btVector3(0, 0, 0);
+    };
+    const double approach = std::max(0.0, -double(probeNormal.dot(pointVelocity(body) - pointVelocity(support))));
+    if (!(clearance >= -reach && clearance <= reach + approach * dt)) return false;
+    reach += approach * dt;
+  }
+  // both opted in (a stack): the patch is the upper body's, the one the
+  // normal enters against its gravity; without gravity, body0's. Manifold
+  // normal: from body1 to body0.
+  if (opt0 && opt1) {
+    const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
+    const btVector3 g = btRigidBody::upcast(o0)->getGravity();
+    if (nInto0.dot(g) > 0)
+      opt0 = nullptr;  // body0 is underneath
+    else
+      opt1 = nullptr;
+  }
+  const bool aIs0 = opt0 != nullptr;
+  const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
+  const btCollisionObject* A = aIs0 ? o0 : o1;
+  const btCollisionObject* B = aIs0 ? o1 : o0;
+  const btVector3 nIntoA = persisting ? persisting->geometry.normal
+                           : probed   ? probeNormal
+                           : aIs0     ? m->getContactPoint(0).m_normalWorldOnB
+                                      : -m->getContactPoint(0).m_normalWorldOnB;
+  PatchState& st = states_[m];
+  if (st.body != A || st.other != B || isStale(st, step_ - 1)) {
+    st = PatchState();
+    st.body = A;
+    st.other = B;
+  }
+  const bool wasFlat = st.flat && st.lastSeen >= step_ - 1;
+  st.lastSeen = step_;
+
+  // faces and flatness, with hysteresis (B's face is looked up whenever A
+  // has one: for a convex hull that builds the polyhedral features Bullet's
+  // own contact clipping then uses)
+  double cosA = 0.0, cosB = 0.0;
+  const bool haveFaces =
+      internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_) && internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
+  bool flat = false;
+  std::optional<internal::DetectedPatch> geo;
+  bool kept = false;  // st.geometry is this step's patch (geo unset)
+  if (haveFaces && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
+    const double c = std::clamp(-double(faceA_.normal.dot(faceB_.normal)), -1.0, 1.0);
+    const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
+    // the faces must face the contact, and the contact must be on them (two
+    // coins side by side touch rim to rim); the angle between the faces
+    // last of the cheap tests: acos
+    flat = cosA >= kFacingCos && cosB >= kFacingCos && step_ - st.tipStep > kTipCooldownSteps &&
+           std::acos(c) < tol && contactOnFaces(*m, aIs0, faceA_, faceB_);
+    // x axis fixed in the moving body: a box spinning on a plane keeps the
+    // same outline, and its cached shape, in this frame
+    if (flat) {
+      const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
+      bool keep = wasFlat && st.overlapValid && faceA_.kind == st.overlapKinds[0] &&
+                  faceB_.kind == st.overlapKinds[1] &&
+                  double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
+                      kOverlapRelTol * st.geometry.outline.size();
+      for (int row = 0; keep && row < 3; ++row)
+        keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <= kOverlapRelTol;
+      // a kept overlap is updated in place (no copy of its outline)
+      const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
+      if (keep) {
+        internal::refreshFrame(faceA_, faceB_, xHint, st.geometry);
+        kept = true;
+      } else {
+        geo = internal::buildPatch(faceA_, faceB_, xHint);
+      }
+      if (geo) {
+        st.overlapPose = rel;
+        st.overlapKinds[0] = faceA_.kind;
+        st.overlapKinds[1] = faceB_.kind;
+        st.overlapValid = true;
+      }
+    }
+  }
+  st.flat = flat && (kept || geo.has_value());
+  // without Bullet's contact, the faces themselves must touch
+  if (st.flat && empty && !((kept ? st.geometry : *geo).clearance <= reach)) st.flat = false;
+  if (!st.flat) return false;
+  // Bullet's rows of this manifold are replaced: start them from zero if the
+  // contact goes back to Bullet later (after a step that ended flat they are
+  // zero already)
+  if (!wasFlat) {
+    for (int k = 0; k < m->getNumContacts(); ++k) {
+      btManifoldPoint& p = m->getContactPoint(k);
+      p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+    }
+  }
+
+  if (!kept) st.geometry = std::move(*geo);
+  // (Bullet's combined friction of the pair, as its contact points get it)
+  const double mu = opt.mu  ? *opt.mu
+                    : empty ? double(gCalculateCombinedFrictionCallback(o0, o1))
+                            : double(m->getContactPoint(0).m_combinedFriction);
+  // shape and friction law: rebuilt only when the outline changes
+  const internal::PatchOutline& outline = st.geometry.outline;
+  const double size = outline.size();
+  if (!st.friction || !st.outline || !st.outline->matches(outline, kOutlineRelTol * size) ||
+      (opt.rho && st.friction->rho() != *opt.rho)) {
+    try {
+      const PatchShape shape = shapeOf(outline);
+      st.friction.emplace(shape, LinearPressure::uniform(shape, 1.0), mu, opt.rho ? *opt.rho : 0.0);
+      st.outline = outline;
+      st.law.pressureCop = shape.centroid();  // uniform pressure
+      st.law.piInvValid = false;
+      st.certs.invalidate();
+      st.shapeId = ++shapeCount_;
+      st.innerRadius2 = parts::innerRadiusSquared(shape);
+      ++stats.shapeRebuilds;
+    } catch (const Error&) {
+      st.flat = false;  // degenerate overlap: leave it to Bullet
+      st.friction.reset();
+      st.outline.reset();
+      return false;
+    }
+  }
+  if (st.friction->mu() != mu) {
+    try {
+      st.friction->setMu(mu);
+    } catch (const Error&) {
+      st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
+      st.friction.reset();
+      st.outline.reset();
+      return false;
+    }
+  }
+  out.push_back({index, &st, &opt, A, B, mu, wasFlat});
+  markFlat(m);
+  return true;
+}
+
+}  // namespace patchspin::bullet::internal

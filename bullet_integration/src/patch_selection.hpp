@@ -1,0 +1,71 @@
+// Patch selection (internal): which manifolds of opted-in bodies become
+// flat patches in a step, with their state across steps (persistence,
+// hysteresis, tip cooldown) and the per-body options. Bullet's manifolds in,
+// Candidates out; the rest of the solver never looks at a manifold's points.
+#pragma once
+
+#include "solver_data.hpp"
+
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
+
+namespace patchspin::bullet::internal {
+
+class PatchSelection {
+ public:
+  PatchSelection();
+
+  // Options (PatchFrictionSolver's enable/disable).
+  void setOptions(const btCollisionObject* body, const PatchOptions& options);
+  void eraseOptions(const btCollisionObject* body);
+  const PatchOptions* optionsOf(const btCollisionObject* o) const;
+  bool anyOptedIn() const { return !options_.empty(); }
+
+  // Start of step `step` (after the last one's end): `numSolverBodies` solver
+  // bodies are numbered for this island (companion ids).
+  void beginStep(long step);
+  void beginIsland(int numSolverBodies);
+  // The manifold becomes a patch (a Candidate appended to `out`) or is left
+  // to Bullet (false). `dt` [s] is the step.
+  bool select(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats, std::vector<Candidate>& out);
+  // Forgets manifolds not seen for a while (they may have been deleted);
+  // every kSweepSteps steps.
+  void endStep(long step);
+
+ private:
+  const PatchOptions* cachedOptionsOf(const btCollisionObject* o);
+  const PatchOptions* dynamicOptions(const btCollisionObject* o);
+  PatchShape shapeOf(const internal::PatchOutline& outline);
+  // the flat filter: the manifolds that had a patch in a step, as bits by
+  // address (flatFilter_[step & 1] is written in step `step`, the other read)
+  static constexpr int kFlatFilterLog2 = 16;
+  static std::size_t flatBit(const btPersistentManifold* m);
+  void markFlat(const btPersistentManifold* m);
+  bool mayHaveBeenFlat(const btPersistentManifold* m) const;
+  void clearFlatFilter(int k);
+
+  std::unordered_map<const btCollisionObject*, PatchOptions> options_;
+  std::unordered_map<const btPersistentManifold*, PatchState> states_;
+  long step_ = 0;
+  std::vector<std::uint64_t> flatFilter_[2];
+  std::vector<std::size_t> flatWords_[2];  // the words of flatFilter_[k] that are not zero
+  // the two faces of the manifold in hand, kept for their vertex storage
+  internal::Face faceA_, faceB_;
+  // disk shapes already built, by radius (a pile of equal coins builds one)
+  static constexpr std::size_t kDiskShapeCache = 8;
+  std::vector<std::pair<double, PatchShape>> diskShapes_;
+  std::size_t diskShapeNext_ = 0;
+  long shapeCount_ = 0;
+  // options by solver body id for this island, and by world array index
+  // across steps (the hash map is asked only when an entry is stale)
+  std::vector<const PatchOptions*> optionsById_;
+  std::vector<char> optionsKnown_;
+  struct OptionsEntry {
+    const btCollisionObject* object = nullptr;
+    const PatchOptions* options = nullptr;
+    long version = -1;
+  };
+  std::vector<OptionsEntry> optionsByIndex_;
+  long optionsVersion_ = 0;
+};
+
+}  // namespace patchspin::bullet::internal
