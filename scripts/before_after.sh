@@ -4,6 +4,8 @@
 # `patchspin simulate` (build/tools/patchspin), Bullet and the reference
 # dynamics of Eq. (93). Nothing in the table is typed by hand.
 #   bash scripts/before_after.sh [BUILD_DIR]      (default ./build)
+#   bash scripts/before_after.sh --write [BUILD_DIR]   also puts the table into
+#        README.md, between <!-- before-after:begin --> and <!-- before-after:end -->
 # Builds the two programs it needs first (configuring BUILD_DIR as Release if
 # it is not configured yet); SKIP_BUILD=1 uses them as built. Needs python3
 # (Debian: python3) to read the JSON. Takes ~1 minute after the build.
@@ -20,6 +22,11 @@
 #             (uniform pressure over the face); angle turned in 1 s
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+write=0
+if [[ ${1:-} == --write ]]; then
+  write=1
+  shift
+fi
 build=${1:-$root/build}
 command -v python3 >/dev/null || { echo "error: needs python3 (apt-get install python3)" >&2; exit 1; }
 if [[ "${SKIP_BUILD:-0}" != 1 ]]; then
@@ -65,11 +72,17 @@ for f in 0.8 1.25; do
   done
 done
 
-python3 - "$out" <<'EOF'
+python3 - "$out" "$R" "$H" "$m" "$mu" "$v0" "$w0" >"$out/table.md" <<'EOF'
 import json, sys, os
 out = sys.argv[1]
 def load(name): return json.load(open(os.path.join(out, name)))
 summary = load('coin/summary.json')
+# the reference runs use the script's coin: it must be the demo's
+R, H, m, mu, v0, w0 = map(float, sys.argv[2:8])
+p = summary['parameters']
+for key, want in (('radius', R), ('height', H), ('mass', m), ('mu', mu), ('v0', v0), ('omega0', w0)):
+    if abs(p[key] - want) > 1e-12 * abs(want):
+        sys.exit(f'coin demo parameter {key} = {p[key]}, the script assumes {want}: update before_after.sh')
 coin = summary['models']
 models = ['exact', 'ellipsoidal', 'stock']
 def num(x, fmt='{:.3g}'):
@@ -81,10 +94,10 @@ rows.append(('coin sliding and spinning: v/(Rω) when the slip has fallen to 1 %
 rows.append(('coin sliding and spinning: time to stop [s]',
              num(ref['t_stop']), [num(coin[k]['t_stop']) if coin[k]['stopped'] else 'no stop' for k in models]))
 def decel(d):
-    return d['stopped'] and d['t_stop'] > 0 and 20.0 / d['t_stop'] or None
+    return num(w0 / d['t_stop']) if d['stopped'] and d['t_stop'] > 0 else 'no stop'
 spin_ref = load('spin_ref.json')
 rows.append(('coin spinning in place: mean spin deceleration [rad/s²]',
-             num(decel(spin_ref)), [num(decel(load(f'spin_{k}.json'))) for k in models]))
+             decel(spin_ref), [decel(load(f'spin_{k}.json')) for k in models]))
 rows.append(('coin sliding and spinning: largest tilt rate (rocking) [rad/s]',
              '0 (a flat body)', [num(coin[k]['max_tilt_rate'], '{:.2g}') for k in models]))
 rows.append(('coin sliding and spinning: largest slip speed after it stopped (creep) [m/s]',
@@ -100,3 +113,15 @@ print('|---|---|---|---|---|')
 for name, exact, vals in rows:
     print(f'| {name} | {exact} | ' + ' | '.join(vals) + ' |')
 EOF
+cat "$out/table.md"
+if ((write)); then
+  readme=$root/README.md
+  grep -q '<!-- before-after:begin -->' "$readme" && grep -q '<!-- before-after:end -->' "$readme" ||
+    { echo "error: $readme has no before-after markers" >&2; exit 1; }
+  awk -v file="$out/table.md" '
+    index($0, "<!-- before-after:begin -->") { print; while ((getline line < file) > 0) print line; skip = 1; next }
+    index($0, "<!-- before-after:end -->") { skip = 0 }
+    !skip { print }
+  ' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
+  echo "== README.md table written" >&2
+fi
