@@ -54,7 +54,7 @@ sim() {  # name, simulate flags...
   shift
   "$tool" simulate --json "$@" >"$out/$name.json"
 }
-coin_flags=(--shape "cylinder:$R,$H" --mass $m --mu $mu --dt "$(python3 -c "print(1/$rate)")")
+coin_flags=(--shape "cylinder:$R,$H" --mass "$m" --mu "$mu" --dt "$(python3 -c "print(1/$rate)")")
 echo "== reference dynamics and Bullet runs (patchspin simulate)" >&2
 sim coin_ref --engine reference --model exact "${coin_flags[@]}" --v0 "$v0,0" --omega0 $w0
 for model in exact ellipsoidal stock; do
@@ -65,7 +65,7 @@ a=0.1 cm=1 cmu=0.5
 tlim=$(python3 -c "import math; print($cmu*$cm*9.81*$a*(math.sqrt(2)+math.log(1+math.sqrt(2)))/6)")
 for f in 0.8 1.25; do
   T=$(python3 -c "print($f*$tlim)")
-  cube_flags=(--shape "box:$a,$a,$a" --mass $cm --mu $cmu --torque "0,0,$T" --t-max 1)
+  cube_flags=(--shape "box:$a,$a,$a" --mass "$cm" --mu "$cmu" --torque "0,0,$T" --t-max 1)
   sim "cube_${f}_ref" --engine reference --model exact "${cube_flags[@]}"
   for model in exact ellipsoidal stock; do
     sim "cube_${f}_$model" --engine bullet --model $model "${cube_flags[@]}" --dt "$(python3 -c "print(1/$rate)")"
@@ -116,8 +116,10 @@ EOF
 cat "$out/table.md"
 if ((write)); then
   readme=$root/README.md
-  grep -q '<!-- before-after:begin -->' "$readme" && grep -q '<!-- before-after:end -->' "$readme" ||
-    { echo "error: $readme has no before-after markers" >&2; exit 1; }
+  if ! grep -q '<!-- before-after:begin -->' "$readme" || ! grep -q '<!-- before-after:end -->' "$readme"; then
+    echo "error: $readme has no before-after markers" >&2
+    exit 1
+  fi
   awk -v file="$out/table.md" '
     index($0, "<!-- before-after:begin -->") { print; while ((getline line < file) > 0) print line; skip = 1; next }
     index($0, "<!-- before-after:end -->") { skip = 0 }

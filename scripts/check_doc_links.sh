@@ -7,7 +7,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
-python3 - README.md bullet_integration/README.md fuzz/README.md $(find docs -name '*.md' | sort) <<'PY'
+mapfile -t docs < <(find docs -name '*.md' | sort)
+python3 - README.md bullet_integration/README.md fuzz/README.md "${docs[@]}" <<'PY'
 import os, re, sys
 def anchors(path):
     out, seen = set(), {}
