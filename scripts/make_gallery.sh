@@ -100,7 +100,7 @@ EOF
   --time-label "time per evaluation (value only) [s]" --error-label "max relative error"
 
 # (4) per patch and per simulation, from the CSVs of bench_patch_error and
-# bench_bullet_simulation (docs/bench/, committed with the README's tables)
+# bench_bullet_simulation (docs/bench/, committed with the tables of docs/benchmarks.md)
 csv="$root/docs/bench"
 "$plots" pareto-patch --csv "$csv/patch_error.csv" --out "$img/pareto_patch.png" --size 900x600 \
   --title "per patch: friction-block solve (disk, rectangle, hexagon pooled)"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Runs every benchmark program (bench/bench_*.cpp) and refreshes the README's
-# benchmark tables and the CSVs in docs/bench/. Not part of the tests.
+# Runs every benchmark program (bench/bench_*.cpp) and refreshes the benchmark
+# tables of docs/benchmarks.md and the CSVs in docs/bench/. Not part of the tests.
 #   bash scripts/run_benchmarks.sh [BUILD_DIR]
 # Takes about 5 minutes on 2 cores (most of it the world-scale benchmark's
 # 10000-body pile); progress goes to stderr.
@@ -11,9 +11,9 @@
 #   PATCHSPIN_SCALE_MAX_N=1000  skip the 10000-body world (bench_bullet_scale)
 #   PATCHSPIN_SCALE_REPETITIONS=3  world scale: fastest of 3 repetitions, not 9
 #                             (a third of its time; ratios +-20 % on a noisy machine)
-#   README_FILE=path          refresh this file instead of README.md (to try the script)
+#   BENCH_DOC=path            refresh this file instead of docs/benchmarks.md (to try the script)
 #
-# README sections, each between a pair of markers (a missing pair is reported
+# Sections of docs/benchmarks.md, each between a pair of markers (a missing pair is reported
 # and skipped; the table is then only in BUILD_DIR/bench-results):
 #   <!-- bench:begin -->            <!-- bench:end -->            raw tables of the
 #                                   micro-benchmarks (models, exact law, analysis, Bullet world)
@@ -28,7 +28,7 @@ build=$(cd "${1:-$root/build}" 2>/dev/null && pwd || echo "${1:-$root/build}")
 min_time=${MIN_TIME:-0.2}
 out=$build/bench-results
 csvdir=$root/docs/bench
-readme=${README_FILE:-$root/README.md}
+doc=${BENCH_DOC:-$root/docs/benchmarks.md}
 if [[ "${SKIP_BUILD:-0}" != 1 ]]; then
   echo "== building (scripts/quickstart.sh build)" >&2
   BUILD_DIR=$build bash "$root/scripts/quickstart.sh" build
@@ -68,19 +68,19 @@ run() {  # bench, extra args...
 }
 
 # replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in the
-# README with FILE; a README without that pair is left alone (reported)
+# benchmark document with FILE; a document without that pair is left alone (reported)
 replace_section() {  # name, file
   local name=$1 file=$2
-  if ! grep -q "<!-- $name:begin -->" "$readme" || ! grep -q "<!-- $name:end -->" "$readme"; then
-    echo "   README has no <!-- $name:begin --> / <!-- $name:end --> pair: section not refreshed ($file)" >&2
+  if ! grep -q "<!-- $name:begin -->" "$doc" || ! grep -q "<!-- $name:end -->" "$doc"; then
+    echo "   $doc has no <!-- $name:begin --> / <!-- $name:end --> pair: section not refreshed ($file)" >&2
     return 0
   fi
   awk -v file="$file" -v begin="<!-- $name:begin -->" -v end="<!-- $name:end -->" '
     index($0, begin) { print; while ((getline line < file) > 0) print line; skip = 1; next }
     index($0, end) { skip = 0 }
     !skip { print }
-  ' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
-  echo "   README section $name refreshed" >&2
+  ' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+  echo "   section $name of $doc refreshed" >&2
 }
 
 stamp="Measured on $(nproc) cores ($(uname -m)), $(date -u +%Y-%m-%d)"
@@ -117,7 +117,7 @@ for b in "${micro[@]}"; do
 done
 # a partial run would drop tables: then the section stays as it was
 if ((incomplete)); then
-  echo "   some micro-benchmarks did not run: README section bench left as it was" >&2
+  echo "   some micro-benchmarks did not run: section bench of $doc left as it was" >&2
 else
   replace_section bench "$section"
 fi

@@ -1,6 +1,6 @@
 // PatchFrictionSolver: Bullet's sequential-impulse solver with a normal
 // block and a friction block per flat contact patch (DESIGN items 2, 4, 5;
-// the equations (S1)-(S13) are in docs/solver.md). Bullet's own rows run
+// the equations (S1)-(S19) are in docs/solver.md). Bullet's own rows run
 // first in every stage; the patch stages, per island, in this order:
 //
 //   1 select        manifolds of opted-in bodies -> candidate patches
@@ -105,7 +105,7 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup, con
                 int held, double& worst) {
   const parts::PatchBlocks& k = hold ? static_cast<const parts::PatchBlocks&>(*hold) : pc.k;
   FrictionPatch& friction = *pc.state->friction;
-  // normal block (S8)
+  // normal block (S4)-(S6)
   const Vec6 c = constraintVelocity(pc, cx.pool);
   const parts::NormalImpulse normal =
       parts::solveNormalVelocity(k.Winv, pc.lamN, c.head<3>(), pc.targetN, pc.shape, friction.shape());
@@ -115,7 +115,7 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup, con
   d.head<3>() = normal.lamN - pc.lamN;
   pc.lamN = normal.lamN;
   // friction block on the slip x_o, with the normal block held (Schur
-  // complement Ks) while it is inside the admissible set (S10)-(S12)
+  // complement Ks) while it is inside the admissible set (S7)-(S14)
   const Vec3 s = c.tail<3>() + k.Knf.transpose() * d.head<3>();
   bool refreshed = false;
   const Vec3 lamF = parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
@@ -133,7 +133,7 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup, con
   applyImpulse(pc, cx.pool, d);
   worst = std::max(worst, d.squaredNorm());
   if (hold && !d.isZero(0.0)) {
-    // the support takes what keeps its held DOFs where they were (S13)
+    // the support takes what keeps its held DOFs where they were (S15)-(S16)
     const Vec6 ds = hold->gain * d;
     sup->lamN += ds.head<3>();
     sup->lamF += ds.tail<3>();

@@ -24,7 +24,7 @@ using Mat34 = Eigen::Matrix<double, 3, 4>;
 
 // Point contacts at the rectangle's corners: a normal impulse p_i at (x, y)
 // is the generalised impulse (p, y p, -x p) of the normal DOFs, and the
-// normal velocity there is c0 + y c1 - x c2 (S6).
+// normal velocity there is c0 + y c1 - x c2 (S5).
 Mat34 cornerRows(const PatchShape& rect) {
   Mat34 G;
   for (int i = 0; i < 4; ++i) {

@@ -1,4 +1,4 @@
-// Friction block part (friction_block_part.hpp; docs/solver.md (S10)-(S12)).
+// Friction block part (friction_block_part.hpp; docs/solver.md (S7)-(S14)).
 #include <patchspin/parts/friction_block_part.hpp>
 
 #include <patchspin/pressure.hpp>
@@ -21,7 +21,7 @@ constexpr double kDeferStick = 0.5;
 
 // The quick stick test's measure of x against the law's Pi: |Pi^-1 x| for
 // the ellipsoidal law (its exact stick test), the bicone's gauge
-// |(z1, z2)| + |z3| for the exact law (a set its limit set contains).  (S11)
+// |(z1, z2)| + |z3| for the exact law (a set its limit set contains).  (S13)-(S14)
 double quickStickSize(Model model, const Vec3& unitLoad) {
   return model == Model::Ellipsoidal ? unitLoad.norm()
                                      : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
@@ -56,7 +56,7 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction, Stic
     // the law's pressure: the linear pressure of Eq. (94) carrying the
     // loads, or the nearest admissible one where that would be negative
     // (DESIGN item 2), refreshed only when the centre of pressure (Ty, -Tx) /
-    // Pz has moved by more than the refresh tolerance of the diameter (S10)
+    // Pz has moved by more than the refresh tolerance of the diameter (S7)
     const PatchLoads raw = toLoads(lamN);
     const Vec2 cop(raw.Ty / raw.Pz, -raw.Tx / raw.Pz);
     const double moved = (cop - fb.law.pressureCop).norm() / shape.diameter;

@@ -1,4 +1,4 @@
-// Normal block part (normal_block.hpp; docs/solver.md (S6)-(S9)).
+// Normal block part (normal_block.hpp; docs/solver.md (S4)-(S6), (S17)-(S19)).
 #include <patchspin/parts/normal_block.hpp>
 
 #include <algorithm>

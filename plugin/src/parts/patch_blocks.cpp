@@ -1,4 +1,4 @@
-// Effective-mass blocks of a patch (patch_blocks.hpp; docs/solver.md (S4)-(S5)).
+// Effective-mass blocks of a patch (patch_blocks.hpp; docs/solver.md (S2), (S3), (S15)).
 #include <patchspin/parts/patch_blocks.hpp>
 
 #include <Eigen/Dense>

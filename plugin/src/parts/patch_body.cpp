@@ -1,5 +1,5 @@
 // Patch body part: effective mass, rows and velocity of a patch's six DOFs
-// (patch_body.hpp; docs/solver.md, Eqs. (S1)-(S3)).
+// (patch_body.hpp; docs/solver.md, Eqs. (S1)-(S2)).
 #include <patchspin/parts/patch_body.hpp>
 
 namespace patchspin::parts {

@@ -1,4 +1,4 @@
-// Stack hold part (stack_hold.hpp; docs/solver.md (S13)).
+// Stack hold part (stack_hold.hpp; docs/solver.md (S15)-(S16)).
 #include <patchspin/parts/stack_hold.hpp>
 
 namespace patchspin::parts {

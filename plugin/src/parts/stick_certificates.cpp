@@ -1,4 +1,4 @@
-// Stick certificates of the exact law (stick_certificates.hpp; docs/solver.md (S11)).
+// Stick certificates of the exact law (stick_certificates.hpp; docs/solver.md (S14)).
 //
 // E (unit mu Pz) is convex and odd, and every law value q(w) lies on its
 // boundary, so E contains conv(B u {+-q*}) for the bicone B = Pi {|(z1, z2)|

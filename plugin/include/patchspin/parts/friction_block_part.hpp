@@ -1,5 +1,5 @@
 // Friction block part: one patch's 3-DOF friction block inside the solver
-// iterations (DESIGN item 4; docs/solver.md, Eqs. (S10)-(S12)). It computes
+// iterations (DESIGN item 4; docs/solver.md, Eqs. (S7)-(S14)). It computes
 // the block's accumulated impulse; the caller applies the change, so that a
 // coupled clamp (a stacked patch's support) can refuse it first.
 //
@@ -71,7 +71,7 @@ struct FrictionBlockState {
 // lamN, and K = Ks (interior) or Kff. `law` is the patch's friction law,
 // refreshed here when its pressure is due; `refreshed` says so. L = mu lamN_z
 // <= 0 gives zero. On Error from the law or the block: lamF unchanged,
-// state.failed set, counted.                                         (S10)-(S12)
+// state.failed set, counted.                                         (S7)-(S14)
 Vec3 solveFrictionVelocity(FrictionBlockState& state, FrictionPatch& law, StickCertificates& certs,
                            const PatchOutlineSummary& outline, const PatchBlocks& k, bool interior, const Vec3& s,
                            const Vec3& lamF, const Vec3& lamN, int held, const FrictionPartSettings& settings,

@@ -1,5 +1,5 @@
 // Normal block part: the 3-DOF normal block of a flat patch (DESIGN item 5;
-// docs/solver.md, Eqs. (S6)-(S9)): the normal velocity at O and the two tilt
+// docs/solver.md, Eqs. (S4)-(S6), (S17)-(S19)): the normal velocity at O and the two tilt
 // rates, held by the impulse (Lambda_z, Lambda_Tx, Lambda_Ty) while its centre
 // of pressure lies on the patch; off the patch the centre of pressure is
 // clamped to it and the body is tipping.
@@ -38,7 +38,7 @@ PatchOutlineSummary summarizeOutline(const PatchShape& shape);
 
 // Normal impulses (Lambda_z, couple about x, couple about y) on the moving
 // body <-> loads of Eq. (94): the pressure's couple on the body is
-// (int y p, -int x p) = (-Tx, -Ty) with Tx = -int y p, Ty = int x p (Eq. (3)). (S6)
+// (int y p, -int x p) = (-Tx, -Ty) with Tx = -int y p, Ty = int x p (Eq. (3)), (S5)
 inline PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lamN[2]}; }
 
 // The point of the patch nearest to p (p itself if inside).
@@ -48,7 +48,7 @@ Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p);
 double innerRadiusSquared(const PatchShape& shape);
 
 // Velocity targets from the position error: gap at O (< 0 penetrating) and
-// tilt rate (0, tilt.ex, tilt.ey) of the face.                             (S7)
+// tilt rate (0, tilt.ex, tilt.ey) of the face.                             (S17)-(S19)
 //   gap > 0:        close at most the gap in one step, no deeper than
 //                   kLowSideSinkRelTol * size past the low side (clearance)
 //   split impulse:  pseudo-velocity target (-gap, tilt) * erp / dt
@@ -65,13 +65,13 @@ struct NormalImpulse {
   bool interior = false;     // centre of pressure on the patch: the block held bilateral
   bool tipping = false;      // clamped by more than kTipRelTol of the diameter
 };
-// One velocity solve:                                                     (S8)
+// One velocity solve:                                                     (S4)-(S6)
 //   y = lamN - W^-1 (c_n - target),  accepted while y_z > 0 and its centre of
 //   pressure (-y2 / y0, y1 / y0) is on the patch; else clamped onto it.
 NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn, const Vec3& target,
                                   const PatchOutlineSummary& outline, const PatchShape& shape);
 
-// One position solve on the pseudo velocities: pushes only apart.          (S9)
+// One position solve on the pseudo velocities: pushes only apart.          (S18)
 Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c, const Vec3& target);
 
 }  // namespace patchspin::parts

@@ -1,10 +1,10 @@
 // The blocks of a patch's 6x6 effective mass that the normal and friction
-// block parts use (docs/solver.md, Eqs. (S4)-(S5)):
+// block parts use (docs/solver.md, Eqs. (S2), (S3), (S15)):
 //   K6 = [[W, Knf], [Knf^T, Kff]]   (normal DOFs 0-2, friction DOFs 3-5)
-//   Ks = Kff - Knf^T W^-1 Knf       (friction block with the normal held)  (S4)
+//   Ks = Kff - Knf^T W^-1 Knf       (friction block with the normal held)  (S3)
 //   G  = W^-1 Knf                   (the normal block's follow-up)
 // and, for a stacked patch, the same blocks with another patch's DOFs held
-//   K' = K6 - C Kh^-1 C^T,  dlambda_h = -Kh^-1 C^T d                       (S5)
+//   K' = K6 - C Kh^-1 C^T,  dlambda_h = -Kh^-1 C^T d                       (S15)
 #pragma once
 
 #include <patchspin/parts/patch_body.hpp>

@@ -1,5 +1,5 @@
 // Patch body part: one body's side of a flat contact patch and the patch's
-// six degrees of freedom (DESIGN items 4, 5; docs/solver.md, Eqs. (S1)-(S3)).
+// six degrees of freedom (DESIGN items 4, 5; docs/solver.md, Eqs. (S1)-(S2)).
 // No engine types: an adapter fills PatchBody from its own bodies and adds
 // the velocity changes this part returns.
 //
@@ -33,7 +33,7 @@ Mat6 patchEffectiveMass(const PatchBody& body, const Mat3& F, double rho);
 // Both bodies' sum.
 Mat6 patchEffectiveMass(const PatchBody& a, const PatchBody& b, const Mat3& F, double rho);
 
-// The DOFs' rows for one body (A's side): c = J [v; omega]           (S3)
+// The DOFs' rows for one body (A's side): c = J [v; omega]           (S1)
 Mat6 patchBodyRows(const PatchBody& body, const Mat3& F, double rho);
 
 // The DOF velocities from A's (va, wa) and B's (vb, wb) world velocities; a

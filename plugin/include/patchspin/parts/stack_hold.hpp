@@ -1,4 +1,4 @@
-// Stack hold part (docs/solver.md, Eq. (S13)): a patch P whose lower body
+// Stack hold part (docs/solver.md, Eqs. (S15)-(S16)): a patch P whose lower body
 // stands on a patch S of its own is solved with S held, with the blocks of
 // K_P - K_PS K_S^-1 K_SP, and S takes the impulse that keeps its DOFs where
 // they were, dlambda_S = -K_S^-1 K_SP d: all six while S sticks, its normal

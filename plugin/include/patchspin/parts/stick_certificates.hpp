@@ -1,4 +1,4 @@
-// Stick certificates of the exact law (docs/solver.md, Eq. (S11)): quick
+// Stick certificates of the exact law (docs/solver.md, Eq. (S14)): quick
 // proofs that a friction block sticks, without a block solve. Every
 // certificate shows x = lambda0 / L inside the convex hull of points of the
 // exact law's unit limit set E (0, law values q(w), and the bicone
