@@ -14,7 +14,7 @@
 
 #include "patch_detection.hpp"
 
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
