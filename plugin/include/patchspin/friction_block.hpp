@@ -1,6 +1,6 @@
 // The implicit 3-DOF friction block of one patch (DESIGN item 4): the
-// friction impulse of one solver visit, stick or slip, after the slip it
-// causes.
+// friction impulse of one solver visit and the slip it leaves, stick or
+// slip.
 //
 // Coordinates are those of the slip state x_o = (u_x, u_y, rho w_z) (10); the
 // impulse is lambda = (P_x, P_y, T_z / rho) dt. q(w) = Q(w) / (mu Pz) is the
@@ -12,18 +12,20 @@
 // Exact law (16): maximum dissipation (E convex), so the block is the
 // projection of -K^-1 b onto L E in K's metric, the minimum of
 //   D(s) = 1/2 (s - b)^T K^-1 (s - b) - L min_{q in E} q.s.             (4)
-// Friction never adds energy: s^T K^-1 s <= b^T K^-1 b.
+// Friction never adds energy: s^T K^-1 s <= b^T K^-1 b, both laws
+// (FrictionBlockTest.NeverAddsEnergy).
 //
 // Errors: throws Error, naming the cause, for
 //  * non-finite input, L < 0, a tolerance outside [0, 1);
 //  * K not symmetric (to 1e-10 of its largest entry) or not positive
 //    definite (Cholesky of its symmetric part fails);
 //  * K numerically singular: condition number 1e10 or more once scaled to a
-//    unit diagonal, or a stick that leaves |b + K lambda| above 1e-10
-//    (|b| + |K| |lambda|), or an ellipsoidal slip not along its law to
+//    unit diagonal (the exact law always tests it, the ellipsoidal one where
+//    L K Pi is ill-conditioned), or a stick that leaves |b + K lambda| above
+//    1e-10 (|b| + |K| |lambda|), or an ellipsoidal slip not along its law to
 //    max(1e-10, 100 tolerance) of |b| + |L K Pi|;
-//  * out of range: K's diagonal spanning more than 1e30 (exact law: also a
-//    det K that overflows), or an answer that overflows double;
+//  * out of range: K's diagonal spanning more than 1e30, L K Pi (ellipsoidal)
+//    or det K (exact) overflowing, or an answer that overflows double;
 //  * a patch outside the block's domain: pressure below -1e-6 of the mean
 //    Pz / A, lever max|r| / rho outside [1e-5, 1e5], or (exact law) a law
 //    whose round-off model 64 eps max(1, diameter^2 / A) A (|p0| + (|cx| +
