@@ -64,8 +64,8 @@
 // max error per setting) and, with --csv=PATH, that summary as CSV
 // (docs/bench/patch_error.csv): level,shape,model,setting,time_ns,err_median,
 // err_rms,err_max,samples.
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
-#include <patchspin/step.hpp>
 
 #include <Eigen/Geometry>
 #include <benchmark/benchmark.h>

@@ -17,7 +17,7 @@
 //    does not grow, s^T K^-1 s <= b^T K^-1 b.
 #include "fuzz_common.hpp"
 
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include <Eigen/Dense>
 

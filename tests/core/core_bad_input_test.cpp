@@ -4,8 +4,8 @@
 // fallback whose value is checked; never NaN. Cases already covered by
 // geometry_test, models_test, pressure_test and step_test are not repeated.
 #include <patchspin/analysis.hpp>
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
-#include <patchspin/step.hpp>
 
 #include "oracle.hpp"
 

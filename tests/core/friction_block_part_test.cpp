@@ -3,7 +3,7 @@
 // plain block solve with the refreshed law returns; a refresh sets the law's
 // pressure to the normal block's loads; a refused input keeps the impulse.
 #include <patchspin/parts/friction_block_part.hpp>
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include "patch_test_bodies.hpp"
 

@@ -21,9 +21,9 @@
 // tests fail: 2.7e-5 of L, 6.9e-6 of L (1 + lever) and 1.2e-3 of L off the
 // law, against kLaw = 1e-6; on the final core all three pass, at 2.9e-12,
 // 7.4e-13 and 1.9e-13. Item 66's fix alone left the first at 1.2e-9.)
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/step.hpp>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // it (fuzz/README.md, "Seventh round"). Each was a fuzz finding and fails on
 // cb5dd68 (checked); each is checked against an independent computation.
 #include <patchspin/analysis.hpp>
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include <gtest/gtest.h>
 

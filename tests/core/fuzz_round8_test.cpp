@@ -3,8 +3,8 @@
 // (checked: the blocks were refused, the pressures lost); each is checked
 // against an independent computation (50-digit arithmetic, long double
 // sums about the vertex mean, brute-force quadrature of Eq. (16)).
+#include <patchspin/friction_block.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/step.hpp>
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <gtest/gtest.h>

@@ -12,8 +12,8 @@
 // tests; the plain build passes both there, 2 of 2; with the fix both builds
 // pass, 2 of 2).
 #include <patchspin/analysis.hpp>
+#include <patchspin/friction_block.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/step.hpp>
 
 #include <gtest/gtest.h>
 

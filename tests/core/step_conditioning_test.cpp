@@ -4,8 +4,8 @@
 // (checked), each checked against an independent computation: a long
 // double reference solve, K's eigenvalues in closed form, the law at the
 // returned slip (unitQ), or the limit set's closed-form bounds.
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
-#include <patchspin/step.hpp>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

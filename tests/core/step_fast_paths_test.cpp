@@ -4,8 +4,8 @@
 // (A_ij^2 <= 0.2 A_ii A_jj); every other K goes to the Cholesky
 // factorisation. Checked against Eigen's own LLT of K's symmetric part (the
 // factorisation the block documents as its decision).
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
-#include <patchspin/step.hpp>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

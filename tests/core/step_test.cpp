@@ -2,7 +2,7 @@
 // a computation that does not use the solver: closed forms for isotropic
 // cases, the defining relations, the projection optimality inequality of the
 // maximum-dissipation law, and the energy balance.
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

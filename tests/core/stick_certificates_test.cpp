@@ -3,7 +3,7 @@
 // (solveFrictionBlock) says slips, and it does certify many sticks near the
 // limit set's boundary (not a vacuous test).
 #include <patchspin/parts/stick_certificates.hpp>
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include "patch_test_bodies.hpp"
 

@@ -66,12 +66,12 @@ class FrictionPatch {
   }
 
   // The law for unit mu Pz: q(w) = Q(w) / (mu Pz), defined also for mu = 0.
-  // Used by the friction block (step.hpp), whose impulse is L q(w).
+  // Used by the friction block (friction_block.hpp), whose impulse is L q(w).
   Vec3 unitQ(Model model, const Vec3& w, Mat3* jacobian = nullptr) const;
 
   // Friction wrench for a slip state x_o = (u_x, u_y, rho w_z). At x_o = 0 the
   // law is set-valued (sticking): returns std::nullopt, never NaN; the
-  // sticking wrench is the solver's business (see step.hpp).
+  // sticking wrench is the solver's business (see friction_block.hpp).
   std::optional<Vec3> QofSlip(Model model, const Vec3& x_o) const;
 
  private:

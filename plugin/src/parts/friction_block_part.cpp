@@ -2,7 +2,7 @@
 #include <patchspin/parts/friction_block_part.hpp>
 
 #include <patchspin/pressure.hpp>
-#include <patchspin/step.hpp>
+#include <patchspin/friction_block.hpp>
 
 #include <Eigen/Dense>
 

@@ -15,7 +15,7 @@
 //                   centre of pressure of its impulse lies on the patch (a
 //                   rigid contact carries any p >= 0); its impulses are the
 //                   Pz, Tx, Ty of Eq. (94)-(96);
-//   friction block  the implicit slip-spin step of step.hpp, its pressure
+//   friction block  the implicit slip-spin step of friction_block.hpp, its pressure
 //                   set from the normal block every iteration: the linear
 //                   pressure of Eq. (94), or the nearest admissible linear
 //                   one (pressure.hpp) while the centre of pressure lies
@@ -56,7 +56,7 @@ struct PatchOptions {
   std::optional<double> mu;
   // Length scale rho [m] of the slip state (u_x, u_y, rho w_z); default
   // Eq. (11) about O (mean distance of the patch from O). The friction block
-  // accepts a lever max|r| / rho in [1e-5, 1e5] only (step.hpp): a patch
+  // accepts a lever max|r| / rho in [1e-5, 1e5] only (friction_block.hpp): a patch
   // whose rho is set beyond that from its size goes to Bullet's point
   // contacts, counted in stats().blockErrors.
   std::optional<double> rho;

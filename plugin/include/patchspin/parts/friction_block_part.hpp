@@ -5,7 +5,7 @@
 //
 // Per visit: the pressure refresh policy (the law follows the normal block's
 // centre of pressure), the quick stick test, reuse of the last solution while
-// the input stays put, else solveFrictionBlock (step.hpp).
+// the input stays put, else solveFrictionBlock (friction_block.hpp).
 #pragma once
 
 #include <patchspin/models.hpp>
