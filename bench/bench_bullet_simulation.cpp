@@ -70,7 +70,7 @@ struct Scene {
   bool ratio;  // terminal quantity: v/(R omega) (coin) or w
 };
 
-std::vector<Scene> scenes() {
+std::vector<Scene> simulationScenes() {
   std::vector<Scene> out;
   // the thin coin of the validation tests, started on the exact law's limit
   // ratio (where it stays) and from v = R omega (where it must turn toward it)
@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&n, args.data());
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 1;
 
-  static const std::vector<Scene> all = scenes();
+  static const std::vector<Scene> all = simulationScenes();
   static std::map<std::string, References> refs;
   for (const Scene& s : all) {
     refs[s.name] = References{runReference(s.spec, "exact"), runReference(s.spec, "ellipsoidal")};
