@@ -59,6 +59,14 @@ inline btRigidBody* addSetDownCoin(Scene& scene, double top = 0.0) {
                            kMu);
 }
 
+// A body held by friction moves by no more than this [m] (no creep; the
+// friction block sticks, s = 0 for all six patch DOFs). Double: 1e-6 m over
+// 10 s (the bound). Float: each step leaves a velocity of round-off
+// size, ~eps_f * g dt = 6e-8 * 0.04 = 2.5e-9 m/s, i.e. 1e-11 m per step and
+// 2.4e-8 m over 2400 steps if it always had the same sign; the bound 1e-5 m
+// leaves a factor 400 for the solver's float arithmetic.
+constexpr double kCreepBound = kDouble ? 1e-6 : 1e-5;
+
 // Two blocks on the ground plane (friction 1): `upper` standing on `lower`,
 // half extents [m], masses [kg], friction 0.5, both under the ellipsoidal
 // law; added ground, lower, upper (the order of Bullet's manifolds).

@@ -18,12 +18,7 @@ namespace {
 // ---- no creep ---------------------------------------------------------------
 // A force inside the friction limit leaves the body exactly at rest: the
 // friction block sticks (s = 0 for all six patch DOFs), so the centre of mass
-// never moves. Double: below 1e-6 m over 10 s (the bound). Float:
-// each step leaves a velocity of round-off size, ~eps_f * g dt = 6e-8 * 0.04
-// = 2.5e-9 m/s, i.e. 1e-11 m per step and 2.4e-8 m over 2400 steps if it
-// always had the same sign; the bound 1e-5 m leaves a factor 400 for
-// the solver's float arithmetic.
-constexpr double kCreepBound = kDouble ? 1e-6 : 1e-5;
+// never moves by more than kCreepBound (bullet_scenes.hpp).
 
 double creep(bool patch, Model model) {
   Coin coin(patch, model);
