@@ -47,6 +47,8 @@
 // ~20 steps per measurement, varied by +-20 %, 'none opted in' included:
 // 0.79-1.31x stock; with 9, 0.92-1.02x).
 #include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/scenes/catalogue.hpp>
+#include <patchspin/scenes/scene.hpp>
 
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
@@ -70,6 +72,9 @@ namespace {
 
 using patchspin::Model;
 using patchspin::bullet::PatchFrictionSolver;
+using patchspin::scenes::Friction;
+using patchspin::scenes::Scene;
+using patchspin::scenes::SolverKind;
 
 enum Variant { kStock = 0, kNoneOptedIn = 1, kEllipsoidal = 2, kExact = 3 };
 const char* kVariantNames[4] = {"stock Bullet", "patch solver, none opted in", "patch ellipsoidal", "patch exact"};
@@ -81,15 +86,6 @@ const char* kPhaseNames[2] = {"impact", "rest"};
 // (and so does the patch solver, whose normal contact is Bullet's)
 constexpr double kDt = 1.0 / 240.0;
 constexpr int kIterations = 10;
-constexpr double kMu = 0.5;
-constexpr double kCell = 0.12;                    // grid spacing [m]
-constexpr double kCoinR = 0.04, kCoinH = 0.01, kCoinMass = 0.05;
-const btVector3 kBoxHalf(btScalar(0.04), btScalar(0.03), btScalar(0.02));
-constexpr double kBoxMass = 0.2;
-constexpr double kMargin = 1e-3;  // [m], as in simulate.hpp; patches use the real faces
-// collision groups: the floor is a plane for the coins and a box for the boxes
-constexpr int kCoinGroup = 1 << 6, kBoxGroup = 1 << 7, kPlaneGroup = 1 << 8, kFloorGroup = 1 << 9,
-              kWallGroup = 1 << 10;
 constexpr double kSaveAt[2] = {0.25, 2.0};        // [s] impact, rest
 constexpr int kWarmSteps = 3;
 constexpr int kRepetitions = 9;  // PATCHSPIN_SCALE_REPETITIONS overrides it
@@ -101,104 +97,24 @@ constexpr double kMovingSpeed = 0.01, kMovingSpin = 0.5;
 // timed steps per measurement: about 2e4 body-steps, at least 8
 int timedSteps(int n) { return std::max(8, std::min(3000, 20000 / n)); }
 
-struct BodyState {
-  btTransform transform;
-  btVector3 v, w;
-};
+using patchspin::scenes::BodyState;
 
-// A world of the scene: owns everything; bodies placed from `states` if given.
+// A world of the scene (scenes::addPile): bodies placed at `states`, all
+// opted in for the patch variants. Inertia: the exact solids'
+// (scenes/inertia.hpp); before issue 30 Bullet's calculateLocalInertia, whose
+// box and cylinder include the collision margin.
 struct World {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
-  btDbvtBroadphase broadphase;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
-  btStaticPlaneShape planeShape{btVector3(0, 0, 1), 0};
-  std::unique_ptr<btBoxShape> floorShape, wallShapeX, wallShapeY;
-  btCylinderShapeZ coinShape{btVector3(btScalar(kCoinR), btScalar(kCoinR), btScalar(kCoinH / 2))};
-  btBoxShape boxShape{kBoxHalf};
-  std::vector<std::unique_ptr<btRigidBody>> statics, bodies;
+  std::unique_ptr<Scene> scene;
+  btDiscreteDynamicsWorld* world = nullptr;
+  std::vector<btRigidBody*> bodies;
 
-  // bodies start at `states` (their transforms; velocities are set by restore)
-  World(int n, Variant variant, const std::vector<BodyState>& states) {
-    if (variant == kStock)
-      solver = std::make_unique<btSequentialImpulseConstraintSolver>();
-    else
-      solver = std::make_unique<PatchFrictionSolver>();
-    world = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher, &broadphase, solver.get(), &config);
-    world->setGravity(btVector3(0, 0, btScalar(-9.81)));
-    world->getSolverInfo().m_numIterations = kIterations;
-    coinShape.setMargin(btScalar(kMargin));
-    boxShape.setMargin(btScalar(kMargin));
-    // floor and walls (0.3 m high, 5 cm thick) around the square [-L/2, L/2]^2
-    const double L = side(n), t = 0.05, h = 0.3;
-    floorShape = std::make_unique<btBoxShape>(btVector3(btScalar(L / 2 + t), btScalar(L / 2 + t), btScalar(t)));
-    wallShapeX = std::make_unique<btBoxShape>(btVector3(btScalar(L / 2 + t), btScalar(t / 2), btScalar(h / 2)));
-    wallShapeY = std::make_unique<btBoxShape>(btVector3(btScalar(t / 2), btScalar(L / 2 + t), btScalar(h / 2)));
-    addStatic(&planeShape, btVector3(0, 0, 0), kPlaneGroup, kCoinGroup);
-    addStatic(floorShape.get(), btVector3(0, 0, btScalar(-t)), kFloorGroup, kBoxGroup);
-    const int all = kCoinGroup | kBoxGroup;
-    addStatic(wallShapeX.get(), btVector3(0, btScalar(L / 2 + t / 2), btScalar(h / 2)), kWallGroup, all);
-    addStatic(wallShapeX.get(), btVector3(0, btScalar(-L / 2 - t / 2), btScalar(h / 2)), kWallGroup, all);
-    addStatic(wallShapeY.get(), btVector3(btScalar(L / 2 + t / 2), 0, btScalar(h / 2)), kWallGroup, all);
-    addStatic(wallShapeY.get(), btVector3(btScalar(-L / 2 - t / 2), 0, btScalar(h / 2)), kWallGroup, all);
-    btVector3 coinInertia, boxInertia;
-    coinShape.calculateLocalInertia(btScalar(kCoinMass), coinInertia);
-    boxShape.calculateLocalInertia(btScalar(kBoxMass), boxInertia);
-    for (int i = 0; i < n; ++i) {
-      const bool coin = i % 2 == 0;
-      btRigidBody::btRigidBodyConstructionInfo info(btScalar(coin ? kCoinMass : kBoxMass), nullptr,
-                                                    coin ? static_cast<btCollisionShape*>(&coinShape) : &boxShape,
-                                                    coin ? coinInertia : boxInertia);
-      info.m_friction = btScalar(kMu);
-      info.m_startWorldTransform = states[std::size_t(i)].transform;
-      auto body = std::make_unique<btRigidBody>(info);
-      body->setActivationState(DISABLE_DEACTIVATION);
-      if (coin)
-        world->addRigidBody(body.get(), kCoinGroup, kCoinGroup | kBoxGroup | kPlaneGroup | kWallGroup);
-      else
-        world->addRigidBody(body.get(), kBoxGroup, kCoinGroup | kBoxGroup | kFloorGroup | kWallGroup);
-      if (variant == kEllipsoidal || variant == kExact)
-        static_cast<PatchFrictionSolver*>(solver.get())
-            ->enablePatchFriction(body.get(), {variant == kExact ? Model::Exact : Model::Ellipsoidal});
-      bodies.push_back(std::move(body));
-    }
+  World(int /*n*/, Variant variant, const std::vector<BodyState>& states) {
+    scene = std::make_unique<Scene>(9.81, kIterations, variant == kStock ? SolverKind::Stock : SolverKind::Patch);
+    world = &scene->world();
+    const Friction f = variant == kExact ? Friction::Exact : variant == kEllipsoidal ? Friction::Ellipsoidal : Friction::Stock;
+    bodies = patchspin::scenes::addPile(*scene, states, f);
   }
-  ~World() {
-    for (auto& b : bodies) world->removeRigidBody(b.get());
-    for (auto& b : statics) world->removeRigidBody(b.get());
-  }
-  static double side(int n) { return kCell * std::ceil(std::sqrt(n / 2.0)); }
-
-  void addStatic(btCollisionShape* shape, const btVector3& at, int group, int mask) {
-    btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shape);
-    info.m_startWorldTransform.setIdentity();
-    info.m_startWorldTransform.setOrigin(at);
-    info.m_friction = btScalar(kMu);
-    statics.push_back(std::make_unique<btRigidBody>(info));
-    world->addRigidBody(statics.back().get(), group, mask);
-  }
-
-  // the rain: grid cells layer by layer, seeded tilt, slide and spin
-  static std::vector<BodyState> rain(int n, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const int perSide = int(std::lround(side(n) / kCell));
-    std::vector<BodyState> out;
-    for (int i = 0; i < n; ++i) {
-      const int layer = i / (perSide * perSide), cell = i % (perSide * perSide);
-      const double x = -side(n) / 2 + kCell * (cell % perSide + 0.5) + 0.01 * u(rng);
-      const double y = -side(n) / 2 + kCell * (cell / perSide + 0.5) + 0.01 * u(rng);
-      const double z = 0.05 + 0.1 * layer;
-      const btVector3 axis = btVector3(btScalar(u(rng)), btScalar(u(rng)), 0).normalized();
-      btQuaternion q(axis, btScalar(0.3 * std::abs(u(rng))));
-      q = btQuaternion(btVector3(0, 0, 1), btScalar(3.14159 * u(rng))) * q;
-      out.push_back({btTransform(q, btVector3(btScalar(x), btScalar(y), btScalar(z))),
-                     btVector3(btScalar(0.5 * u(rng)), btScalar(0.5 * u(rng)), 0),
-                     btVector3(0, 0, btScalar(5 * u(rng)))});
-    }
-    return out;
-  }
+  static std::vector<BodyState> rain(int n, unsigned seed) { return patchspin::scenes::pileRain(n, seed); }
   static void place(btRigidBody& b, const BodyState& s) {
     b.setWorldTransform(s.transform);
     b.setInterpolationWorldTransform(s.transform);
@@ -240,6 +156,7 @@ struct World {
   // manifolds that hold contact points (the broadphase keeps empty ones too)
   int touchingManifolds() {
     int k = 0;
+    btDispatcher& dispatcher = *world->getDispatcher();
     for (int i = 0; i < dispatcher.getNumManifolds(); ++i)
       k += dispatcher.getManifoldByIndexInternal(i)->getNumContacts() > 0;
     return k;
@@ -291,7 +208,7 @@ void BM_Scale(benchmark::State& state, int n, Variant variant, Phase phase, cons
   row.variant = variant;
   row.manifolds = w.touchingManifolds();
   row.moving = w.movingBodies();
-  if (variant != kStock) row.patches = int(static_cast<PatchFrictionSolver*>(w.solver.get())->patchReports().size());
+  if (variant != kStock) row.patches = int(w.scene->solver().patchReports().size());
   row.kineticEnergy = w.kineticEnergyPerBody();
   state.counters["bodies"] = n;
   state.counters["manifolds"] = row.manifolds;

@@ -1,6 +1,6 @@
 // Per simulation: error against run time for the scenes of the validation
 // tests (tests/bullet/simulate_test.cpp), run in Bullet by
-// patchspin::bullet::simulate for each model and time step (issue 6):
+// patchspin::scenes::simulate for each model and time step (issue 6):
 //
 //   coin         free thin disk (R 5 cm, H 0.2 mm, 1 kg, mu 0.3, omega0 60 rad/s)
 //                (a) "coin from 0.653": started at v/(R omega) = 0.6530, the
@@ -39,7 +39,7 @@
 // the terminal w). Empty fields: not applicable
 // (no own reference for stock; no stop).
 #include <patchspin/analysis.hpp>
-#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/scenes/simulate.hpp>
 
 #include <benchmark/benchmark.h>
 
@@ -70,7 +70,7 @@ struct Scene {
   bool ratio;  // terminal quantity: v/(R omega) (coin) or w
 };
 
-std::vector<Scene> scenes() {
+std::vector<Scene> simulationScenes() {
   std::vector<Scene> out;
   // the thin coin of the validation tests, started on the exact law's limit
   // ratio (where it stays) and from v = R omega (where it must turn toward it)
@@ -167,14 +167,14 @@ void runSetting(benchmark::State& state, const Scene& scene, const References& r
   spec.tMax = 3.0 * refs.exact.tStop;
   if (step) {
     spec.engine = "bullet";
-    spec.precision = bullet::buildPrecision();
+    spec.precision = patchspin::scenes::buildPrecision();
     spec.dt = step->dt;
   }
   std::vector<SimulationResult> runs;
   double best = INFINITY;
   for (auto _ : state) {
     const double t0 = threadSeconds();
-    runs.push_back(step ? bullet::simulate(spec) : runReference(spec, model));
+    runs.push_back(step ? patchspin::scenes::simulate(spec) : runReference(spec, model));
     best = std::min(best, threadSeconds() - t0);
   }
   const SimulationResult& result = runs.back();
@@ -215,7 +215,7 @@ std::string fmt(double x, const char* f = "%.3g") {
 void printTables(const std::vector<Scene>& all, const std::map<std::string, References>& refs) {
   std::printf("\nPer simulation: error against the exact law's reference dynamics, and run time per simulated\n"
               "second (CPU ms of the run per simulated s; Bullet %s precision, 10 solver iterations, one body; fastest of %d runs).\n",
-              bullet::buildPrecision(), kRunsPerSetting);
+              patchspin::scenes::buildPrecision(), kRunsPerSetting);
   for (const Scene& s : all) {
     const References& r = refs.at(s.name);
     std::printf("\n%s: reference (exact law) t_stop = %.5f s, terminal %s = %s", s.name.c_str(), r.exact.tStop,
@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&n, args.data());
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 1;
 
-  static const std::vector<Scene> all = scenes();
+  static const std::vector<Scene> all = simulationScenes();
   static std::map<std::string, References> refs;
   for (const Scene& s : all) {
     refs[s.name] = References{runReference(s.spec, "exact"), runReference(s.spec, "ellipsoidal")};

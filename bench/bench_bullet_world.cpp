@@ -4,6 +4,8 @@
 // no opted-in body (must cost what stock costs). Ratios are in
 // bullet_integration/README.md.
 #include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/scenes/inertia.hpp>
+#include <patchspin/scenes/scene.hpp>
 
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
@@ -21,6 +23,8 @@ namespace {
 
 using patchspin::Model;
 using patchspin::bullet::PatchFrictionSolver;
+using patchspin::scenes::Scene;
+using patchspin::scenes::SolverKind;
 
 enum Variant { kEllipsoidal = 0, kExact = 1, kStock = 2, kNoneOptedIn = 3 };
 
@@ -36,44 +40,32 @@ constexpr double kDt = 1.0 / 240.0;
 constexpr double kR = 0.05, kH = 0.01;
 
 struct World {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
-  btDbvtBroadphase broadphase;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-  std::unique_ptr<btDiscreteDynamicsWorld> world;
-  btStaticPlaneShape groundShape{btVector3(0, 0, 1), 0};
-  btCylinderShapeZ coinShape{btVector3(btScalar(kR), btScalar(kR), btScalar(kH / 2))};
-  std::unique_ptr<btRigidBody> ground;
-  std::vector<std::unique_ptr<btRigidBody>> coins;
+  std::unique_ptr<Scene> scene;
+  btDiscreteDynamicsWorld* world = nullptr;
+  std::vector<btRigidBody*> coins;
   std::vector<btVector3> v0, w0;
   std::vector<btTransform> start;
   SceneOptions options;
 
   World(int n, Variant variant, const SceneOptions& opt = SceneOptions()) : options(opt) {
-    if (variant == kStock)
-      solver = std::make_unique<btSequentialImpulseConstraintSolver>();
-    else
-      solver = std::make_unique<PatchFrictionSolver>();
-    world = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher, &broadphase, solver.get(), &config);
-    world->setGravity(btVector3(0, 0, btScalar(-9.81)));
-    coinShape.setMargin(btScalar(1e-3));
-    ground = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
-    world->addRigidBody(ground.get());
+    scene = std::make_unique<Scene>(9.81, 10, variant == kStock ? SolverKind::Stock : SolverKind::Patch);
+    world = &scene->world();
+    // ground friction: Bullet's default 0.5 (combined with the coins' 0.3)
+    scene->addGroundPlane(0.5);
+    btCollisionShape* coinShape = scene->addShape(
+        std::make_unique<btCylinderShapeZ>(btVector3(btScalar(kR), btScalar(kR), btScalar(kH / 2))));
+    coinShape->setMargin(btScalar(1e-3));
     // coins on a grid 0.5 m apart, seeded random slide and spin
     std::mt19937 rng(12345);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     const int side = int(std::ceil(std::sqrt(double(n))));
-    const btScalar jx = btScalar((3 * kR * kR + kH * kH) / 12), jz = btScalar(kR * kR / 2);
+    const btVector3 inertia = patchspin::scenes::cylinderInertia(1.0, kR, kH);
     for (int i = 0; i < n; ++i) {
       btTransform tr;
       tr.setIdentity();
       tr.setOrigin(btVector3(btScalar(0.5 * (i % side)), btScalar(0.5 * (i / side)), btScalar(kH / 2)));
-      btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, &coinShape, btVector3(jx, jx, jz));
-      info.m_startWorldTransform = tr;
-      info.m_friction = btScalar(0.3);
-      auto coin = std::make_unique<btRigidBody>(info);
-      if (!opt.allowSleep) coin->setActivationState(DISABLE_DEACTIVATION);
-      world->addRigidBody(coin.get());
+      btRigidBody* coin = scene->addBody(coinShape, 1.0, inertia, tr, 0.3);
+      if (opt.allowSleep) coin->forceActivationState(ACTIVE_TAG);
       start.push_back(tr);
       const double vx = 0.3 * u(rng), vy = 0.3 * u(rng), wz = 10 * u(rng);
       v0.emplace_back(btScalar(opt.moving ? vx : 0.0), btScalar(opt.moving ? vy : 0.0), 0);
@@ -81,18 +73,14 @@ struct World {
       if (variant == kEllipsoidal || variant == kExact) {
         Model model = variant == kExact ? Model::Exact : Model::Ellipsoidal;
         if (opt.exactFraction >= 0) model = (i % 100) < int(100 * opt.exactFraction) ? Model::Exact : Model::Ellipsoidal;
-        patchSolver()->enablePatchFriction(coin.get(), {model});
+        patchSolver()->enablePatchFriction(coin, {model});
       }
-      coins.push_back(std::move(coin));
+      coins.push_back(coin);
     }
     if (variant != kStock) patchSolver()->setSettings(opt.settings);
     reset();
   }
-  PatchFrictionSolver* patchSolver() { return static_cast<PatchFrictionSolver*>(solver.get()); }
-  ~World() {
-    for (auto& c : coins) world->removeRigidBody(c.get());
-    world->removeRigidBody(ground.get());
-  }
+  PatchFrictionSolver* patchSolver() { return &scene->solver(); }
   // the coins stop after ~0.2 s: restart them from their initial state
   // (place, orientation, velocities) so that every step of the benchmark is
   // the same scene of coins sliding and spinning apart

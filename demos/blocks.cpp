@@ -14,7 +14,7 @@
 //
 // Writes <out>/frame_NNNNN.png, <out>/summary.json and <out>/blocks_series.csv
 // (every moving body's samples). Stopping data follow
-// patchspin::bullet::simulate (simulate.hpp): slip x = (u_x, u_y, rho w_z) of
+// patchspin::scenes::simulate (simulate.hpp): slip x = (u_x, u_y, rho w_z) of
 // the patch centre in the frame of v0, rho = Eq. (11) for the face; w_stop
 // recorded when r first falls below 1% of r0; stopped once r <= 1e-5 r0, the
 // instant extrapolated within the step.
@@ -47,7 +47,9 @@
 #include <optional>
 #include <patchspin/analysis.hpp>
 #include <patchspin/bullet/patch_friction_solver.hpp>
-#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/scenes/catalogue.hpp>
+#include <patchspin/scenes/scene.hpp>
+#include <patchspin/scenes/simulate.hpp>
 #include <patchspin/geometry.hpp>
 #include <patchspin/render/renderer.hpp>
 #include <sstream>
@@ -64,12 +66,10 @@ namespace render = patchspin::render;
 namespace demos = patchspin::demos;
 namespace fs = std::filesystem;
 
-// As patchspin::bullet::simulate: stopped below kStopFraction r0, w recorded
-// below kRecordFraction r0, collision margin 1 mm capped at a tenth of the
-// smallest half size.
+// As patchspin::scenes::simulate: stopped below kStopFraction r0, w recorded
+// below kRecordFraction r0.
 constexpr double kStopFraction = 1e-5;
 constexpr double kRecordFraction = 0.01;
-constexpr double kMargin = 1e-3;
 // The stack stands if no block's centre ever moves more than this from where
 // it started [m]: settling into the 1 mm margins and float round-off move it
 // by well under a millimetre, toppling or sliding off by centimetres.
@@ -107,13 +107,6 @@ struct Args {
   bool progress = true;
 };
 
-btVector3 bt(double x, double y, double z) {
-  return btVector3(btScalar(x), btScalar(y), btScalar(z));
-}
-btVector3 bt(const Vec3& v) {
-  return bt(v.x(), v.y(), v.z());
-}
-
 // ---- closed forms -------------------------------------------------------------------
 
 // Mean distance of a uniform LX x LY rectangle from its centre:
@@ -129,20 +122,8 @@ double meanDistanceRectangle(double lx, double ly) {
 
 // ---- bodies -------------------------------------------------------------------------
 
-enum class Kind { Box, Cylinder, Sphere };
-
-struct BodyDef {
-  std::string key, label;
-  Kind kind = Kind::Box;
-  Vec3 size = Vec3::Zero();  // box: LX, LY, LZ; cylinder: R, R, H; sphere: R, R, 2R [m]
-  double mass = 1.0;
-  Vec3 position = Vec3::Zero();  // centre of mass at the start, own world [m]
-  Vec2 v0 = Vec2::Zero();
-  double omega0 = 0.0;
-  bool patch = true;   // opted in where the row uses a patch law
-  bool moving = true;  // tracked for stopping data (not the stack)
-  render::Rgb colour;
-};
+using Kind = patchspin::scenes::BodyKind;
+using BodyDef = patchspin::scenes::RowBody;
 
 struct Sample {
   double t = 0.0;
@@ -193,90 +174,47 @@ struct Row {
   std::vector<BodyRun> runs;
 };
 
-// Every body of the scene, in world coordinates of its own row. The tracked
-// rectangle first, at the origin (as in simulate()).
+// Every body of the scene, in world coordinates of its own row: the
+// catalogue's blocks row with this run's parameters.
 std::vector<BodyDef> sceneBodies(const Args& a) {
-  const double pi = std::acos(-1.0);
-  std::vector<BodyDef> defs;
-  BodyDef rect;
-  rect.key = "rect";
-  rect.label = "rectangle";
-  rect.size = Vec3(a.rectLX, a.rectLY, a.rectLZ);
-  rect.mass = a.rectMass;
-  rect.position = Vec3(0, 0, 0.5 * a.rectLZ);
-  const double angle = a.rectV0Angle * pi / 180.0;
-  rect.v0 = a.rectV0 * Vec2(std::cos(angle), std::sin(angle));
-  rect.omega0 = a.rectOmega0;
-  defs.push_back(rect);
-
-  // left of the rectangle: the spinning square, then the stack
-  const double rectReach = 0.5 * std::hypot(a.rectLX, a.rectLY);
-  const double squareReach = a.squareSide / std::sqrt(2.0);
-  BodyDef square;
-  square.key = "square";
-  square.label = "square";
-  square.size = Vec3(a.squareSide, a.squareSide, a.squareLZ);
-  square.mass = a.squareMass;
-  square.position = Vec3(-(rectReach + squareReach + 0.06), 0, 0.5 * a.squareLZ);
-  square.omega0 = a.squareOmega0;
-  defs.push_back(square);
-
-  const double sides[3] = {a.stackBottom, a.stackMiddle, a.stackTop};
-  const double stackX = square.position.x() - squareReach - 0.06 - 0.5 * a.stackBottom;
-  for (int i = 0; i < 3; ++i) {
-    BodyDef b;
-    b.key = "stack" + std::to_string(i);
-    b.label = "stack " + std::to_string(i);
-    b.size = Vec3(sides[i], sides[i], a.stackLZ);
-    b.mass = a.stackMass;
-    b.position = Vec3(stackX, 0, (i + 0.5) * a.stackLZ);
-    b.moving = false;
-    defs.push_back(b);
-  }
-
-  // right of the rectangle (beyond its travel): the coin, then the sphere
-  const double rectTravel =
-      a.rectV0 * a.rectV0 / (2 * a.mu * a.g) * 2.0;  // twice the pure-sliding travel
-  const double coinTravel = a.coinV0 * a.coinV0 / (2 * a.mu * a.g) * 2.0;
-  BodyDef coin;
-  coin.key = "coin";
-  coin.label = "coin";
-  coin.kind = Kind::Cylinder;
-  coin.size = Vec3(a.coinRadius, a.coinRadius, a.coinHeight);
-  coin.mass = a.coinMass;
-  coin.position = Vec3(rectReach + rectTravel + a.coinRadius + 0.06, 0, 0.5 * a.coinHeight);
-  coin.v0 = Vec2(a.coinV0, 0);
-  coin.omega0 = a.coinOmega0;
-  defs.push_back(coin);
-
-  BodyDef sphere;
-  sphere.key = "sphere";
-  sphere.label = "sphere";
-  sphere.kind = Kind::Sphere;
-  sphere.size = Vec3(a.sphereRadius, a.sphereRadius, 2 * a.sphereRadius);
-  sphere.mass = a.sphereMass;
-  sphere.position = Vec3(coin.position.x() + coinTravel + a.coinRadius + a.sphereRadius + 0.06, 0,
-                         a.sphereRadius);
-  sphere.v0 = Vec2(a.sphereV0, 0);
-  sphere.patch = false;
-  defs.push_back(sphere);
-  return defs;
+  patchspin::scenes::BlocksRowSpec spec;
+  spec.mu = a.mu;
+  spec.g = a.g;
+  spec.rectLX = a.rectLX;
+  spec.rectLY = a.rectLY;
+  spec.rectLZ = a.rectLZ;
+  spec.rectMass = a.rectMass;
+  spec.rectV0 = a.rectV0;
+  spec.rectV0Angle = a.rectV0Angle;
+  spec.rectOmega0 = a.rectOmega0;
+  spec.squareSide = a.squareSide;
+  spec.squareLZ = a.squareLZ;
+  spec.squareMass = a.squareMass;
+  spec.squareOmega0 = a.squareOmega0;
+  spec.coinRadius = a.coinRadius;
+  spec.coinHeight = a.coinHeight;
+  spec.coinMass = a.coinMass;
+  spec.coinV0 = a.coinV0;
+  spec.coinOmega0 = a.coinOmega0;
+  spec.sphereRadius = a.sphereRadius;
+  spec.sphereMass = a.sphereMass;
+  spec.sphereV0 = a.sphereV0;
+  spec.stackBottom = a.stackBottom;
+  spec.stackMiddle = a.stackMiddle;
+  spec.stackTop = a.stackTop;
+  spec.stackLZ = a.stackLZ;
+  spec.stackMass = a.stackMass;
+  return patchspin::scenes::blocksRow(spec);
 }
 
-// One row: its own Bullet world, built as patchspin::bullet::simulate builds
+// One row: its own Bullet world (a scenes::Scene), built as scenes::simulate builds
 // its single-body world (static plane z = 0 of friction 1, bodies of friction
 // mu, no rolling/spinning friction, no restitution, never deactivated, 10
 // solver iterations), stepped `steps` times.
 class RowWorld {
  public:
-  RowWorld(const Args& a, Row& row, const std::vector<BodyDef>& defs)
-      : model_(row.model),
-        dispatcher_(&config_),
-        world_(&dispatcher_, &broadphase_, &solver_, &config_),
-        ground_(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape_)) {
-    world_.setGravity(bt(0, 0, -a.g));
-    ground_.setFriction(1);
-    world_.addRigidBody(&ground_);
+  RowWorld(const Args& a, Row& row, const std::vector<BodyDef>& defs) : model_(row.model), scene_(a.g) {
+    scene_.addGroundPlane(1.0);
     for (const BodyDef& d : defs) {
       BodyRun run;
       run.def = &d;
@@ -289,81 +227,18 @@ class RowWorld {
       row.runs.push_back(std::move(run));
     }
   }
-  ~RowWorld() {
-    for (auto& b : bodies_) world_.removeRigidBody(b.get());
-    world_.removeRigidBody(&ground_);
-  }
   RowWorld(const RowWorld&) = delete;
   RowWorld& operator=(const RowWorld&) = delete;
 
-  void step(double dt) { world_.stepSimulation(btScalar(dt), 0); }
+  void step(double dt) { scene_.step(dt); }
 
  private:
   btRigidBody* addBody(const Args& a, const BodyDef& d) {
-    const double m = d.mass;
-    std::unique_ptr<btCollisionShape> shape;
-    btVector3 inertia;
-    double minHalf = 0.0;
-    switch (d.kind) {
-      case Kind::Box: {
-        const double lx = d.size.x(), ly = d.size.y(), lz = d.size.z();
-        shape = std::make_unique<btBoxShape>(bt(lx / 2, ly / 2, lz / 2));
-        inertia = bt(m * (ly * ly + lz * lz) / 12, m * (lx * lx + lz * lz) / 12,
-                     m * (lx * lx + ly * ly) / 12);
-        minHalf = std::min({lx / 2, ly / 2, lz / 2});
-        break;
-      }
-      case Kind::Cylinder: {
-        const double R = d.size.x(), H = d.size.z();
-        shape = std::make_unique<btCylinderShapeZ>(bt(R, R, H / 2));
-        inertia = bt(m * (3 * R * R + H * H) / 12, m * (3 * R * R + H * H) / 12, m * R * R / 2);
-        minHalf = std::min(R, H / 2);
-        break;
-      }
-      case Kind::Sphere: {
-        const double R = d.size.x();
-        shape = std::make_unique<btSphereShape>(btScalar(R));
-        inertia = bt(0.4 * m * R * R, 0.4 * m * R * R, 0.4 * m * R * R);
-        break;
-      }
-    }
-    if (d.kind != Kind::Sphere) shape->setMargin(btScalar(std::min(kMargin, 0.1 * minHalf)));
-    btTransform start;
-    start.setIdentity();
-    start.setOrigin(bt(d.position));
-    motions_.push_back(std::make_unique<btDefaultMotionState>(start));
-    auto body = std::make_unique<btRigidBody>(btRigidBody::btRigidBodyConstructionInfo(
-        btScalar(m), motions_.back().get(), shape.get(), inertia));
-    body->setFriction(btScalar(a.mu));
-    body->setRollingFriction(0);
-    body->setSpinningFriction(0);
-    body->setRestitution(0);
-    body->setActivationState(DISABLE_DEACTIVATION);
-    body->setLinearVelocity(bt(d.v0.x(), d.v0.y(), 0));
-    body->setAngularVelocity(bt(0, 0, d.omega0));
-    world_.addRigidBody(body.get());
-    if (model_ != "stock" && d.patch) {
-      patchspin::bullet::PatchOptions options;
-      options.model = patchspin::modelFromString(model_);
-      options.mu = a.mu;
-      solver_.enablePatchFriction(body.get(), options);
-    }
-    shapes_.push_back(std::move(shape));
-    bodies_.push_back(std::move(body));
-    return bodies_.back().get();
+    return patchspin::scenes::addRowBody(scene_, d, a.mu, patchspin::scenes::frictionFromString(model_));
   }
 
   std::string model_;
-  btDefaultCollisionConfiguration config_;
-  btCollisionDispatcher dispatcher_;
-  btDbvtBroadphase broadphase_;
-  patchspin::bullet::PatchFrictionSolver solver_;
-  btDiscreteDynamicsWorld world_;
-  btStaticPlaneShape groundShape_{btVector3(0, 0, 1), 0};
-  btRigidBody ground_;
-  std::vector<std::unique_ptr<btDefaultMotionState>> motions_;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  patchspin::scenes::Scene scene_;
 };
 
 Sample observe(const BodyRun& run, double t) {
@@ -379,11 +254,7 @@ Sample observe(const BodyRun& run, double t) {
   const btVector3 v = body.getLinearVelocity() + w.cross(p - c);
   Sample s;
   s.t = t;
-  const btQuaternion q = tr.getRotation();
-  s.pose.linear() = Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z()))
-                        .normalized()
-                        .toRotationMatrix();
-  s.pose.translation() = Vec3(double(c.x()), double(c.y()), double(c.z()));
+  s.pose = patchspin::scenes::toIsometry(tr);
   s.patchCentre = Vec3(double(p.x()), double(p.y()), double(p.z()));
   s.velocity = Vec2(double(v.x()), double(v.y()));
   s.omega = double(w.z());
@@ -891,7 +762,7 @@ int run(const Args& a) {
   summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
                       {"steps_per_frame", k}, {"width", width},
                       {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
-  summary["precision"] = patchspin::bullet::buildPrecision();
+  summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
   summary["steps"] = steps;

@@ -6,7 +6,7 @@
 // Writes <out>/frame_NNNNN.png, <out>/summary.json, <out>/coin_ratio.png
 // (v/(R omega) and r against time, gnuplot) and <out>/coin_series.csv.
 //
-// Stopping data follow patchspin::bullet::simulate (simulate.hpp): the slip
+// Stopping data follow patchspin::scenes::simulate (simulate.hpp): the slip
 // r = |(u_x, u_y, rho w_z)| of the patch centre, rho = 2R/3 (Eq. (11));
 // eps_stop = |v| / (R |omega|) when r first falls below 1% of r0; stopped
 // once r <= 1e-5 r0, the instant extrapolated within the step.
@@ -18,8 +18,8 @@
 // at the end of the run.
 #include "demo_common.hpp"
 
-#include <patchspin/bullet/scene.hpp>
-#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/scenes/catalogue.hpp>
+#include <patchspin/scenes/simulate.hpp>
 #include <patchspin/geometry.hpp>
 #include <patchspin/render/plot.hpp>
 #include <patchspin/render/renderer.hpp>
@@ -44,13 +44,10 @@ using patchspin::Vec3;
 namespace render = patchspin::render;
 namespace fs = std::filesystem;
 
-// Fractions of r0 as in patchspin::bullet::simulate: stopped below
+// Fractions of r0 as in patchspin::scenes::simulate: stopped below
 // kStopFraction r0, eps_stop recorded below kRecordFraction r0.
 constexpr double kStopFraction = 1e-5;
 constexpr double kRecordFraction = 0.01;
-// Collision margin: 1 mm capped at a tenth of the half thickness, as simulate
-// does (below the coin's thickness; the patch uses the real faces anyway).
-constexpr double kMargin = 1e-3;
 // Reference stopping ratio of the exact law for a uniformly pressed thin disk
 // (DESIGN.md, Farkas et al. 2003).
 constexpr double kReferenceRatio = 0.653;
@@ -117,23 +114,21 @@ struct Coin {
   }
 };
 
-btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
-
-// Runs one coin for `steps` steps of dt in its own world.
+// Runs one coin for `steps` steps of dt in its own world (the catalogue's
+// coin, scenes::makeCoin).
 void simulateCoin(Coin& coin, const Args& a, double dt, long steps) {
-  patchspin::bullet::Scene scene(a.g);
-  scene.addGroundPlane(1.0);  // combined friction = the coin's mu
+  patchspin::scenes::CoinSpec spec;
+  spec.radius = a.radius;
+  spec.height = a.height;
+  spec.mass = a.mass;
+  spec.mu = a.mu;
+  spec.v0 = a.v0;
+  spec.omega0 = a.omega0;
+  spec.g = a.g;
+  btRigidBody* body = nullptr;
+  const std::unique_ptr<patchspin::scenes::Scene> scene =
+      patchspin::scenes::makeCoin(spec, patchspin::scenes::frictionFromString(coin.model), &body);
   const double halfHeight = 0.5 * a.height;
-  const double margin = std::min(kMargin, 0.1 * std::min(a.radius, halfHeight));
-  btRigidBody* body = scene.addCylinder(a.radius, a.height, a.mass, bt(0, 0, halfHeight), a.mu, margin);
-  body->setLinearVelocity(bt(a.v0, 0, 0));
-  body->setAngularVelocity(bt(0, 0, a.omega0));
-  if (coin.model != "stock") {
-    patchspin::bullet::PatchOptions options;
-    options.model = patchspin::modelFromString(coin.model);
-    options.mu = a.mu;
-    scene.solver().enablePatchFriction(body, options);
-  }
 
   // slip state in the frame of v0 (x along v0), as simulate does
   const double rho = patchspin::PatchShape::disk(a.radius).defaultRho();
@@ -147,11 +142,7 @@ void simulateCoin(Coin& coin, const Args& a, double dt, long steps) {
     const btVector3 v = body->getLinearVelocity() + w.cross(p - c);
     Sample s;
     s.t = t;
-    const btQuaternion q = tr.getRotation();
-    s.pose.linear() = Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z()))
-                          .normalized()
-                          .toRotationMatrix();
-    s.pose.translation() = Vec3(double(c.x()), double(c.y()), double(c.z()));
+    s.pose = patchspin::scenes::toIsometry(tr);
     s.patchCentre = Vec3(double(p.x()), double(p.y()), double(p.z()));
     s.velocity = Vec2(double(v.x()), double(v.y()));
     s.omega = double(w.z());
@@ -167,7 +158,7 @@ void simulateCoin(Coin& coin, const Args& a, double dt, long steps) {
   const double r0 = coin.r0();
   double rPrev = r0, rPrev2 = r0;
   for (long k = 1; k <= steps; ++k) {
-    scene.step(dt);
+    scene->step(dt);
     const Sample s = observe(double(k) * dt);
     coin.samples.push_back(s);
     coin.maxTilt = std::max(coin.maxTilt, s.tilt);
@@ -322,7 +313,7 @@ int run(const Args& a) {
                            {"steps", steps},     {"t_end", double(steps) * dt}};
   summary["video"] = {{"frames", a.frames}, {"fps", a.fps}, {"steps_per_frame", k}, {"width", width},
                       {"height", height}, {"t_last_frame", tEnd}};
-  summary["precision"] = patchspin::bullet::buildPrecision();
+  summary["precision"] = patchspin::scenes::buildPrecision();
   summary["reference_ratio"] = kReferenceRatio;
   nlohmann::json models = nlohmann::json::object();
   for (const Coin& c : coins) {

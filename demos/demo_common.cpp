@@ -2,7 +2,7 @@
 #include "demo_common.hpp"
 
 #include <patchspin/analysis.hpp>
-#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/scenes/simulate.hpp>
 #include <patchspin/geometry.hpp>
 #include <patchspin/render/plot.hpp>
 #include <patchspin/render/renderer.hpp>
@@ -103,7 +103,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
   const long frameSteps = long(a.frames - 1) * k;
   const double tMax = std::max(a.tMax, double(frameSteps) * dt);
 
-  // every body through patchspin::bullet::simulate (same world, same summary)
+  // every body through patchspin::scenes::simulate (same world, same summary)
   const std::size_t n = config.bodies.size();
   std::vector<SimulationResult> results(n);
   std::vector<Vec3> offsets(n);
@@ -113,8 +113,8 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
     spec.dt = dt;
     spec.tMax = tMax;
     spec.keepTrajectory = true;
-    spec.precision = patchspin::bullet::buildPrecision();
-    results[i] = patchspin::bullet::simulate(spec);
+    spec.precision = patchspin::scenes::buildPrecision();
+    results[i] = patchspin::scenes::simulate(spec);
     maxForce = std::max(maxForce, spec.force.norm());
     maxR = std::max(maxR, spec.R);
   }
@@ -188,7 +188,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
   nlohmann::json summary;
   summary["video"] = {{"frames", a.frames}, {"fps", a.fps},       {"steps_per_frame", k},
                       {"width", width},     {"height", height},   {"t_last_frame", double(frameSteps) * dt}};
-  summary["precision"] = patchspin::bullet::buildPrecision();
+  summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
   nlohmann::json bodies = nlohmann::json::object();

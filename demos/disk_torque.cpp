@@ -3,7 +3,7 @@
 // zeta = T / (m g R) (default 0.15), with F below
 //   F_crit^{4/6} = mu m g 16 zeta^2 / sqrt(1 + 144 zeta^2)  (0.175 mu m g here).
 // One disk per model (ellipsoidal, exact) side by side, each through
-// patchspin::bullet::simulate (demo_common.hpp). The couple is physical (as
+// patchspin::scenes::simulate (demo_common.hpp). The couple is physical (as
 // Bullet's applyTorque and patchspin::FlatBody::torque; the paper's Eq. (3)
 // sign flips T, see analysis.hpp).
 #include "demo_common.hpp"

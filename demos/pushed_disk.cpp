@@ -3,7 +3,7 @@
 //   Case 1  F = 1.2 mu m g  (|F| > mu m g: sticking unrealizable)
 //   Case 2  F = 0.5 mu m g  (mu m g > |F| > mu m g / 9: stops in pure sliding)
 //   Case 3  F = 0.05 mu m g (|F| < mu m g / 9: stops sliding and spinning)
-// Each disk runs through patchspin::bullet::simulate (demo_common.hpp).
+// Each disk runs through patchspin::scenes::simulate (demo_common.hpp).
 #include "demo_common.hpp"
 
 #include <cmath>

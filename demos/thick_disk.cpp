@@ -4,7 +4,7 @@
 //   F_crit^{2/4} = mu m g / 9 (1 + (4 mu h / R)^2)   (0.182 mu m g here),
 // turns away from the force direction as it stops (Fig. 11, right). One disk
 // per model (ellipsoidal, exact) side by side, each through
-// patchspin::bullet::simulate (demo_common.hpp).
+// patchspin::scenes::simulate (demo_common.hpp).
 #include "demo_common.hpp"
 
 #include <cmath>

@@ -13,7 +13,7 @@
 # PATCHSPIN_POUR_COIN (cylinder, the default, or hull: the pour's coins as
 # 16-gon convex hulls), PATCHSPIN_POUR_UNIT (dm or m: the pour's length
 # unit; default dm in float Bullet, m in double; see
-# tests/stress/scenes_test.cpp).
+# tests/stress/pour_scenes.hpp).
 # Only the stress test targets are built. Exit status: non-zero if any test
 # failed in either precision (known defects are reported as skipped tests).
 set -euo pipefail

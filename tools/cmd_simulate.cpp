@@ -6,7 +6,7 @@
 #include "tool_common.hpp"
 
 #ifdef PATCHSPIN_HAS_BULLET
-#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/scenes/simulate.hpp>
 #endif
 
 #include <cmath>
@@ -61,7 +61,7 @@ SimulationSpec makeSpec(const SimulateArgs& a) {
   spec.model = a.model;
   spec.precision = a.precision;
 #ifdef PATCHSPIN_HAS_BULLET
-  if (spec.precision.empty()) spec.precision = bullet::buildPrecision();
+  if (spec.precision.empty()) spec.precision = scenes::buildPrecision();
 #else
   if (spec.precision.empty()) spec.precision = "double";
 #endif
@@ -103,7 +103,7 @@ void run(const SimulateArgs& a) {
     result = simulateReference(spec);
   } else {
 #ifdef PATCHSPIN_HAS_BULLET
-    result = bullet::simulate(spec);
+    result = scenes::simulate(spec);
 #else
     throw UsageError(
         "--engine bullet: this patchspin was built without Bullet (PATCHSPIN_BUILD_BULLET=OFF)");

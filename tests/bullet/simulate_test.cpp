@@ -1,9 +1,9 @@
-// patchspin::bullet::simulate against independent predictions: the exact
+// patchspin::scenes::simulate against independent predictions: the exact
 // model's free thin disk (limit ratio and stopping time), the ellipsoidal
 // model's drift to pure spin and its slip-spin limit direction under a small
 // push, and a box's spin-down under the exact spin torque.
 #include <patchspin/analysis.hpp>
-#include <patchspin/bullet/simulate.hpp>
+#include <patchspin/scenes/simulate.hpp>
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-namespace patchspin::bullet {
+namespace patchspin::scenes {
 namespace {
 
 const bool kDouble = std::string(buildPrecision()) == "double";
@@ -413,4 +413,4 @@ TEST(Simulate, StickStepRecordsLastSlippingDirection) {
 }
 
 }  // namespace
-}  // namespace patchspin::bullet
+}  // namespace patchspin::scenes

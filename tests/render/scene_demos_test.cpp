@@ -40,7 +40,7 @@ constexpr double kMinVariance = 100.0;
 // (the renderer is deterministic, so any change is real).
 constexpr int kMinChangedPixels = 50;
 constexpr int kChangeThreshold = 8;
-// The demos run patchspin::bullet::simulate itself with the parameters they
+// The demos run patchspin::scenes::simulate itself with the parameters they
 // report, so they agree with the tool to the 17 significant digits of the
 // JSON round trip; 1e-12 relative leaves room for the last printed digit.
 constexpr double kAgreementTol = 1e-12;

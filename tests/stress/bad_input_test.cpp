@@ -15,6 +15,8 @@
 // bit for bit the same trajectory (kSameTrajectoryTol = 0).
 #include "stress_scenes.hpp"
 
+#include <patchspin/scenes/inertia.hpp>
+
 #include <patchspin/types.hpp>
 
 #include <gtest/gtest.h>
@@ -69,7 +71,7 @@ void record(Trajectory& t, const btRigidBody* b) {
 // Hooks of a bad-input run: `setup` adds the bad body (it may keep the
 // scene and holder), `before(k)` runs before step k (k = 0 .. kSteps-1).
 struct Hooks {
-  std::function<void(Scene&, OwnedBodies&)> setup;
+  std::function<void(Scene&)> setup;
   std::function<void(Scene&, int)> before;
 };
 
@@ -81,9 +83,8 @@ struct RunResult {
 RunResult run(const Hooks& hooks) {
   Scene scene(kG, 10);
   scene.addGroundPlane(1.0);
-  OwnedBodies owned(scene.world());
   const Witnesses w = addWitnesses(scene);
-  if (hooks.setup) hooks.setup(scene, owned);
+  if (hooks.setup) hooks.setup(scene);
   RunResult r;
   for (int k = 0; k < kSteps; ++k) {
     if (hooks.before) hooks.before(scene, k);
@@ -118,21 +119,18 @@ void expectWitnessesUnaffected(const RunResult& r, const std::string& what) {
 }
 
 // A body of its own far away, with a box shape (half extents h).
-btRigidBody* addFarBox(OwnedBodies& owned, const btVector3& h, double mass, const btVector3& inertia) {
+btRigidBody* addFarBox(Scene& scene, const btVector3& h, double mass, const btVector3& inertia) {
   auto shape = std::make_unique<btBoxShape>(h);
   shape->setMargin(btScalar(1e-3));
   btTransform t;
   t.setIdentity();
   t.setOrigin(kFar + bt(0, 0, double(h.z())));
-  return owned.add(std::move(shape), mass, inertia, t, 0.5);
+  return scene.addBody(std::move(shape), mass, inertia, t, 0.5);
 }
 
-// A 10 x 10 x 4 cm box of 1 kg far away, with its own inertia.
-btRigidBody* addFarTile(OwnedBodies& owned) {
-  const btVector3 half = bt(0.05, 0.05, 0.02);
-  btVector3 inertia;
-  btBoxShape(half).calculateLocalInertia(1.0, inertia);
-  return addFarBox(owned, half, 1.0, inertia);
+// A 10 x 10 x 4 cm box of 1 kg far away, with the solid box's inertia.
+btRigidBody* addFarTile(Scene& scene) {
+  return addFarBox(scene, bt(0.05, 0.05, 0.02), 1.0, scenes::boxInertia(1.0, 0.1, 0.1, 0.04));
 }
 
 // ---- options --------------------------------------------------------------------
@@ -189,12 +187,12 @@ TEST(BadInput, RejectedOptionsMidRunLeaveTheWorldUnaffected) {
 // opted in themselves) nor change anything else.
 TEST(BadInput, StaticBodiesOptedInChangeNothing) {
   Hooks h;
-  h.setup = [](Scene& scene, OwnedBodies& owned) {
+  h.setup = [](Scene& scene) {
     btRigidBody* ground = btRigidBody::upcast(scene.world().getCollisionObjectArray()[0]);
     ASSERT_NE(ground, nullptr);
     ASSERT_EQ(ground->getInvMass(), btScalar(0));
     scene.solver().enablePatchFriction(ground, {Model::Exact});
-    btRigidBody* box = addFarBox(owned, bt(0.1, 0.1, 0.1), 0.0, bt(0, 0, 0));
+    btRigidBody* box = addFarBox(scene, bt(0.1, 0.1, 0.1), 0.0, bt(0, 0, 0));
     scene.solver().enablePatchFriction(box, {Model::Ellipsoidal});
   };
   expectWitnessesUnaffected(run(h), "static bodies opted in");
@@ -242,8 +240,8 @@ TEST(BadInput, NegativeMassBodyIsRejectedOrLeftToBullet) {
   bool threw = false, hadPatch = false;
   Hooks h;
   btRigidBody* bad = nullptr;
-  h.setup = [&](Scene& scene, OwnedBodies& owned) {
-    bad = addFarBox(owned, bt(0.05, 0.05, 0.05), -1.0, bt(1e-3, 1e-3, 1e-3));
+  h.setup = [&](Scene& scene) {
+    bad = addFarBox(scene, bt(0.05, 0.05, 0.05), -1.0, bt(1e-3, 1e-3, 1e-3));
     try {
       scene.solver().enablePatchFriction(bad, {Model::Exact});
     } catch (const Error& e) {
@@ -265,20 +263,20 @@ TEST(BadInput, NegativeMassBodyIsRejectedOrLeftToBullet) {
 TEST(BadInput, DegenerateShapesDoNotDisturbTheWorld) {
   struct Case {
     const char* name;
-    std::function<btRigidBody*(OwnedBodies&)> make;
+    std::function<btRigidBody*(Scene&)> make;
   };
   const std::vector<Case> cases = {
       {"zero-radius cylinder",
-       [](OwnedBodies& owned) {
+       [](Scene& scene) {
          auto shape = std::make_unique<btCylinderShapeZ>(bt(0, 0, 0.01));
          shape->setMargin(0);
          btTransform t;
          t.setIdentity();
          t.setOrigin(kFar + bt(0, 0, 0.01));
-         return owned.add(std::move(shape), 1.0, bt(1e-4, 1e-4, 0), t, 0.5);
+         return scene.addBody(std::move(shape), 1.0, bt(1e-4, 1e-4, 0), t, 0.5);
        }},
-      {"zero-height box", [](OwnedBodies& owned) { return addFarBox(owned, bt(0.05, 0.05, 0), 1.0, bt(8e-4, 8e-4, 1.7e-3)); }},
-      {"zero-width box", [](OwnedBodies& owned) { return addFarBox(owned, bt(0, 0.05, 0.05), 1.0, bt(1.7e-3, 8e-4, 8e-4)); }},
+      {"zero-height box", [](Scene& scene) { return addFarBox(scene, bt(0.05, 0.05, 0), 1.0, bt(8e-4, 8e-4, 1.7e-3)); }},
+      {"zero-width box", [](Scene& scene) { return addFarBox(scene, bt(0, 0.05, 0.05), 1.0, bt(1.7e-3, 8e-4, 8e-4)); }},
   };
   for (const Case& c : cases) {
     bool badFinite = true;
@@ -286,8 +284,8 @@ TEST(BadInput, DegenerateShapesDoNotDisturbTheWorld) {
     double area = -1.0;
     btRigidBody* bad = nullptr;
     Hooks h;
-    h.setup = [&](Scene& scene, OwnedBodies& owned) {
-      bad = c.make(owned);
+    h.setup = [&](Scene& scene) {
+      bad = c.make(scene);
       bad->setLinearVelocity(bt(0.3, 0, 0));
       scene.solver().enablePatchFriction(bad, {Model::Exact});
     };
@@ -320,8 +318,8 @@ TEST(BadInput, BodyWithLockedSpinSlidesAndStops) {
   for (Model model : {Model::Ellipsoidal, Model::Exact}) {
     btRigidBody* box = nullptr;
     Hooks hooks;
-    hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
-      box = addFarTile(owned);
+    hooks.setup = [&](Scene& scene) {
+      box = addFarTile(scene);
       box->setAngularFactor(bt(1, 1, 0));
       box->setLinearVelocity(bt(0.5, 0, 0));
       scene.solver().enablePatchFriction(box, {model});
@@ -352,8 +350,8 @@ TEST(BadInput, OverflowingFrictionCoefficientFallsBackToBullet) {
     for (bool midRun : {false, true}) {
       btRigidBody* box = nullptr;
       Hooks hooks;
-      hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
-        box = addFarTile(owned);
+      hooks.setup = [&](Scene& scene) {
+        box = addFarTile(scene);
         box->setLinearVelocity(bt(0.5, 0, 0));
         scene.solver().enablePatchFriction(box, {model, midRun ? 0.5 : 1e308});
       };
@@ -384,8 +382,8 @@ TEST(BadInput, FrictionLawRefusingInsideTheIterationsFallsBackToBullet) {
   for (Model model : {Model::Ellipsoidal, Model::Exact}) {
     btRigidBody* box = nullptr;
     Hooks hooks;
-    hooks.setup = [&](Scene& scene, OwnedBodies& owned) {
-      box = addFarTile(owned);
+    hooks.setup = [&](Scene& scene) {
+      box = addFarTile(scene);
       scene.solver().enablePatchFriction(box, {model, 1e307});
     };
     constexpr int kDropStep = 60;  // resting on a patch by then
@@ -442,8 +440,8 @@ TEST(BadInput, OptedInTwiceTheSecondOptionsWin) {
 TEST(BadInput, DisablingABodyNeverEnabledIsANoOp) {
   Hooks h;
   btRigidBody* stranger = nullptr;
-  h.setup = [&](Scene& scene, OwnedBodies& owned) {
-    stranger = addFarBox(owned, bt(0.05, 0.05, 0.05), 1.0, bt(1.7e-3, 1.7e-3, 1.7e-3));
+  h.setup = [&](Scene& scene) {
+    stranger = addFarBox(scene, bt(0.05, 0.05, 0.05), 1.0, bt(1.7e-3, 1.7e-3, 1.7e-3));
     EXPECT_NO_THROW(scene.solver().disablePatchFriction(stranger));
     EXPECT_NO_THROW(scene.solver().disablePatchFriction(nullptr));
   };
@@ -466,7 +464,7 @@ TEST(BadInput, RemovingAndDeletingAnOptedInBodyBetweenSteps) {
   Hooks h;
   std::unique_ptr<btBoxShape> shape;
   std::unique_ptr<btRigidBody> body;
-  h.setup = [&](Scene& scene, OwnedBodies&) {
+  h.setup = [&](Scene& scene) {
     shape = std::make_unique<btBoxShape>(bt(0.05, 0.05, 0.05));
     btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, shape.get(), bt(1.7e-3, 1.7e-3, 1.7e-3));
     info.m_startWorldTransform.setIdentity();
@@ -516,9 +514,9 @@ void postTick(btDynamicsWorld* world, btScalar) {
 TEST(BadInput, RemovingOptedInBodiesInsideAStep) {
   TickRemoval removal;
   Hooks h;
-  h.setup = [&](Scene& scene, OwnedBodies& owned) {
-    removal.pre = addFarBox(owned, bt(0.05, 0.05, 0.05), 1.0, bt(1.7e-3, 1.7e-3, 1.7e-3));
-    removal.post = addFarBox(owned, bt(0.05, 0.05, 0.05), 1.0, bt(1.7e-3, 1.7e-3, 1.7e-3));
+  h.setup = [&](Scene& scene) {
+    removal.pre = addFarBox(scene, bt(0.05, 0.05, 0.05), 1.0, bt(1.7e-3, 1.7e-3, 1.7e-3));
+    removal.post = addFarBox(scene, bt(0.05, 0.05, 0.05), 1.0, bt(1.7e-3, 1.7e-3, 1.7e-3));
     removal.post->getWorldTransform().setOrigin(kFar + bt(1, 0, 0.05));
     for (btRigidBody* b : {removal.pre, removal.post}) {
       b->setLinearVelocity(bt(0.4, 0, 0));

@@ -1,13 +1,14 @@
 // Shared pieces of the stress tests (issue 6): the opt-in switch for the full
-// runs, friction-model selection including stock Bullet, geometry probes
-// (lowest point of a box or cylinder, for penetration), a body holder that
-// takes bodies out of a Scene's world before they die, and a plain-text
-// table that is printed and, if PATCHSPIN_STRESS_TABLE names a file,
-// appended to it (scripts/stress.sh collects the tables that way).
+// runs, geometry probes (lowest point of a box or cylinder, for
+// penetration), and a plain-text table that is printed and, if
+// PATCHSPIN_STRESS_TABLE names a file, appended to it (scripts/stress.sh
+// collects the tables that way). Worlds, bodies and friction laws come from
+// the scene library (scenes/).
 #pragma once
 
 #include <patchspin/bullet/patch_friction_solver.hpp>
-#include <patchspin/bullet/scene.hpp>
+#include <patchspin/scenes/catalogue.hpp>
+#include <patchspin/scenes/scene.hpp>
 
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <btBulletDynamicsCommon.h>
@@ -22,8 +23,13 @@
 
 namespace patchspin::bullet::stress {
 
-constexpr bool kDouble = sizeof(btScalar) == sizeof(double);
-inline const char* precisionName() { return kDouble ? "double" : "float"; }
+using scenes::bt;
+using scenes::Friction;
+using scenes::optIn;
+using scenes::precisionName;
+using scenes::Scene;
+using scenes::toString;
+constexpr bool kDouble = scenes::kDoublePrecision;
 
 // PATCHSPIN_STRESS_FULL=1 (any value but "0" or empty) runs the full matrix
 // and the full-size scenes; otherwise the fast subset of the default suite.
@@ -31,18 +37,6 @@ inline bool stressFull() {
   const char* v = std::getenv("PATCHSPIN_STRESS_FULL");
   return v && *v && std::string(v) != "0";
 }
-
-// Patch friction models and stock Bullet (the body not opted in).
-enum class Friction { Stock, Ellipsoidal, Exact };
-inline const char* toString(Friction f) {
-  return f == Friction::Stock ? "stock" : f == Friction::Ellipsoidal ? "ellipsoidal" : "exact";
-}
-inline void optIn(Scene& scene, btRigidBody* body, Friction f) {
-  if (f == Friction::Stock) return;
-  scene.solver().enablePatchFriction(body, {f == Friction::Exact ? Model::Exact : Model::Ellipsoidal});
-}
-
-inline btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
 
 inline bool isFinite(const btVector3& v) {
   return std::isfinite(double(v.x())) && std::isfinite(double(v.y())) && std::isfinite(double(v.z()));
@@ -92,41 +86,6 @@ inline double extremeZ(const btRigidBody* b, bool lowest) {
   s->getAabb(t, lo, hi);
   return lowest ? double(lo.z()) : double(hi.z());
 }
-
-// Bodies created by a test and added to a Scene's world: removed from the
-// world before they are destroyed. Declare it after the Scene.
-class OwnedBodies {
- public:
-  explicit OwnedBodies(btDiscreteDynamicsWorld& world) : world_(world) {}
-  ~OwnedBodies() {
-    for (auto& b : bodies_)
-      if (b->isInWorld()) world_.removeRigidBody(b.get());
-  }
-  OwnedBodies(const OwnedBodies&) = delete;
-  OwnedBodies& operator=(const OwnedBodies&) = delete;
-  // A body with the given shape, mass, inertia and start transform, added
-  // to the world (no sleeping, no restitution, no rolling friction).
-  btRigidBody* add(std::unique_ptr<btCollisionShape> shape, double mass, const btVector3& inertia,
-                   const btTransform& start, double friction) {
-    btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape.get(), inertia);
-    info.m_startWorldTransform = start;
-    info.m_friction = btScalar(friction);
-    auto body = std::make_unique<btRigidBody>(info);
-    body->setRestitution(0);
-    body->setRollingFriction(0);
-    body->setSpinningFriction(0);
-    body->setActivationState(DISABLE_DEACTIVATION);
-    world_.addRigidBody(body.get());
-    shapes_.push_back(std::move(shape));
-    bodies_.push_back(std::move(body));
-    return bodies_.back().get();
-  }
-
- private:
-  btDiscreteDynamicsWorld& world_;
-  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
-  std::vector<std::unique_ptr<btRigidBody>> bodies_;
-};
 
 // Table printed to stdout and appended to $PATCHSPIN_STRESS_TABLE.
 class Table {

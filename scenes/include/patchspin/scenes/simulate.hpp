@@ -22,13 +22,14 @@
 
 #include <patchspin/simulation.hpp>
 
-namespace patchspin::bullet {
+namespace patchspin::scenes {
 
 // Throws Error for an invalid spec (unknown model or shape, non-positive
-// sizes, mass, dt, mu < 0, precision not matching the build).
+// sizes, mass, dt, mu < 0, precision not matching the build). The world is
+// a Scene (scene.hpp).
 SimulationResult simulate(const SimulationSpec& spec);
 
 // "float" or "double": the precision of this build's btScalar.
 const char* buildPrecision();
 
-}  // namespace patchspin::bullet
+}  // namespace patchspin::scenes

@@ -1,15 +1,15 @@
-// patchspin::bullet::simulate: the single-body run of simulation.hpp in Bullet.
-#include <patchspin/bullet/simulate.hpp>
-
-#include <patchspin/bullet/patch_friction_solver.hpp>
-#include <patchspin/geometry.hpp>
-
+// patchspin::scenes::simulate: the single-body run of simulation.hpp in Bullet.
 #include <btBulletDynamicsCommon.h>
 
 #include <cmath>
 #include <memory>
+#include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/geometry.hpp>
+#include <patchspin/scenes/inertia.hpp>
+#include <patchspin/scenes/scene.hpp>
+#include <patchspin/scenes/simulate.hpp>
 
-namespace patchspin::bullet {
+namespace patchspin::scenes {
 namespace {
 
 // Collision margin of the body [m]: far below Bullet's 0.04 m default so that
@@ -31,8 +31,9 @@ void validate(const SimulationSpec& s) {
   if (s.precision != "float" && s.precision != "double")
     throw Error("precision must be float or double: got " + s.precision);
   if (s.precision != buildPrecision())
-    throw Error("precision " + s.precision + " requested, but this patchspin::bullet is built against " +
-                buildPrecision() + " Bullet (configure with -DPATCHSPIN_BULLET_DOUBLE=" +
+    throw Error("precision " + s.precision +
+                " requested, but this patchspin::bullet is built against " + buildPrecision() +
+                " Bullet (configure with -DPATCHSPIN_BULLET_DOUBLE=" +
                 (s.precision == "double" ? "ON" : "OFF") + ")");
   if (s.shape == SimulationSpec::Shape::Cylinder) {
     internal::requirePositive(s.R, "R");
@@ -55,11 +56,11 @@ void validate(const SimulationSpec& s) {
   internal::requireFinite(s.omega0, "omega0");
 }
 
-btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
-
 }  // namespace
 
-const char* buildPrecision() { return sizeof(btScalar) == sizeof(double) ? "double" : "float"; }
+const char* buildPrecision() {
+  return sizeof(btScalar) == sizeof(double) ? "double" : "float";
+}
 
 SimulationResult simulate(const SimulationSpec& spec) {
   validate(spec);
@@ -67,18 +68,10 @@ SimulationResult simulate(const SimulationSpec& spec) {
   const double halfHeight = cylinder ? 0.5 * spec.H : 0.5 * spec.LZ;
   const double m = spec.mass;
 
-  // world: static ground plane z = 0, gravity -g z
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher(&config);
-  btDbvtBroadphase broadphase;
-  PatchFrictionSolver solver;
-  btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &config);
-  world.setGravity(bt(0, 0, -spec.g));
-
-  btStaticPlaneShape groundShape(btVector3(0, 0, 1), 0);
-  btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, nullptr, &groundShape));
-  ground.setFriction(1);  // combined friction = body's mu
-  world.addRigidBody(&ground);
+  // world: static ground plane z = 0 (friction 1: combined friction = the
+  // body's mu), gravity -g z
+  Scene scene(spec.g);
+  scene.addGroundPlane(1.0);
 
   // body on its flat face, exact inertia of the solid
   std::unique_ptr<btCollisionShape> shape;
@@ -86,34 +79,25 @@ SimulationResult simulate(const SimulationSpec& spec) {
   double minHalf;
   if (cylinder) {
     shape = std::make_unique<btCylinderShapeZ>(bt(spec.R, spec.R, halfHeight));
-    inertia = bt(m * (3 * spec.R * spec.R + spec.H * spec.H) / 12, m * (3 * spec.R * spec.R + spec.H * spec.H) / 12,
-                 m * spec.R * spec.R / 2);
+    inertia = cylinderInertia(m, spec.R, spec.H);
     minHalf = std::min(spec.R, halfHeight);
   } else {
     shape = std::make_unique<btBoxShape>(bt(spec.LX / 2, spec.LY / 2, halfHeight));
-    inertia = bt(m * (spec.LY * spec.LY + spec.LZ * spec.LZ) / 12, m * (spec.LX * spec.LX + spec.LZ * spec.LZ) / 12,
-                 m * (spec.LX * spec.LX + spec.LY * spec.LY) / 12);
+    inertia = boxInertia(m, spec.LX, spec.LY, spec.LZ);
     minHalf = std::min({spec.LX / 2, spec.LY / 2, halfHeight});
   }
   shape->setMargin(btScalar(std::min(kMargin, 0.1 * minHalf)));
   btTransform start;
   start.setIdentity();
   start.setOrigin(bt(0, 0, halfHeight));
-  btDefaultMotionState motion(start);
-  btRigidBody body(btRigidBody::btRigidBodyConstructionInfo(btScalar(m), &motion, shape.get(), inertia));
-  body.setFriction(btScalar(spec.mu));
-  body.setRollingFriction(0);
-  body.setSpinningFriction(0);
-  body.setRestitution(0);
-  body.setActivationState(DISABLE_DEACTIVATION);
+  btRigidBody& body = *scene.addBody(std::move(shape), m, inertia, start, spec.mu);
   body.setLinearVelocity(bt(spec.v0.x(), spec.v0.y(), 0));
   body.setAngularVelocity(bt(0, 0, spec.omega0));
-  world.addRigidBody(&body);
   if (spec.model != "stock") {
-    PatchOptions opt;
+    bullet::PatchOptions opt;
     opt.model = modelFromString(spec.model);
     opt.mu = spec.mu;
-    solver.enablePatchFriction(&body, opt);
+    scene.solver().enablePatchFriction(&body, opt);
   }
 
   // slip state in the force-aligned frame (x along the force, else along v0)
@@ -175,7 +159,7 @@ SimulationResult simulate(const SimulationSpec& spec) {
     if (k > 1) sPrev = s;
     body.applyCentralForce(force);
     body.applyTorque(torque);
-    world.stepSimulation(btScalar(spec.dt), 0);
+    scene.step(spec.dt);
     const double t = k * spec.dt;
     s = observe();
     result.rotation += s.omega * spec.dt;  // Bullet integrates with the new velocity
@@ -191,7 +175,8 @@ SimulationResult simulate(const SimulationSpec& spec) {
         const State& at = (r <= kStopFraction * r0 && sPrev.x.norm() > 0) ? sPrev : s;
         const double rAt = at.x.norm();
         result.wStop = rAt > 0 ? Vec3(at.x / rAt) : Vec3::Zero();
-        if (cylinder && at.omega != 0.0) result.epsStop = at.velocity.norm() / (spec.R * std::abs(at.omega));
+        if (cylinder && at.omega != 0.0)
+          result.epsStop = at.velocity.norm() / (spec.R * std::abs(at.omega));
       }
       if (r <= kStopFraction * r0) {
         // stop part way through the step at the previous decrement rate
@@ -213,9 +198,7 @@ SimulationResult simulate(const SimulationSpec& spec) {
   }
   result.displacement = s.position - s0.position;
 
-  world.removeRigidBody(&body);
-  world.removeRigidBody(&ground);
   return result;
 }
 
-}  // namespace patchspin::bullet
+}  // namespace patchspin::scenes

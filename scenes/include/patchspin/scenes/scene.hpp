@@ -1,0 +1,108 @@
+// Scene: a small owning Bullet world, with the PatchFrictionSolver or stock
+// Bullet's btSequentialImpulseConstraintSolver, in the precision of this
+// build's btScalar. The one world and body builder of the tests, demos,
+// tools and benchmarks (Box2D-style scene builders in one place; the named
+// scenes are in catalogue.hpp). Ground frame: z up. Not installed: part of
+// the top-level build only.
+#pragma once
+
+#include <btBulletDynamicsCommon.h>
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <patchspin/bullet/patch_friction_solver.hpp>
+#include <vector>
+
+namespace patchspin::scenes {
+
+// Which constraint solver the world steps with. Patch: PatchFrictionSolver
+// (bodies opted in get patch friction, the others Bullet's own); Stock:
+// Bullet's btSequentialImpulseConstraintSolver.
+enum class SolverKind { Patch, Stock };
+
+constexpr bool kDoublePrecision = sizeof(btScalar) == sizeof(double);
+// "float" or "double": the precision of this build's btScalar.
+inline const char* precisionName() {
+  return kDoublePrecision ? "double" : "float";
+}
+
+inline btVector3 bt(double x, double y, double z) {
+  return btVector3(btScalar(x), btScalar(y), btScalar(z));
+}
+
+// A Bullet transform as an Eigen isometry (rotation from its normalised
+// quaternion), for drawing and for the core's plain structs.
+inline Eigen::Isometry3d toIsometry(const btTransform& tr) {
+  const btQuaternion q = tr.getRotation();
+  const btVector3 o = tr.getOrigin();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::Quaterniond(double(q.w()), double(q.x()), double(q.y()), double(q.z()))
+                      .normalized()
+                      .toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(double(o.x()), double(o.y()), double(o.z()));
+  return pose;
+}
+
+class Scene {
+ public:
+  // Gravity -g z [m/s^2]; `iterations` solver iterations per step.
+  explicit Scene(double g = 9.81, int iterations = 10, SolverKind kind = SolverKind::Patch);
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  btDiscreteDynamicsWorld& world() { return *world_; }
+  const btDiscreteDynamicsWorld& world() const { return *world_; }
+  SolverKind kind() const { return kind_; }
+  // The patch solver; throws Error in a Stock scene.
+  bullet::PatchFrictionSolver& solver();
+  const bullet::PatchFrictionSolver& solver() const;
+
+  // Static plane z = 0 with the given friction (Bullet multiplies the two
+  // bodies' frictions: 1 leaves the body's own).
+  btRigidBody* addGroundPlane(double friction = 1.0);
+  // Solid cylinder (radius R, height H [m]) with its axis along z, exact
+  // inertia; centre of mass at `position`. Margin [m] of the collision shape.
+  btRigidBody* addCylinder(double R, double H, double mass, const btVector3& position,
+                           double friction, double margin = 1e-3);
+  // Solid box with half extents `half` [m], exact inertia.
+  btRigidBody* addBox(const btVector3& half, double mass, const btVector3& position,
+                      double friction, double margin = 1e-3);
+  btRigidBody* addSphere(double radius, double mass, const btVector3& position, double friction);
+  // A static box (mass 0).
+  btRigidBody* addStaticBox(const btVector3& half, const btVector3& position, double friction);
+
+  // A shape owned by the scene, to be shared by several bodies.
+  btCollisionShape* addShape(std::unique_ptr<btCollisionShape> shape);
+  // Any body: the given shape, mass [kg] (0: static), inertia [kg m^2],
+  // start transform and friction; no restitution, no rolling or spinning
+  // friction, dynamic bodies never deactivated (the runs decide themselves
+  // when something has stopped). `group` >= 0: added with that collision
+  // group and mask.
+  btRigidBody* addBody(std::unique_ptr<btCollisionShape> shape, double mass,
+                       const btVector3& inertia, const btTransform& start, double friction,
+                       int group = -1, int mask = -1);
+  btRigidBody* addBody(btCollisionShape* sharedShape, double mass, const btVector3& inertia,
+                       const btTransform& start, double friction, int group = -1, int mask = -1);
+  // Every body added, in the order added (static ones included).
+  const std::vector<btRigidBody*>& bodies() const { return bodyList_; }
+
+  // One world step of exactly dt [s] (stepSimulation(dt, 0)).
+  void step(double dt);
+
+  // Total kinetic energy of the dynamic bodies [J].
+  double kineticEnergy() const;
+
+ private:
+  SolverKind kind_;
+  std::unique_ptr<btDefaultCollisionConfiguration> config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btDbvtBroadphase> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  std::vector<btRigidBody*> bodyList_;
+};
+
+}  // namespace patchspin::scenes

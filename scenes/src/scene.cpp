@@ -1,0 +1,127 @@
+// Scene: an owning Bullet world (see scene.hpp).
+#include <patchspin/scenes/inertia.hpp>
+#include <patchspin/scenes/scene.hpp>
+
+namespace patchspin::scenes {
+namespace {
+std::unique_ptr<btSequentialImpulseConstraintSolver> makeSolver(SolverKind kind) {
+  if (kind == SolverKind::Stock) return std::make_unique<btSequentialImpulseConstraintSolver>();
+  return std::make_unique<bullet::PatchFrictionSolver>();
+}
+}  // namespace
+
+Scene::Scene(double g, int iterations, SolverKind kind)
+    : kind_(kind),
+      config_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      solver_(makeSolver(kind)),
+      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                       solver_.get(), config_.get())) {
+  world_->setGravity(bt(0, 0, -g));
+  world_->getSolverInfo().m_numIterations = iterations;
+}
+
+Scene::~Scene() {
+  for (auto& b : bodies_)
+    if (b->isInWorld()) world_->removeRigidBody(b.get());
+}
+
+bullet::PatchFrictionSolver& Scene::solver() {
+  if (kind_ != SolverKind::Patch)
+    throw Error("Scene::solver: this scene steps with stock Bullet's solver");
+  return static_cast<bullet::PatchFrictionSolver&>(*solver_);
+}
+const bullet::PatchFrictionSolver& Scene::solver() const {
+  return const_cast<Scene*>(this)->solver();
+}
+
+btCollisionShape* Scene::addShape(std::unique_ptr<btCollisionShape> shape) {
+  shapes_.push_back(std::move(shape));
+  return shapes_.back().get();
+}
+
+btRigidBody* Scene::addBody(std::unique_ptr<btCollisionShape> shape, double mass,
+                            const btVector3& inertia, const btTransform& start, double friction,
+                            int group, int mask) {
+  return addBody(addShape(std::move(shape)), mass, inertia, start, friction, group, mask);
+}
+
+btRigidBody* Scene::addBody(btCollisionShape* sharedShape, double mass, const btVector3& inertia,
+                            const btTransform& start, double friction, int group, int mask) {
+  btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, sharedShape, inertia);
+  info.m_startWorldTransform = start;
+  auto body = std::make_unique<btRigidBody>(info);
+  body->setFriction(btScalar(friction));
+  body->setRollingFriction(0);
+  body->setSpinningFriction(0);
+  body->setRestitution(0);
+  // the runs decide themselves when something has stopped
+  if (mass > 0) body->setActivationState(DISABLE_DEACTIVATION);
+  if (group >= 0)
+    world_->addRigidBody(body.get(), group, mask);
+  else
+    world_->addRigidBody(body.get());
+  bodies_.push_back(std::move(body));
+  bodyList_.push_back(bodies_.back().get());
+  return bodies_.back().get();
+}
+
+namespace {
+btTransform at(const btVector3& position) {
+  btTransform tr;
+  tr.setIdentity();
+  tr.setOrigin(position);
+  return tr;
+}
+}  // namespace
+
+btRigidBody* Scene::addGroundPlane(double friction) {
+  return addBody(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0), 0, btVector3(0, 0, 0),
+                 at(btVector3(0, 0, 0)), friction);
+}
+
+btRigidBody* Scene::addCylinder(double R, double H, double mass, const btVector3& position,
+                                double friction, double margin) {
+  auto shape = std::make_unique<btCylinderShapeZ>(bt(R, R, H / 2));
+  shape->setMargin(btScalar(margin));
+  return addBody(std::move(shape), mass, cylinderInertia(mass, R, H), at(position), friction);
+}
+
+btRigidBody* Scene::addBox(const btVector3& half, double mass, const btVector3& position,
+                           double friction, double margin) {
+  auto shape = std::make_unique<btBoxShape>(half);
+  shape->setMargin(btScalar(margin));
+  return addBody(std::move(shape), mass,
+                 boxInertia(mass, 2 * double(half.x()), 2 * double(half.y()), 2 * double(half.z())),
+                 at(position), friction);
+}
+
+btRigidBody* Scene::addSphere(double radius, double mass, const btVector3& position,
+                              double friction) {
+  return addBody(std::make_unique<btSphereShape>(btScalar(radius)), mass,
+                 sphereInertia(mass, radius), at(position), friction);
+}
+
+btRigidBody* Scene::addStaticBox(const btVector3& half, const btVector3& position,
+                                 double friction) {
+  return addBody(std::make_unique<btBoxShape>(half), 0, btVector3(0, 0, 0), at(position), friction);
+}
+
+void Scene::step(double dt) {
+  world_->stepSimulation(btScalar(dt), 0);
+}
+
+double Scene::kineticEnergy() const {
+  double e = 0;
+  for (const auto& b : bodies_) {
+    if (b->getInvMass() == 0) continue;
+    const btVector3 v = b->getLinearVelocity();
+    const btVector3 w = b->getAngularVelocity();
+    const btVector3 Iw = b->getInvInertiaTensorWorld().inverse() * w;
+    e += 0.5 * double(v.length2()) / double(b->getInvMass()) + 0.5 * double(w.dot(Iw));
+  }
+  return e;
+}
+
+}  // namespace patchspin::scenes
