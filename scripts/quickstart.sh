@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # patchspin quick start on Debian 12:
 #   bash scripts/quickstart.sh demo   install what is missing, build (Release), run the main demo
-#   bash scripts/quickstart.sh test   same set-up, then run every test with ctest
+#   bash scripts/quickstart.sh test   same set-up, then run every test with ctest, and the core
+#                                     tests under the asan and assert presets (CMakePresets.json)
 # Environment: BUILD_DIR (default ./build), JOBS (default: number of cores).
 set -euo pipefail
 
@@ -63,6 +64,17 @@ if [[ $mode == test ]]; then
     configure_and_build "$build-double" -DPATCHSPIN_BULLET_DOUBLE=ON -DPATCHSPIN_BUILD_RENDER=OFF
     (cd "$build-double" && ctest --output-on-failure -j"$jobs" --timeout 900 -L "bullet|stress")
   fi
+  # The core label again under the presets of CMakePresets.json: asan (ASan +
+  # UBSan, aborting on the first finding) and assert (Release with NDEBUG
+  # undefined). Each builds only patchspin::core and the core tests, in
+  # "$build-<preset>"; the same as: cmake --preset P && cmake --build --preset P
+  # && ctest --preset P.
+  for preset in asan assert; do
+    echo "== core tests, preset $preset"
+    (cd "$root" && cmake --preset "$preset" -B "$build-$preset" >/dev/null)
+    cmake --build "$build-$preset" -j"$jobs" --target patchspin_core_tests
+    (cd "$build-$preset" && ctest --output-on-failure -j"$jobs" --timeout 900 -L core)
+  done
   exit 0
 fi
 

@@ -17,7 +17,7 @@
 //    chosen from the distance ratio; v is computed from w directly.
 //
 // Accuracy (normwise per column, relative to area * max|phi_k| *
-// (1 + max|P|/rho), see exact_polygon_test.cpp): <= 1e-13 measured against a
+// (1 + max|P|/rho), see exact_polygon_basis_test.cpp): <= 1e-13 measured against a
 // brute-force oracle over the sphere (ICR on edges and vertices, w3 -> 0,
 // w3 = 0); dF to ~1e-11 (worst measured 1.4e-10, elongated patch with small
 // rho, at the branch switch; the edge-integral derivative agreed with the

@@ -1,34 +1,43 @@
-// Tenth fuzz round (issue 6): regression tests for the class decided in it
-// (fuzz/README.md, "Tenth round", item 65): the moment table's rows with r
-// (r, x/r, y/r times 1, x, y) of a polygon far from O.
-//
-// The oracle is the closed form those rows had before (edge integrals over
-// the triangles (O, a, b), geometry.cpp), evaluated in 50 significant digits
-// (boost::multiprecision) from the very double vertices: it loses ~offset^3
-// of its 50 digits to cancellation about a far O (at most 1e12 here), and
-// shares nothing with the core's quadrature about the vertex mean but the
-// vertices. (Checked: with 29b3416's geometry.cpp, main's before this round,
-// linked ahead of the core, these tests fail, 2 of 2; on the final core, 2
-// of 2 pass.)
+// The moment tables of geometry.cpp at the ends of their range: patches
+// far from O, O near a disk's rim, slivers, moments outside double's range.
+// Oracles: a hypergeometric series, Taylor expansions, brute-force
+// quadrature, and the rows' closed form evaluated in 50 digits.
 #include <patchspin/geometry.hpp>
 #include <patchspin/pressure.hpp>
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <gtest/gtest.h>
 
+#include "error_matchers.hpp"
+#include "oracle.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <limits>
 #include <random>
 #include <vector>
 
-using namespace patchspin;
-
+namespace patchspin {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::throwsNaming;
+
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// Gauss hypergeometric 2F1(a, b; c; z) by its series (|z| <= 1, c - a - b > 0).
+double hypergeometric(double a, double b, double c, double z) {
+  double term = 1.0, sum = 1.0;
+  for (int n = 0; n < 200000; ++n) {
+    term *= (a + n) * (b + n) / ((c + n) * (n + 1.0)) * z;
+    sum += term;
+    if (std::abs(term) < 1e-17 * std::abs(sum)) break;
+  }
+  return sum;
+}
 
 using Big = boost::multiprecision::cpp_bin_float_50;
 
@@ -93,7 +102,7 @@ BigTable bigTable(const std::vector<Vec2>& v) {
 // The scale of entry (f, k): A max|f| max|phi_k| over the patch (|x/r|,
 // |y/r| <= 1, |r| <= max|r|, |x| <= the vertices' max|x|), times a sliver's
 // max(1, diameter^2 / A): its area itself is rounded that much by the
-// vertex differences (fuzz_round8's item 58; the polynomial rows alike).
+// vertex differences (fuzz round 8, item 58; the polynomial rows alike).
 std::array<std::array<double, 3>, 3> entryScales(const PatchShape& shape) {
   double mx = 0.0, my = 0.0;
   for (const Vec2& p : shape.vertices()) {
@@ -158,14 +167,97 @@ PatchShape farHeptagon() {
                               Vec2(-6753.3706193416037, 0.41650103397957677)});
 }
 
-}  // namespace
+// fuzz round 1, item 1 (PatchShape::disk hung with O just inside the rim)
+// ∫ |P - O| dA over a unit disk with O at distance delta from its centre is
+// (2 pi / 3) 2F1(-1/2, -3/2; 1; delta^2) (delta <= 1), a series independent of
+// the table's quadrature (exact_disk.cpp's header).
+TEST(MomentTable, DiskWithOriginNearTheRimMatchesTheHypergeometricSeries) {
+  // the series' truncation at delta -> 1 (terms ~ n^-4) and the table's
+  // 1e-15 quadrature tolerance: 1e-11 relative
+  constexpr double kSeriesTol = 1e-11;
+  for (double gap : {1e-3, 1e-4, 1e-6, 1e-9, 1e-12}) {
+    for (double angle : {0.0, 1.0, kPi / 2.0}) {
+      const double delta = 1.0 - gap;
+      const PatchShape disk = PatchShape::disk(1.0, delta * Vec2(std::cos(angle), std::sin(angle)));
+      const double expected = 2.0 * kPi / 3.0 * hypergeometric(-0.5, -1.5, 1.0, delta * delta);
+      EXPECT_NEAR(disk.momentTable().m(MomentTable::kR, 0), expected, kSeriesTol * expected)
+          << "gap " << gap << " angle " << angle;
+    }
+  }
+}
 
-// A sweep of convex polygons (3 to 10 vertices on an ellipse of aspect 1 to
-// 1e-8, turned at random) whose centroid is 5 to 9,000 diameters
-// from O: every entry with r within kRowTolerance of the 50-digit closed
-// form. Before item 65 (the closed form about O in double) the far ones
-// were up to ~1e8 times off.
-TEST(FuzzRound10, PolygonRowsWithRFarFromOAreAccurateAgainst50Digits) {
+// fuzz round 1, item 1 (a small disk far from O hung, or lost digits on the y axis)
+// Far away, ∫ r dA = A (delta + R^2 / (8 delta)) and ∫ (x, y)/r dA =
+// A (1 - R^2 / (8 delta^2)) C/delta, up to O((R / delta)^4) relative (Taylor
+// expansion of |C + q| over the disk).
+TEST(MomentTable, SmallDiskFarFromOriginMatchesItsExpansion) {
+  for (double ratio : {3e3, 9e3}) {
+    for (const Vec2& dir : {Vec2(1.0, 0.0), Vec2(0.0, -1.0), Vec2(0.6, 0.8)}) {
+      const double R = 1e-3, delta = ratio * R;
+      const PatchShape disk = PatchShape::disk(R, delta * dir);
+      const double A = disk.area();
+      // the expansion's next term, (R / delta)^4, plus the table's 1e-14
+      const double tol = std::pow(R / delta, 4) + 1e-13;
+      const auto& m = disk.momentTable().m;
+      EXPECT_NEAR(m(MomentTable::kR, 0) / A, delta + R * R / (8.0 * delta), tol * delta);
+      const double radial = 1.0 - R * R / (8.0 * delta * delta);
+      EXPECT_NEAR(m(MomentTable::kXOverR, 0) / A, radial * dir.x(), tol);
+      EXPECT_NEAR(m(MomentTable::kYOverR, 0) / A, radial * dir.y(), tol);
+    }
+  }
+}
+
+// fuzz rounds 1-2, items 2 and 12
+// Moments beyond double's range, or a patch so far from O that the pressure
+// about O has no digits: an Error naming the problem; 1e4 diameters is fine.
+TEST(Shape, RefusesMomentsOutOfRangeAndPatchesTooFarFromO) {
+  EXPECT_TRUE(throwsNaming([] { PatchShape::disk(1e200); }, {"out of range"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::disk(1e-100); }, {"out of range"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::rectangle(1e100, 1e100); }, {"out of range"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::disk(1e-8, Vec2(0.5, 0.5)); }, {"distance from o"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::regularPolygon(23, 1e-8, Vec2(0.5, 0.5)); },
+                           {"distance from o"}));
+  // huge coordinates that the polygon checks see as degenerate
+  EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {1e300, 0}, {0, 1e300}}); },
+                           {"area", "out of range"}));
+  // 1e4 diameters is still fine, and finite
+  const PatchShape far = PatchShape::disk(1.0, Vec2(0.9e4 * 2.0, 0.0));
+  EXPECT_TRUE(far.momentTable().m.allFinite());
+}
+
+// fuzz round 2, item 15 (edge integrals far from their edge)
+// A sliver 1.8e9 m long and 1 m wide passing 0.5 m from O: the rows x/r and
+// y/r against brute-force quadrature, to the fan's cancellation
+// (max|r|^2 / A eps).
+TEST(MomentTable, LongSliverPassingNearOMatchesBruteForceQuadrature) {
+  const std::vector<Vec2> v{{-913801215.0, -8.6380121600000006},
+                            {913801217.0, 9.6380121600000006},
+                            {913801217.0, 10.638012160000001},
+                            {-913801215.0, -7.6380121600000006}};
+  const PatchShape sliver = PatchShape::polygon(v);
+  const auto& m = sliver.momentTable().m;
+  // the oracle's relative accuracy (of ∫|f|), and the table's: the fan of
+  // triangles from O cancels ~max|r|^2 / A = 5e8 times eps = 1e-7
+  constexpr double kOracleTol = 1e-10;
+  constexpr double kTableTol = 1e-6;
+  auto absIntegral = [&](const std::function<double(const Vec2&)>& f) {
+    return testing::bruteForceIntegral(sliver, [&](const Vec2& p) { return std::abs(f(p)); }, kOracleTol);
+  };
+  const std::function<double(const Vec2&)> xyOverR = [](const Vec2& p) { return p.x() * p.y() / p.norm(); };
+  const std::function<double(const Vec2&)> yyOverR = [](const Vec2& p) { return p.y() * p.y() / p.norm(); };
+  const std::function<double(const Vec2&)> xxOverR = [](const Vec2& p) { return p.x() * p.x() / p.norm(); };
+  EXPECT_NEAR(m(MomentTable::kXOverR, 2), testing::bruteForceIntegral(sliver, xyOverR, kOracleTol),
+              kTableTol * absIntegral(xyOverR));
+  EXPECT_NEAR(m(MomentTable::kYOverR, 2), testing::bruteForceIntegral(sliver, yyOverR, kOracleTol),
+              kTableTol * absIntegral(yyOverR));
+  EXPECT_NEAR(m(MomentTable::kXOverR, 1), testing::bruteForceIntegral(sliver, xxOverR, kOracleTol),
+              kTableTol * absIntegral(xxOverR));
+}
+
+// fuzz round 10, item 65
+// Convex polygons (3 to 10 vertices, aspect 1 to 1e-8) 5 to 9,000 diameters
+// from O: every entry with r within kRowTolerance of the 50-digit closed form.
+TEST(MomentTable, PolygonRowsWithRFarFromOMatch50Digits) {
   std::mt19937_64 rng(10);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int checked = 0;
@@ -212,12 +304,11 @@ TEST(FuzzRound10, PolygonRowsWithRFarFromOAreAccurateAgainst50Digits) {
               worstOverall, heptagon);
 }
 
-// Item 65's input: the sliver 3,560 m from O with cy = -DBL_MAX (its
-// pressure changes sign across the sliver: ∫|p| / Pz = 9.46). pi_x0 and
-// pi_y0 were 1,326.7 against the bound ∫|p| / Pz of pi_fuzz; now the rows
-// are right and (pi_x0, pi_y0) is the 50-digit value to the rows' own
-// round-off, propagated: kRowTolerance eps times each term's scale, over Pz.
-TEST(FuzzRound10, FarSliverWithACancellingPressureKeepsPiX0Y0) {
+// fuzz round 10, item 65 (the fuzz input)
+// A sliver 3,560 m from O with cy = -DBL_MAX (the pressure changes sign across
+// it): (pi_x0, pi_y0) is the 50-digit value to the rows' round-off, propagated
+// (kRowTolerance eps times each term's scale, over Pz).
+TEST(PiMoments, FarSliverWithACancellingPressureMatches50Digits) {
   const PatchShape shape = farSliver();
   ASSERT_GT(shape.maxDistanceFromOrigin() / shape.diameter(), 3000.0);
   EXPECT_LE(worstRowError(shape), kRowTolerance);
@@ -247,3 +338,6 @@ TEST(FuzzRound10, FarSliverWithACancellingPressureKeepsPiX0Y0) {
   // and so within the target's bound, ∫|p| / Pz as pi_fuzz computes it (its message)
   EXPECT_LE(std::hypot(pm.pi_x0, pm.pi_y0), 9.4583940991483004);
 }
+
+}  // namespace
+}  // namespace patchspin
