@@ -1,5 +1,5 @@
 // The friction block with an ill-conditioned, badly scaled or numerically
-// singular K (step.cpp): a K singular to round-off is refused by name, and
+// singular K (friction_block.cpp): a K singular to round-off is refused by name, and
 // every answer is either inside the limit set with slip = b + K impulse, the
 // law at its own slip to what double resolves there, a stick with
 // b + K lambda = 0 to round-off, or the block solved in 50 digits.
@@ -65,7 +65,7 @@ BigVec solve(const BigMat& a, const BigVec& v) {
 }
 Big norm(const BigVec& v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
-// The ellipsoidal block of step.hpp in its first form, (rI + A) w = b with
+// The ellipsoidal block of friction_block.hpp in its first form, (rI + A) w = b with
 // A = L K Pi and |w| = 1, solved by bisection in r (no Newton, no
 // reformulation, no scaling) in 50 digits; the impulse -L Pi w. Stick iff
 // |A^-1 b| <= 1 (then the impulse is -K^-1 b).
@@ -375,7 +375,7 @@ TEST(FrictionBlockConditioning, ExactStickRefusesCofactorsWithoutDigits) {
 // K with unit-diagonal condition 1.9e9 and a diagonal spanning 1.2e27 and
 // 2.1e27: the stick decision and the impulse (to kImpulse of L |Pi|) match the
 // block solved in its first form in 50 digits, and the slip b + K impulse is
-// along w = -Pi^-1 impulse / L to kBackward (step.hpp's 1e-10).
+// along w = -Pi^-1 impulse / L to kBackward (friction_block.hpp's 1e-10).
 TEST(FrictionBlockConditioning, EllipsoidalWithANearSingularWideDiagonalKMatches50Digits) {
   struct Case {
     PatchLoads loads;

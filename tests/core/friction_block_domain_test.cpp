@@ -1,4 +1,4 @@
-// The friction block's domain (step.hpp): what solveFrictionBlock refuses,
+// The friction block's domain (friction_block.hpp): what solveFrictionBlock refuses,
 // by name (a bad K, a negative pressure, a lever max|r| / rho outside
 // [1e-5, 1e5], K's diagonal spanning more than 1e30), its documented
 // fallbacks, and the law at its slip everywhere inside the domain.

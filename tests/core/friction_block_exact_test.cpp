@@ -1,4 +1,4 @@
-// The exact block (step.cpp) where the law turns fastest: tiny patches far
+// The exact block (friction_block.cpp) where the law turns fastest: tiny patches far
 // from O, spinning about a point on or inside the patch, huge mu or K, long
 // levers. Each answer is checked against brute-force quadrature of Eq. (16)
 // at the returned slip (tests/support/oracle.hpp): impulse = L q(s^) to kLaw

@@ -1,4 +1,4 @@
-// The friction block far from unit scale (step.cpp's unit-scale path): the
+// The friction block far from unit scale (friction_block.cpp's unit-scale path): the
 // block is homogeneous (K -> a K, b -> c b, L -> (c / a) L scale s by c and
 // lambda by c / a), so every case is checked against the law itself at the
 // returned slip, or against b + K lambda = 0 for a stick.

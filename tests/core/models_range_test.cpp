@@ -29,7 +29,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The exact law's round-off model of step.cpp (requireExactLawDigits)
+// The exact law's round-off model of friction_block.cpp (requireExactLawDigits)
 // without its constant: eps max(1, diameter^2 / A) times the pressure's
 // terms about O over Pz.
 double lawModel(const PatchShape& shape, const LinearPressure& p, double Pz) {

@@ -1,4 +1,4 @@
-// Tests of the implicit friction block (step.hpp, DESIGN item 4), each against
+// Tests of the implicit friction block (friction_block.hpp, DESIGN item 4), each against
 // a computation that does not use the solver: closed forms for isotropic
 // cases, the defining relations, the projection optimality inequality of the
 // maximum-dissipation law, and the energy balance.
