@@ -15,7 +15,7 @@ jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 # Debian packages the project needs (build, tests, benchmarks, rendering).
 packages=(
-  cmake g++ make pkg-config
+  cmake g++ make pkg-config clang-format
   libeigen3-dev libbullet-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libboost-math-dev
   libosmesa6-dev libcairo2-dev libpng-dev gnuplot-nox fonts-dejavu-core
