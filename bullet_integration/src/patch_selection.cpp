@@ -119,20 +119,6 @@ PatchShape PatchSelection::shapeOf(const internal::PatchOutline& outline) {
   return shape;
 }
 
-std::size_t PatchSelection::flatBit(const btPersistentManifold* m) {
-  return std::size_t((std::uint64_t(reinterpret_cast<std::uintptr_t>(m)) * 0x9E3779B97F4A7C15ull) >>
-                     (64 - kFlatFilterLog2));
-}
-void PatchSelection::markFlat(const btPersistentManifold* m) {
-  const std::size_t bit = flatBit(m);
-  std::uint64_t& word = flatFilter_[step_ & 1][bit >> 6];
-  if (word == 0) flatWords_[step_ & 1].push_back(bit >> 6);
-  word |= std::uint64_t(1) << (bit & 63);
-}
-bool PatchSelection::mayHaveBeenFlat(const btPersistentManifold* m) const {
-  const std::size_t bit = flatBit(m);
-  return (flatFilter_[(step_ - 1) & 1][bit >> 6] >> (bit & 63)) & 1;
-}
 // (cleared word by word where it was written, not as an 8 KB fill)
 void PatchSelection::clearFlatFilter(int k) {
   for (const std::size_t word : flatWords_[k]) flatFilter_[k][word] = 0;

@@ -38,9 +38,21 @@ class PatchSelection {
   // the flat filter: the manifolds that had a patch in a step, as bits by
   // address (flatFilter_[step & 1] is written in step `step`, the other read)
   static constexpr int kFlatFilterLog2 = 16;
-  static std::size_t flatBit(const btPersistentManifold* m);
-  void markFlat(const btPersistentManifold* m);
-  bool mayHaveBeenFlat(const btPersistentManifold* m) const;
+  // (inline: asked for every empty manifold of an opted-in body's pairs)
+  static std::size_t flatBit(const btPersistentManifold* m) {
+    return std::size_t((std::uint64_t(reinterpret_cast<std::uintptr_t>(m)) * 0x9E3779B97F4A7C15ull) >>
+                       (64 - kFlatFilterLog2));
+  }
+  void markFlat(const btPersistentManifold* m) {
+    const std::size_t bit = flatBit(m);
+    std::uint64_t& word = flatFilter_[step_ & 1][bit >> 6];
+    if (word == 0) flatWords_[step_ & 1].push_back(bit >> 6);
+    word |= std::uint64_t(1) << (bit & 63);
+  }
+  bool mayHaveBeenFlat(const btPersistentManifold* m) const {
+    const std::size_t bit = flatBit(m);
+    return (flatFilter_[(step_ - 1) & 1][bit >> 6] >> (bit & 63)) & 1;
+  }
   void clearFlatFilter(int k);
 
   std::unordered_map<const btCollisionObject*, PatchOptions> options_;

@@ -75,21 +75,4 @@ Mat6 patchBodyRows(const PatchBody& t, const Mat3& F, double rho) {
   return J;
 }
 
-Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b, const Vec3& vb,
-                   const Vec3& wb, const Mat3& F, double rho) {
-  Vec3 u = Vec3::Zero(), w = Vec3::Zero();
-  if (a.dynamic) {
-    u += va + wa.cross(a.r);
-    w += wa;
-  }
-  if (b.dynamic) {
-    u -= vb + wb.cross(b.r);
-    w -= wb;
-  }
-  const Vec3 uf = F.transpose() * u, wf = F.transpose() * w;
-  Vec6 c;
-  c << uf.z(), wf.x(), wf.y(), uf.x(), uf.y(), rho * wf.z();
-  return c;
-}
-
 }  // namespace patchspin::parts

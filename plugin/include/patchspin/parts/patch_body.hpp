@@ -37,9 +37,23 @@ Mat6 patchEffectiveMass(const PatchBody& a, const PatchBody& b, const Mat3& F, d
 Mat6 patchBodyRows(const PatchBody& body, const Mat3& F, double rho);
 
 // The DOF velocities from A's (va, wa) and B's (vb, wb) world velocities; a
-// static body's are not read.
-Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b, const Vec3& vb,
-                   const Vec3& wb, const Mat3& F, double rho);
+// static body's are not read. (Inline: every patch visit calls it.)
+inline Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b, const Vec3& vb,
+                          const Vec3& wb, const Mat3& F, double rho) {
+  Vec3 u = Vec3::Zero(), w = Vec3::Zero();
+  if (a.dynamic) {
+    u += va + wa.cross(a.r);
+    w += wa;
+  }
+  if (b.dynamic) {
+    u -= vb + wb.cross(b.r);
+    w -= wb;
+  }
+  const Vec3 uf = F.transpose() * u, wf = F.transpose() * w;
+  Vec6 c;
+  c << uf.z(), wf.x(), wf.y(), uf.x(), uf.y(), rho * wf.z();
+  return c;
+}
 
 // A generalised impulse `lam` of the six DOFs as velocity changes of the two
 // bodies: world force f = F (l3, l4, l0) at O and couple m = F (l1, l2,
