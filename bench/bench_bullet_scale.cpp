@@ -55,6 +55,7 @@
 
 #include "interleaving.hpp"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -65,7 +66,6 @@
 #include <memory>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -77,7 +77,8 @@ using patchspin::scenes::Scene;
 using patchspin::scenes::SolverKind;
 
 enum Variant { kStock = 0, kNoneOptedIn = 1, kEllipsoidal = 2, kExact = 3 };
-const char* kVariantNames[4] = {"stock Bullet", "patch solver, none opted in", "patch ellipsoidal", "patch exact"};
+const char* kVariantNames[4] = {"stock Bullet", "patch solver, none opted in", "patch ellipsoidal",
+                                "patch exact"};
 enum Phase { kImpact = 0, kRest = 1 };
 const Variant kRainVariant = kStock;  // stock Bullet rains the pile
 const char* kPhaseNames[2] = {"impact", "rest"};
@@ -86,16 +87,18 @@ const char* kPhaseNames[2] = {"impact", "rest"};
 // (and so does the patch solver, whose normal contact is Bullet's)
 constexpr double kDt = 1.0 / 240.0;
 constexpr int kIterations = 10;
-constexpr double kSaveAt[2] = {0.25, 2.0};        // [s] impact, rest
+constexpr double kSaveAt[2] = {0.25, 2.0};  // [s] impact, rest
 constexpr int kWarmSteps = 3;
-constexpr int kRepetitions = 9;  // PATCHSPIN_SCALE_REPETITIONS overrides it
-constexpr int kRestoreEvery[2] = {60, 240};       // steps: 0.25 s, 1 s
+constexpr int kRepetitions = 9;              // PATCHSPIN_SCALE_REPETITIONS overrides it
+constexpr int kRestoreEvery[2] = {60, 240};  // steps: 0.25 s, 1 s
 constexpr int kSizes[4] = {10, 100, 1000, 10000};
 // a body counts as moving above these: 1 cm/s, 0.5 rad/s
 constexpr double kMovingSpeed = 0.01, kMovingSpin = 0.5;
 
 // timed steps per measurement: about 2e4 body-steps, at least 8
-int timedSteps(int n) { return std::max(8, std::min(3000, 20000 / n)); }
+int timedSteps(int n) {
+  return std::max(8, std::min(3000, 20000 / n));
+}
 
 using patchspin::scenes::BodyState;
 
@@ -109,12 +112,17 @@ struct World {
   std::vector<btRigidBody*> bodies;
 
   World(int /*n*/, Variant variant, const std::vector<BodyState>& states) {
-    scene = std::make_unique<Scene>(9.81, kIterations, variant == kStock ? SolverKind::Stock : SolverKind::Patch);
+    scene = std::make_unique<Scene>(9.81, kIterations,
+                                    variant == kStock ? SolverKind::Stock : SolverKind::Patch);
     world = &scene->world();
-    const Friction f = variant == kExact ? Friction::Exact : variant == kEllipsoidal ? Friction::Ellipsoidal : Friction::Stock;
+    const Friction f = variant == kExact         ? Friction::Exact
+                       : variant == kEllipsoidal ? Friction::Ellipsoidal
+                                                 : Friction::Stock;
     bodies = patchspin::scenes::addPile(*scene, states, f);
   }
-  static std::vector<BodyState> rain(int n, unsigned seed) { return patchspin::scenes::pileRain(n, seed); }
+  static std::vector<BodyState> rain(int n, unsigned seed) {
+    return patchspin::scenes::pileRain(n, seed);
+  }
   static void place(btRigidBody& b, const BodyState& s) {
     b.setWorldTransform(s.transform);
     b.setInterpolationWorldTransform(s.transform);
@@ -168,12 +176,13 @@ const std::vector<BodyState>& savedPile(int n, Phase phase) {
   static std::map<int, std::vector<BodyState>> piles[2];
   auto it = piles[phase].find(n);
   if (it != piles[phase].end()) return it->second;
-  std::fprintf(stderr, "bench_bullet_scale: raining %d bodies (%s, %.2f s)\n", n, kVariantNames[kRainVariant],
-               kSaveAt[kRest]);
+  std::fprintf(stderr, "bench_bullet_scale: raining %d bodies (%s, %.2f s)\n", n,
+               kVariantNames[kRainVariant], kSaveAt[kRest]);
   const std::vector<BodyState> start = World::rain(n, 12345u + unsigned(n));
   World w(n, kRainVariant, start);
   w.restore(start);
-  const int impactSteps = int(std::lround(kSaveAt[kImpact] / kDt)), restSteps = int(std::lround(kSaveAt[kRest] / kDt));
+  const int impactSteps = int(std::lround(kSaveAt[kImpact] / kDt)),
+            restSteps = int(std::lround(kSaveAt[kRest] / kDt));
   for (int k = 1; k <= restSteps; ++k) {
     w.step();
     if (k == impactSteps) piles[kImpact][n] = w.save();
@@ -192,7 +201,8 @@ struct Row {
 };
 std::map<std::string, Row> gRows;
 
-void BM_Scale(benchmark::State& state, int n, Variant variant, Phase phase, const std::string& key) {
+void BM_Scale(benchmark::State& state, int n, Variant variant, Phase phase,
+              const std::string& key) {
   const std::vector<BodyState>& saved = savedPile(n, phase);
   World w(n, variant, saved);
   w.restore(saved);
@@ -237,7 +247,8 @@ class CapturingReporter : public benchmark::ConsoleReporter {
 
 const Row* findRow(Phase p, int n, Variant v) {
   for (const auto& kv : gRows)
-    if (kv.second.phase == p && kv.second.n == n && kv.second.variant == v && kv.second.msPerStep > 0)
+    if (kv.second.phase == p && kv.second.n == n && kv.second.variant == v &&
+        kv.second.msPerStep > 0)
       return &kv.second;
   return nullptr;
 }
@@ -246,13 +257,15 @@ const Row* findRow(Phase p, int n, Variant v) {
 double fittedExponent(Phase p, Variant v) {
   std::vector<double> x, y;
   for (int n : kSizes)
-    if (const Row* r = findRow(p, n, v); r && n >= 100) x.push_back(std::log(double(n))), y.push_back(std::log(r->msPerStep));
+    if (const Row* r = findRow(p, n, v); r && n >= 100)
+      x.push_back(std::log(double(n))), y.push_back(std::log(r->msPerStep));
   if (x.size() < 2) return NAN;
   double mx = 0, my = 0;
   for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
   mx /= double(x.size()), my /= double(x.size());
   double sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+  for (std::size_t i = 0; i < x.size(); ++i)
+    sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
   return sxy / sxx;
 }
 
@@ -262,8 +275,10 @@ int main(int argc, char** argv) {
   std::string csvPath;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--csv=", 6) == 0) csvPath = argv[i] + 6;
-    else args.push_back(argv[i]);
+    if (std::strncmp(argv[i], "--csv=", 6) == 0)
+      csvPath = argv[i] + 6;
+    else
+      args.push_back(argv[i]);
   }
   if (!patchspin::bench::initializeInterleaved(args)) return 1;
   int maxN = 10000;
@@ -274,7 +289,9 @@ int main(int argc, char** argv) {
     char* end = nullptr;
     const long r = std::strtol(e, &end, 10);
     if (end == e || *end != '\0' || r < 1 || r > 100) {
-      std::fprintf(stderr, "bench_bullet_scale: PATCHSPIN_SCALE_REPETITIONS must be an integer in 1..100, got '%s'\n",
+      std::fprintf(stderr,
+                   "bench_bullet_scale: PATCHSPIN_SCALE_REPETITIONS must be an integer in 1..100, "
+                   "got '%s'\n",
                    e);
       return 1;
     }
@@ -285,8 +302,8 @@ int main(int argc, char** argv) {
     for (int n : kSizes) {
       if (n > maxN) continue;
       for (Variant v : {kStock, kNoneOptedIn, kEllipsoidal, kExact}) {
-        const std::string key = std::string("BM_Scale/") + kPhaseNames[phase] + "/N:" + std::to_string(n) + "/" +
-                                std::to_string(int(v));
+        const std::string key = std::string("BM_Scale/") + kPhaseNames[phase] +
+                                "/N:" + std::to_string(n) + "/" + std::to_string(int(v));
         benchmark::RegisterBenchmark(key.c_str(),
                                      [=](benchmark::State& st) { BM_Scale(st, n, v, phase, key); })
             ->Iterations(timedSteps(n))
@@ -313,36 +330,39 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_bullet_scale: cannot write %s\n", csvPath.c_str());
       return 1;
     }
-    csv << "phase,bodies,variant,ms_per_step,steps_per_s,ratio_to_stock,contact_manifolds,patches,moving,"
+    csv << "phase,bodies,variant,ms_per_step,steps_per_s,ratio_to_stock,contact_manifolds,patches,"
+           "moving,"
            "kinetic_energy_per_body\n";
   }
   for (Phase phase : {kImpact, kRest}) {
     std::printf("\n%s (pile saved at t = %.2f s)\n", kPhaseNames[phase], kSaveAt[phase]);
-    std::printf("%-28s %7s %11s %11s %9s %10s %9s %8s %12s\n", "variant", "N", "ms/step", "steps/s", "x stock",
-                "contacts", "patches", "moving", "KE/body [J]");
+    std::printf("%-28s %7s %11s %11s %9s %10s %9s %8s %12s\n", "variant", "N", "ms/step", "steps/s",
+                "x stock", "contacts", "patches", "moving", "KE/body [J]");
     for (Variant v : {kStock, kNoneOptedIn, kEllipsoidal, kExact}) {
       for (int n : kSizes) {
         const Row* r = findRow(phase, n, v);
         const Row* s = findRow(phase, n, kStock);
         if (!r || !s) continue;
         const double ratio = r->msPerStep / s->msPerStep;
-        std::printf("%-28s %7d %11.3f %11.1f %9.2f %10d %9d %8d %12.2e\n", kVariantNames[v], n, r->msPerStep,
-                    1e3 / r->msPerStep, ratio, r->manifolds, r->patches, r->moving, r->kineticEnergy);
+        std::printf("%-28s %7d %11.3f %11.1f %9.2f %10d %9d %8d %12.2e\n", kVariantNames[v], n,
+                    r->msPerStep, 1e3 / r->msPerStep, ratio, r->manifolds, r->patches, r->moving,
+                    r->kineticEnergy);
         if (csv)
-          csv << kPhaseNames[phase] << ',' << n << ",\"" << kVariantNames[v] << "\"," << r->msPerStep << ','
-              << 1e3 / r->msPerStep << ',' << ratio << ',' << r->manifolds << ',' << r->patches << ','
-              << r->moving << ',' << r->kineticEnergy << '\n';
+          csv << kPhaseNames[phase] << ',' << n << ",\"" << kVariantNames[v] << "\","
+              << r->msPerStep << ',' << 1e3 / r->msPerStep << ',' << ratio << ',' << r->manifolds
+              << ',' << r->patches << ',' << r->moving << ',' << r->kineticEnergy << '\n';
       }
     }
-    std::printf("growth: time ~ N^b (fit over N = 100 .. %d) and cost per body-step at the largest N\n",
-                std::min(maxN, kSizes[3]));
+    std::printf(
+        "growth: time ~ N^b (fit over N = 100 .. %d) and cost per body-step at the largest N\n",
+        std::min(maxN, kSizes[3]));
     for (Variant v : {kStock, kNoneOptedIn, kEllipsoidal, kExact}) {
       const Row* big = nullptr;
       for (int n : kSizes)
         if (const Row* r = findRow(phase, n, v)) big = r;
       if (!big) continue;
-      std::printf("  %-28s b = %.2f, %.2f us per body-step (N = %d)\n", kVariantNames[v], fittedExponent(phase, v),
-                  1e3 * big->msPerStep / big->n, big->n);
+      std::printf("  %-28s b = %.2f, %.2f us per body-step (N = %d)\n", kVariantNames[v],
+                  fittedExponent(phase, v), 1e3 * big->msPerStep / big->n, big->n);
     }
   }
   if (csv) std::printf("\nwrote %s\n", csvPath.c_str());

@@ -113,8 +113,9 @@ struct Steps {
   const char* label;
   double dt;
 };
-const Steps kSteps[] = {{"1/30", 1.0 / 30},    {"1/60", 1.0 / 60},     {"1/120", 1.0 / 120},  {"1/240", 1.0 / 240},
-                        {"1/500", 1.0 / 500}, {"1/1000", 1.0 / 1000}, {"1/2000", 1.0 / 2000}};
+const Steps kSteps[] = {{"1/30", 1.0 / 30},    {"1/60", 1.0 / 60},   {"1/120", 1.0 / 120},
+                        {"1/240", 1.0 / 240},  {"1/500", 1.0 / 500}, {"1/1000", 1.0 / 1000},
+                        {"1/2000", 1.0 / 2000}};
 
 double terminalOf(const Scene& s, const SimulationResult& r) {
   return s.ratio ? r.epsStop.value_or(std::nan("")) : r.wStop.z();
@@ -160,8 +161,8 @@ SimulationResult runReference(SimulationSpec spec, const std::string& model) {
 
 // one setting: runs kRunsPerSetting times (the benchmark's iterations), keeps
 // the fastest run time and the (deterministic) result
-void runSetting(benchmark::State& state, const Scene& scene, const References& refs, const std::string& model,
-                const Steps* step) {
+void runSetting(benchmark::State& state, const Scene& scene, const References& refs,
+                const std::string& model, const Steps* step) {
   SimulationSpec spec = scene.spec;
   spec.model = model;
   spec.tMax = 3.0 * refs.exact.tStop;
@@ -193,7 +194,8 @@ void runSetting(benchmark::State& state, const Scene& scene, const References& r
   if (result.stopped) row.errStop = std::abs(result.tStop - refs.exact.tStop) / refs.exact.tStop;
   row.errTerminal = terminalError(scene, result, refs.exact);
   if (model == "ellipsoidal") {
-    if (result.stopped) row.errStopOwn = std::abs(result.tStop - refs.ellipsoidal.tStop) / refs.ellipsoidal.tStop;
+    if (result.stopped)
+      row.errStopOwn = std::abs(result.tStop - refs.ellipsoidal.tStop) / refs.ellipsoidal.tStop;
     row.errTerminalOwn = terminalError(scene, result, refs.ellipsoidal);
   } else if (model == "exact") {
     row.errStopOwn = row.errStop;
@@ -213,27 +215,32 @@ std::string fmt(double x, const char* f = "%.3g") {
 }
 
 void printTables(const std::vector<Scene>& all, const std::map<std::string, References>& refs) {
-  std::printf("\nPer simulation: error against the exact law's reference dynamics, and run time per simulated\n"
-              "second (CPU ms of the run per simulated s; Bullet %s precision, 10 solver iterations, one body; fastest of %d runs).\n",
-              patchspin::scenes::buildPrecision(), kRunsPerSetting);
+  std::printf(
+      "\nPer simulation: error against the exact law's reference dynamics, and run time per "
+      "simulated\n"
+      "second (CPU ms of the run per simulated s; Bullet %s precision, 10 solver iterations, one "
+      "body; fastest of %d runs).\n",
+      patchspin::scenes::buildPrecision(), kRunsPerSetting);
   for (const Scene& s : all) {
     const References& r = refs.at(s.name);
-    std::printf("\n%s: reference (exact law) t_stop = %.5f s, terminal %s = %s", s.name.c_str(), r.exact.tStop,
-                s.ratio ? "v/(R omega)" : "w",
-                s.ratio ? fmt(*r.exact.epsStop, "%.4f").c_str()
-                        : ("(" + fmt(r.exact.wStop.x(), "%.3f") + ", " + fmt(r.exact.wStop.y(), "%.3f") + ", " +
-                           fmt(r.exact.wStop.z(), "%.3f") + ")")
-                              .c_str());
+    std::printf("\n%s: reference (exact law) t_stop = %.5f s, terminal %s = %s", s.name.c_str(),
+                r.exact.tStop, s.ratio ? "v/(R omega)" : "w",
+                s.ratio
+                    ? fmt(*r.exact.epsStop, "%.4f").c_str()
+                    : ("(" + fmt(r.exact.wStop.x(), "%.3f") + ", " +
+                       fmt(r.exact.wStop.y(), "%.3f") + ", " + fmt(r.exact.wStop.z(), "%.3f") + ")")
+                          .c_str());
     if (s.name == "coin from 0.653")
       std::printf(" (closed form, infinitely thin: %.5f s, 0.6530)",
                   1.0600 * s.spec.R * s.spec.omega0 / (s.spec.mu * s.spec.g));
-    std::printf("\n%-22s %-8s %14s %11s %12s %11s %12s\n", "model", "dt [s]", "CPU ms per s", "err t_stop",
-                s.ratio ? "err v/(Rw)" : "err |w|", "own t_stop", "own term.");
+    std::printf("\n%-22s %-8s %14s %11s %12s %11s %12s\n", "model", "dt [s]", "CPU ms per s",
+                "err t_stop", s.ratio ? "err v/(Rw)" : "err |w|", "own t_stop", "own term.");
     for (const Row& row : gRows) {
       if (row.scene != s.name) continue;
       std::printf("%-22s %-8s %14.3f %11s %12s %11s %12s\n", row.model.c_str(), row.dt.c_str(),
                   1e3 * row.cpuPerSimS, row.stopped ? fmt(row.errStop).c_str() : "no stop",
-                  fmt(row.errTerminal).c_str(), fmt(row.errStopOwn).c_str(), fmt(row.errTerminalOwn).c_str());
+                  fmt(row.errTerminal).c_str(), fmt(row.errStopOwn).c_str(),
+                  fmt(row.errTerminalOwn).c_str());
     }
     // recommendation: cheapest Bullet setting per model within the validation tests' accuracy
     std::printf("cheapest step within %.0f %% (t_stop) and %.2f (terminal) of the exact physics:\n",
@@ -259,8 +266,10 @@ int main(int argc, char** argv) {
   std::string csvPath;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--csv=", 6) == 0) csvPath = argv[i] + 6;
-    else args.push_back(argv[i]);
+    if (std::strncmp(argv[i], "--csv=", 6) == 0)
+      csvPath = argv[i] + 6;
+    else
+      args.push_back(argv[i]);
   }
   int n = int(args.size());
   benchmark::Initialize(&n, args.data());
@@ -271,23 +280,29 @@ int main(int argc, char** argv) {
   for (const Scene& s : all) {
     refs[s.name] = References{runReference(s.spec, "exact"), runReference(s.spec, "ellipsoidal")};
     if (!refs[s.name].exact.stopped) {
-      std::fprintf(stderr, "bench_bullet_simulation: the reference run of %s does not stop\n", s.name.c_str());
+      std::fprintf(stderr, "bench_bullet_simulation: the reference run of %s does not stop\n",
+                   s.name.c_str());
       return 1;
     }
   }
   for (const Scene& s : all) {
     for (const char* model : {"ellipsoidal", "exact"}) {
       const std::string name = s.name + "/reference/" + model;
-      benchmark::RegisterBenchmark(name.c_str(), [&s, model](benchmark::State& st) {
-        runSetting(st, s, refs.at(s.name), model, nullptr);
-      })->Iterations(kRunsPerSetting)->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(
+          name.c_str(),
+          [&s, model](benchmark::State& st) { runSetting(st, s, refs.at(s.name), model, nullptr); })
+          ->Iterations(kRunsPerSetting)
+          ->Unit(benchmark::kMillisecond);
     }
     for (const char* model : {"ellipsoidal", "exact", "stock"}) {
       for (const Steps& step : kSteps) {
         const std::string name = s.name + "/" + model + "/dt:" + step.label;
-        benchmark::RegisterBenchmark(name.c_str(), [&s, model, &step](benchmark::State& st) {
-          runSetting(st, s, refs.at(s.name), model, &step);
-        })->Iterations(kRunsPerSetting)->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(name.c_str(),
+                                     [&s, model, &step](benchmark::State& st) {
+                                       runSetting(st, s, refs.at(s.name), model, &step);
+                                     })
+            ->Iterations(kRunsPerSetting)
+            ->Unit(benchmark::kMillisecond);
       }
     }
   }
@@ -301,13 +316,15 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_bullet_simulation: cannot write %s\n", csvPath.c_str());
       return 1;
     }
-    f << "scene,model,dt,cpu_per_sim_s,err_tstop,err_terminal,err_tstop_own,err_terminal_own,stopped,t_stop,"
+    f << "scene,model,dt,cpu_per_sim_s,err_tstop,err_terminal,err_tstop_own,err_terminal_own,"
+         "stopped,t_stop,"
          "terminal,t_ref,terminal_ref,terminal_kind\n";
     for (const Row& r : gRows) {
-      f << '"' << r.scene << "\",\"" << r.model << "\"," << r.dt << ',' << fmt(r.cpuPerSimS, "%.6g") << ','
-        << fmt(r.errStop, "%.6g") << ',' << fmt(r.errTerminal, "%.6g") << ',' << fmt(r.errStopOwn, "%.6g") << ','
-        << fmt(r.errTerminalOwn, "%.6g") << ',' << (r.stopped ? 1 : 0) << ',' << fmt(r.tStop, "%.6g") << ','
-        << fmt(r.terminal, "%.6g") << ',' << fmt(r.tRef, "%.6g") << ',' << fmt(r.terminalRef, "%.6g") << ','
+      f << '"' << r.scene << "\",\"" << r.model << "\"," << r.dt << ',' << fmt(r.cpuPerSimS, "%.6g")
+        << ',' << fmt(r.errStop, "%.6g") << ',' << fmt(r.errTerminal, "%.6g") << ','
+        << fmt(r.errStopOwn, "%.6g") << ',' << fmt(r.errTerminalOwn, "%.6g") << ','
+        << (r.stopped ? 1 : 0) << ',' << fmt(r.tStop, "%.6g") << ',' << fmt(r.terminal, "%.6g")
+        << ',' << fmt(r.tRef, "%.6g") << ',' << fmt(r.terminalRef, "%.6g") << ','
         << (r.ratio ? "ratio" : "w") << '\n';
     }
     std::printf("\nwrote %s\n", csvPath.c_str());

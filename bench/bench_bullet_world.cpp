@@ -30,9 +30,9 @@ enum Variant { kEllipsoidal = 0, kExact = 1, kStock = 2, kNoneOptedIn = 3 };
 
 // Scene options beyond the variant (the skip-what-isn't-needed benchmarks).
 struct SceneOptions {
-  bool moving = true;        // seeded slide and spin; false: coins at rest
-  bool allowSleep = false;   // Bullet may put resting coins to sleep
-  double exactFraction = -1; // >= 0: this fraction exact, the rest ellipsoidal
+  bool moving = true;         // seeded slide and spin; false: coins at rest
+  bool allowSleep = false;    // Bullet may put resting coins to sleep
+  double exactFraction = -1;  // >= 0: this fraction exact, the rest ellipsoidal
   patchspin::bullet::PatchSolverSettings settings;
 };
 
@@ -48,12 +48,13 @@ struct World {
   SceneOptions options;
 
   World(int n, Variant variant, const SceneOptions& opt = SceneOptions()) : options(opt) {
-    scene = std::make_unique<Scene>(9.81, 10, variant == kStock ? SolverKind::Stock : SolverKind::Patch);
+    scene = std::make_unique<Scene>(9.81, 10,
+                                    variant == kStock ? SolverKind::Stock : SolverKind::Patch);
     world = &scene->world();
     // ground friction: Bullet's default 0.5 (combined with the coins' 0.3)
     scene->addGroundPlane(0.5);
-    btCollisionShape* coinShape = scene->addShape(
-        std::make_unique<btCylinderShapeZ>(btVector3(btScalar(kR), btScalar(kR), btScalar(kH / 2))));
+    btCollisionShape* coinShape = scene->addShape(std::make_unique<btCylinderShapeZ>(
+        btVector3(btScalar(kR), btScalar(kR), btScalar(kH / 2))));
     coinShape->setMargin(btScalar(1e-3));
     // coins on a grid 0.5 m apart, seeded random slide and spin
     std::mt19937 rng(12345);
@@ -63,7 +64,8 @@ struct World {
     for (int i = 0; i < n; ++i) {
       btTransform tr;
       tr.setIdentity();
-      tr.setOrigin(btVector3(btScalar(0.5 * (i % side)), btScalar(0.5 * (i / side)), btScalar(kH / 2)));
+      tr.setOrigin(
+          btVector3(btScalar(0.5 * (i % side)), btScalar(0.5 * (i / side)), btScalar(kH / 2)));
       btRigidBody* coin = scene->addBody(coinShape, 1.0, inertia, tr, 0.3);
       if (opt.allowSleep) coin->forceActivationState(ACTIVE_TAG);
       start.push_back(tr);
@@ -72,7 +74,8 @@ struct World {
       w0.emplace_back(0, 0, btScalar(opt.moving ? wz : 0.0));
       if (variant == kEllipsoidal || variant == kExact) {
         Model model = variant == kExact ? Model::Exact : Model::Ellipsoidal;
-        if (opt.exactFraction >= 0) model = (i % 100) < int(100 * opt.exactFraction) ? Model::Exact : Model::Ellipsoidal;
+        if (opt.exactFraction >= 0)
+          model = (i % 100) < int(100 * opt.exactFraction) ? Model::Exact : Model::Ellipsoidal;
         patchSolver()->enablePatchFriction(coin, {model});
       }
       coins.push_back(coin);
@@ -153,7 +156,8 @@ void BM_SkipRules(benchmark::State& state) {
   const int rules = int(state.range(0));
   // (1 and 2 combine into 3; 4, 5 and 6 are single rules)
   opt.settings.skipSettledPatches = !(rules == 1 || rules == 3);
-  if (rules == 2 || rules == 3) opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
+  if (rules == 2 || rules == 3)
+    opt.settings.pressureRefreshTolerance = opt.settings.pressureLagTolerance = 0.0;
   if (rules == 4) opt.settings.pressureLagTolerance = opt.settings.pressureRefreshTolerance;
   if (rules == 5) opt.settings.quickStick = false;
   if (rules == 6) opt.settings.deferStickingRefresh = false;
@@ -186,10 +190,17 @@ void BM_RestingCoins(benchmark::State& state) {
   for (int k = 0; k < 24; ++k) w.world->stepSimulation(btScalar(kDt), 0);  // settle
   for (auto _ : state) w.world->stepSimulation(btScalar(kDt), 0);
   if (variant != kStock) addSolverCounters(state, *w.patchSolver());
-  state.SetLabel(variant == kEllipsoidal ? "patch ellipsoidal" : variant == kExact ? "patch exact"
-                 : variant == kStock ? "stock Bullet" : "patch ellipsoidal, Pi refreshed on every change");
+  state.SetLabel(variant == kEllipsoidal ? "patch ellipsoidal"
+                 : variant == kExact     ? "patch exact"
+                 : variant == kStock     ? "stock Bullet"
+                                         : "patch ellipsoidal, Pi refreshed on every change");
 }
-BENCHMARK(BM_RestingCoins)->Arg(kStock)->Arg(kEllipsoidal)->Arg(kExact)->Arg(4)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RestingCoins)
+    ->Arg(kStock)
+    ->Arg(kEllipsoidal)
+    ->Arg(kExact)
+    ->Arg(4)
+    ->Unit(benchmark::kMicrosecond);
 
 // 1000 coins put to sleep by Bullet (deactivation allowed, at rest for > 2 s):
 // patches of sleeping bodies cost nothing (their islands are not solved).
@@ -203,9 +214,15 @@ void BM_SleepingCoins(benchmark::State& state) {
   for (const auto& c : w.coins) sleeping += c->getActivationState() == ISLAND_SLEEPING;
   for (auto _ : state) w.world->stepSimulation(btScalar(kDt), 0);
   state.counters["sleeping"] = sleeping;
-  state.SetLabel(state.range(0) == kStock ? "stock Bullet" : state.range(0) == kExact ? "patch exact" : "patch ellipsoidal");
+  state.SetLabel(state.range(0) == kStock   ? "stock Bullet"
+                 : state.range(0) == kExact ? "patch exact"
+                                            : "patch ellipsoidal");
 }
-BENCHMARK(BM_SleepingCoins)->Arg(kStock)->Arg(kEllipsoidal)->Arg(kExact)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SleepingCoins)
+    ->Arg(kStock)
+    ->Arg(kEllipsoidal)
+    ->Arg(kExact)
+    ->Unit(benchmark::kMicrosecond);
 
 // The exact law only where a body asks for it: 1000 sliding coins with 0 %,
 // 10 % and 100 % of them exact (the rest ellipsoidal).

@@ -31,7 +31,9 @@ using patchspin::internal::exactPolygonLaw;
 
 constexpr int kDirections = 1024;
 
-std::vector<Vec2> rectangle() { return {{-0.5, -0.3}, {0.5, -0.3}, {0.5, 0.3}, {-0.5, 0.3}}; }
+std::vector<Vec2> rectangle() {
+  return {{-0.5, -0.3}, {0.5, -0.3}, {0.5, 0.3}, {-0.5, 0.3}};
+}
 
 std::vector<Vec2> octagon() {
   std::vector<Vec2> p;
@@ -56,7 +58,8 @@ double meanDistance(const std::vector<Vec2>& poly) {
   double sum = 0.0, count = 0.0;
   for (int i = 0; i < kGrid; ++i) {
     for (int j = 0; j < kGrid; ++j) {
-      const Vec2 q(xmin + (i + 0.5) * (xmax - xmin) / kGrid, ymin + (j + 0.5) * (ymax - ymin) / kGrid);
+      const Vec2 q(xmin + (i + 0.5) * (xmax - xmin) / kGrid,
+                   ymin + (j + 0.5) * (ymax - ymin) / kGrid);
       bool inside = true;
       for (std::size_t k = 0; k < poly.size() && inside; ++k) {
         const Vec2 e = poly[(k + 1) % poly.size()] - poly[k];
@@ -97,8 +100,8 @@ std::vector<Vec3> directions(const std::vector<Vec2>& poly, double rho, Sample s
   return ws;
 }
 
-void runBasis(benchmark::State& state, const std::vector<Vec2>& poly, Sample sample,
-              bool jacobian, double tolerance) {
+void runBasis(benchmark::State& state, const std::vector<Vec2>& poly, Sample sample, bool jacobian,
+              double tolerance) {
   const double rho = meanDistance(poly);
   const std::vector<Vec3> ws = directions(poly, rho, sample);
   // error of this tolerance against tolerance 0, normwise per column
@@ -138,8 +141,8 @@ void runBasis(benchmark::State& state, const std::vector<Vec2>& poly, Sample sam
 
 // Arguments: shape (0 rectangle, 1 octagon), Jacobian (0/1).
 void BM_ExactPolygonBasis(benchmark::State& state) {
-  runBasis(state, state.range(0) == 0 ? rectangle() : octagon(), Sample::Sphere, state.range(1) != 0,
-           0.0);
+  runBasis(state, state.range(0) == 0 ? rectangle() : octagon(), Sample::Sphere,
+           state.range(1) != 0, 0.0);
 }
 BENCHMARK(BM_ExactPolygonBasis)
     ->ArgNames({"octagon", "jacobian"})

@@ -27,13 +27,18 @@ const std::vector<Vec3>& sampleDirections() {
 
 PatchShape shapeByIndex(int index) {
   switch (index) {
-    case 0: return PatchShape::disk(0.05);
-    case 1: return PatchShape::rectangle(0.08, 0.04);
-    default: return PatchShape::regularPolygon(8, 0.05);
+    case 0:
+      return PatchShape::disk(0.05);
+    case 1:
+      return PatchShape::rectangle(0.08, 0.04);
+    default:
+      return PatchShape::regularPolygon(8, 0.05);
   }
 }
 
-const char* shapeName(int index) { return index == 0 ? "disk" : index == 1 ? "rectangle" : "8-gon"; }
+const char* shapeName(int index) {
+  return index == 0 ? "disk" : index == 1 ? "rectangle" : "8-gon";
+}
 
 FrictionPatch tiltedPatch(int index) {
   const PatchShape shape = shapeByIndex(index);

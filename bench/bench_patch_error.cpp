@@ -67,9 +67,10 @@
 #include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 
-#include <Eigen/Geometry>
 #include <benchmark/benchmark.h>
+#include <Eigen/Geometry>
 
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -80,7 +81,6 @@
 #include <map>
 #include <random>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -117,7 +117,8 @@ std::vector<Vec2> largestQuad(const std::vector<Vec2>& v) {
         for (int d = c + 1; d < n; ++d) {
           const Vec2 q[4] = {v[a], v[b], v[c], v[d]};
           double area = 0.0;
-          for (int k = 0; k < 4; ++k) area += q[k].x() * q[(k + 1) % 4].y() - q[(k + 1) % 4].x() * q[k].y();
+          for (int k = 0; k < 4; ++k)
+            area += q[k].x() * q[(k + 1) % 4].y() - q[(k + 1) % 4].x() * q[k].y();
           if (area > bestArea) bestArea = area, best.assign(q, q + 4);
         }
   return best;
@@ -127,12 +128,14 @@ PointContact pointContact(const PatchShape& shape, const LinearPressure& p) {
   PointContact pc;
   if (shape.isDisk()) {
     for (int k = 0; k < 4; ++k)
-      pc.points.push_back(shape.centre() + shape.radius() * Vec2(std::cos(k * kPi / 2), std::sin(k * kPi / 2)));
+      pc.points.push_back(shape.centre() +
+                          shape.radius() * Vec2(std::cos(k * kPi / 2), std::sin(k * kPi / 2)));
   } else {
     pc.points = largestQuad(shape.vertices());
   }
   double sum = 0.0;
-  for (const Vec2& x : pc.points) pc.share.push_back(std::max(p.at(x), 0.0)), sum += pc.share.back();
+  for (const Vec2& x : pc.points)
+    pc.share.push_back(std::max(p.at(x), 0.0)), sum += pc.share.back();
   for (double& s : pc.share) s /= sum;
   return pc;
 }
@@ -151,7 +154,8 @@ Vec2 pointDirection(const Vec3& slip, const Vec2& x, double rho) {
 }
 
 // Bullet's sequential impulses on the point rows: one block solve
-Vec3 solvePointFriction(const PointContact& pc, double rho, const FrictionBlockInput& in, int iterations) {
+Vec3 solvePointFriction(const PointContact& pc, double rho, const FrictionBlockInput& in,
+                        int iterations) {
   constexpr int kMaxPoints = 4;
   const int n = int(pc.points.size());
   std::array<Vec3, kMaxPoints> J, KJ;
@@ -189,10 +193,10 @@ struct Problem {
   FrictionPatch patch;
   PointContact points;
   FrictionBlockInput input;
-  Vec3 w;        // slip direction of the exact solution
-  Vec3 lambda;   // exact impulse lambda* = L q(w)
-  Vec3 q;        // exact unit law q(w)
-  Vec3 warm;     // a warm start: the exact slip turned by kWarmOffset rad
+  Vec3 w;       // slip direction of the exact solution
+  Vec3 lambda;  // exact impulse lambda* = L q(w)
+  Vec3 q;       // exact unit law q(w)
+  Vec3 warm;    // a warm start: the exact slip turned by kWarmOffset rad
 };
 
 struct ShapeSample {
@@ -204,11 +208,12 @@ PatchShape makeShape(int k) {
   if (k == 0) return PatchShape::disk(0.05);
   if (k == 1) return PatchShape::rectangle(0.10, 0.06);
   // irregular convex hexagon, O inside but off the centroid
-  return PatchShape::polygon({Vec2(0.06, 0.0), Vec2(0.05, 0.04), Vec2(0.0, 0.055), Vec2(-0.05, 0.03),
-                              Vec2(-0.045, -0.035), Vec2(0.01, -0.05)});
+  return PatchShape::polygon({Vec2(0.06, 0.0), Vec2(0.05, 0.04), Vec2(0.0, 0.055),
+                              Vec2(-0.05, 0.03), Vec2(-0.045, -0.035), Vec2(0.01, -0.05)});
 }
 
-// linear pressure with total Pz, tilted by `tilt` (0..1) of the admissible maximum along angle theta
+// linear pressure with total Pz, tilted by `tilt` (0..1) of the admissible maximum along angle
+// theta
 LinearPressure tiltedPressure(const PatchShape& shape, double Pz, double tilt, double theta) {
   const Vec2 c = shape.centroid(), dir(std::cos(theta), std::sin(theta));
   const double p0 = Pz / shape.area();
@@ -239,9 +244,11 @@ const std::vector<ShapeSample>& sample() {
         const double gamma = 0.5 + u(rng);
         Mat3 coupling = Mat3::Zero();
         for (int a = 0; a < 3; ++a)
-          for (int b = a + 1; b < 3; ++b) coupling(a, b) = coupling(b, a) = 0.2 * (2 * u(rng) - 1) / 2;
+          for (int b = a + 1; b < 3; ++b)
+            coupling(a, b) = coupling(b, a) = 0.2 * (2 * u(rng) - 1) / 2;
         const Vec3 d(1.0 / kMass, 1.0 / kMass, gamma / kMass);
-        const Mat3 K = d.cwiseSqrt().asDiagonal() * (Mat3::Identity() + coupling) * d.cwiseSqrt().asDiagonal();
+        const Mat3 K =
+            d.cwiseSqrt().asDiagonal() * (Mat3::Identity() + coupling) * d.cwiseSqrt().asDiagonal();
         FrictionBlockInput in;
         in.K = K;
         in.L = kMu * patch.Pz() * kDt;
@@ -251,7 +258,8 @@ const std::vector<ShapeSample>& sample() {
         const Vec3 slip = kappa * (K * lambda).norm() * w;
         in.b = slip - K * lambda;
         const Vec3 axis = w.cross(Vec3(normal(rng), normal(rng), normal(rng))).normalized();
-        const Vec3 warm = slip.norm() * (std::cos(kWarmOffset) * w + std::sin(kWarmOffset) * axis.cross(w));
+        const Vec3 warm =
+            slip.norm() * (std::cos(kWarmOffset) * w + std::sin(kWarmOffset) * axis.cross(w));
         s.problems.push_back(Problem{patch, pointContact(shape, p), in, w, lambda, q, warm});
       }
       out.push_back(std::move(s));
@@ -291,33 +299,36 @@ std::vector<Setting> settings() {
     double tol;
     const char* name;
   };
-  const BlockSetting blockSettings[] = {{false, 0.0, "cold, tol 1e-14 (default)"},
-                                        {false, 1e-12, "cold, tol 1e-12"},
-                                        {false, 1e-9, "cold, tol 1e-9"},
-                                        {false, 1e-6, "cold, tol 1e-6"},
-                                        {true, 0.0, "warm, tol 1e-14 (default)"},
-                                        {true, 1e-9, "warm, tol 1e-9"}};
+  const BlockSetting blockSettings[] = {
+      {false, 0.0, "cold, tol 1e-14 (default)"}, {false, 1e-12, "cold, tol 1e-12"},
+      {false, 1e-9, "cold, tol 1e-9"},           {false, 1e-6, "cold, tol 1e-6"},
+      {true, 0.0, "warm, tol 1e-14 (default)"},  {true, 1e-9, "warm, tol 1e-9"}};
   for (Model model : {Model::Ellipsoidal, Model::Exact})
     for (const BlockSetting& b : blockSettings)
-      s.push_back({"block", model == Model::Exact ? "exact" : "ellipsoidal", b.name, block(model, b.warm, b.tol),
-                   blockRef});
+      s.push_back({"block", model == Model::Exact ? "exact" : "ellipsoidal", b.name,
+                   block(model, b.warm, b.tol), blockRef});
   for (int it : {4, 10, 50}) {
-    s.push_back({"block", "stock", "PGS " + std::to_string(it) + " it" + (it == 10 ? " (default)" : ""),
-                 [it](const Problem& p) { return solvePointFriction(p.points, p.patch.rho(), p.input, it); },
+    s.push_back({"block", "stock",
+                 "PGS " + std::to_string(it) + " it" + (it == 10 ? " (default)" : ""),
+                 [it](const Problem& p) {
+                   return solvePointFriction(p.points, p.patch.rho(), p.input, it);
+                 },
                  blockRef});
   }
-  s.push_back({"law", "ellipsoidal", "-", [](const Problem& p) { return p.patch.unitQ(Model::Ellipsoidal, p.w); },
-               lawRef});
+  s.push_back({"law", "ellipsoidal", "-",
+               [](const Problem& p) { return p.patch.unitQ(Model::Ellipsoidal, p.w); }, lawRef});
   for (int e : {4, 7, 10}) {
     const double tol = std::pow(10.0, -e);
     s.push_back({"law", "exact", "tol 1e-" + std::to_string(e),
                  [tol](const Problem& p) {
-                   return Vec3(p.patch.exactQ(p.w, nullptr, ExactAccuracy{tol}) / (p.patch.mu() * p.patch.Pz()));
+                   return Vec3(p.patch.exactQ(p.w, nullptr, ExactAccuracy{tol}) /
+                               (p.patch.mu() * p.patch.Pz()));
                  },
                  lawRef});
   }
   s.push_back({"law", "stock", "point Coulomb (closed form)",
-               [](const Problem& p) { return pointFrictionQ(p.points, p.patch.rho(), p.w); }, lawRef});
+               [](const Problem& p) { return pointFrictionQ(p.points, p.patch.rho(), p.w); },
+               lawRef});
   return s;
 }
 
@@ -357,7 +368,8 @@ class CapturingReporter : public benchmark::ConsoleReporter {
       if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
       auto it = gRows.find(r.benchmark_name());
       if (it != gRows.end())
-        it->second.timeNs = r.GetAdjustedCPUTime() * 1e9 / benchmark::GetTimeUnitMultiplier(r.time_unit);
+        it->second.timeNs =
+            r.GetAdjustedCPUTime() * 1e9 / benchmark::GetTimeUnitMultiplier(r.time_unit);
     }
     ConsoleReporter::ReportRuns(runs);
   }
@@ -370,8 +382,10 @@ int main(int argc, char** argv) {
   std::string csvPath;
   std::vector<char*> args;
   for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--csv=", 6) == 0) csvPath = argv[i] + 6;
-    else args.push_back(argv[i]);
+    if (std::strncmp(argv[i], "--csv=", 6) == 0)
+      csvPath = argv[i] + 6;
+    else
+      args.push_back(argv[i]);
   }
   int n = int(args.size());
   benchmark::Initialize(&n, args.data());
@@ -406,18 +420,24 @@ int main(int argc, char** argv) {
   for (const ShapeSample& shape : shapes)
     for (const Setting& set : all)
       for (const auto& kv : gRows)
-        if (kv.second.shape == shape.name && kv.second.level == set.level && kv.second.model == set.model &&
-            kv.second.setting == set.setting && kv.second.timeNs > 0)
+        if (kv.second.shape == shape.name && kv.second.level == set.level &&
+            kv.second.model == set.model && kv.second.setting == set.setting &&
+            kv.second.timeNs > 0)
           rows.push_back(&kv.second);
-  std::printf("\nPer patch, %d seeded problems per shape (seed %u). Error: |lambda - lambda*| / |lambda*| of the\n"
-              "block's impulse (level block) or |q - q*| / |q*| of the law (level law); * = exact law (16),\n"
-              "full accuracy. CPU time per block solve / per law evaluation, cycling through the sample.\n\n",
-              kSamples, kSeed);
-  std::printf("%-6s %-10s %-12s %-28s %10s %11s %11s %11s\n", "level", "shape", "model", "setting", "time [ns]",
-              "err median", "err rms", "err max");
+  std::printf(
+      "\nPer patch, %d seeded problems per shape (seed %u). Error: |lambda - lambda*| / |lambda*| "
+      "of the\n"
+      "block's impulse (level block) or |q - q*| / |q*| of the law (level law); * = exact law "
+      "(16),\n"
+      "full accuracy. CPU time per block solve / per law evaluation, cycling through the "
+      "sample.\n\n",
+      kSamples, kSeed);
+  std::printf("%-6s %-10s %-12s %-28s %10s %11s %11s %11s\n", "level", "shape", "model", "setting",
+              "time [ns]", "err median", "err rms", "err max");
   for (const Row* r : rows)
-    std::printf("%-6s %-10s %-12s %-28s %10.1f %11.3g %11.3g %11.3g\n", r->level.c_str(), r->shape.c_str(),
-                r->model.c_str(), r->setting.c_str(), r->timeNs, r->err.median, r->err.rms, r->err.max);
+    std::printf("%-6s %-10s %-12s %-28s %10.1f %11.3g %11.3g %11.3g\n", r->level.c_str(),
+                r->shape.c_str(), r->model.c_str(), r->setting.c_str(), r->timeNs, r->err.median,
+                r->err.rms, r->err.max);
   if (!csvPath.empty()) {
     std::ofstream f(csvPath);
     if (!f) {
@@ -428,8 +448,8 @@ int main(int argc, char** argv) {
     char line[512];
     for (const Row* r : rows) {
       std::snprintf(line, sizeof line, "%s,%s,%s,\"%s\",%.6g,%.6g,%.6g,%.6g,%d\n", r->level.c_str(),
-                    r->shape.c_str(), r->model.c_str(), r->setting.c_str(), r->timeNs, r->err.median, r->err.rms,
-                    r->err.max, kSamples);
+                    r->shape.c_str(), r->model.c_str(), r->setting.c_str(), r->timeNs,
+                    r->err.median, r->err.rms, r->err.max, kSamples);
       f << line;
     }
     std::printf("\nwrote %s\n", csvPath.c_str());

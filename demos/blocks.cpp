@@ -47,11 +47,11 @@
 #include <optional>
 #include <patchspin/analysis.hpp>
 #include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/geometry.hpp>
+#include <patchspin/render/renderer.hpp>
 #include <patchspin/scenes/catalogue.hpp>
 #include <patchspin/scenes/scene.hpp>
 #include <patchspin/scenes/simulate.hpp>
-#include <patchspin/geometry.hpp>
-#include <patchspin/render/renderer.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -213,7 +213,8 @@ std::vector<BodyDef> sceneBodies(const Args& a) {
 // solver iterations), stepped `steps` times.
 class RowWorld {
  public:
-  RowWorld(const Args& a, Row& row, const std::vector<BodyDef>& defs) : model_(row.model), scene_(a.g) {
+  RowWorld(const Args& a, Row& row, const std::vector<BodyDef>& defs)
+      : model_(row.model), scene_(a.g) {
     scene_.addGroundPlane(1.0);
     for (const BodyDef& d : defs) {
       BodyRun run;
@@ -234,7 +235,8 @@ class RowWorld {
 
  private:
   btRigidBody* addBody(const Args& a, const BodyDef& d) {
-    return patchspin::scenes::addRowBody(scene_, d, a.mu, patchspin::scenes::frictionFromString(model_));
+    return patchspin::scenes::addRowBody(scene_, d, a.mu,
+                                         patchspin::scenes::frictionFromString(model_));
   }
 
   std::string model_;

@@ -18,11 +18,11 @@
 // at the end of the run.
 #include "demo_common.hpp"
 
-#include <patchspin/scenes/catalogue.hpp>
-#include <patchspin/scenes/simulate.hpp>
 #include <patchspin/geometry.hpp>
 #include <patchspin/render/plot.hpp>
 #include <patchspin/render/renderer.hpp>
+#include <patchspin/scenes/catalogue.hpp>
+#include <patchspin/scenes/simulate.hpp>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -35,7 +35,6 @@
 #include <optional>
 #include <string>
 #include <vector>
-
 
 namespace {
 
@@ -78,11 +77,11 @@ struct Args {
 struct Sample {
   double t = 0.0;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // body -> own world
-  Vec3 patchCentre = Vec3::Zero();                          // world [m]
-  Vec2 velocity = Vec2::Zero();                             // of the patch centre [m/s]
-  double omega = 0.0;                                       // spin [rad/s]
-  double tilt = 0.0;                                        // |(omega_x, omega_y)| [rad/s]
-  Vec3 x = Vec3::Zero();                                    // (u_x, u_y, rho w_z) [m/s]
+  Vec3 patchCentre = Vec3::Zero();                         // world [m]
+  Vec2 velocity = Vec2::Zero();                            // of the patch centre [m/s]
+  double omega = 0.0;                                      // spin [rad/s]
+  double tilt = 0.0;                                       // |(omega_x, omega_y)| [rad/s]
+  Vec3 x = Vec3::Zero();                                   // (u_x, u_y, rho w_z) [m/s]
   double r = 0.0;
 };
 
@@ -104,9 +103,13 @@ struct Coin {
 
   double r0() const { return samples.front().r; }
   // at rest: from the stopping instant on, or whenever r is at the stop threshold
-  bool atRest(const Sample& s) const { return (stopped && s.t >= tStop) || s.r <= kStopFraction * r0(); }
+  bool atRest(const Sample& s) const {
+    return (stopped && s.t >= tStop) || s.r <= kStopFraction * r0();
+  }
   // spin at round-off (stock Bullet stops spinning first and slides on)
-  bool spinless(const Sample& s, double R) const { return R * std::abs(s.omega) <= kStopFraction * r0(); }
+  bool spinless(const Sample& s, double R) const {
+    return R * std::abs(s.omega) <= kStopFraction * r0();
+  }
   // v/(R omega), NaN at rest (0/0 up to round-off) or without spin (infinite)
   double slipRatio(const Sample& s, double R) const {
     if (atRest(s) || spinless(s, R)) return std::numeric_limits<double>::quiet_NaN();
@@ -192,17 +195,13 @@ render::SceneBody coinBody(const Coin& coin, const Sample& s, const Args& a) {
   return b;
 }
 
-
-
-
-
-
 int run(const Args& a) {
   int width = 0, height = 0;
   patchspin::demos::parseSize(a.size, width, height);
-  if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu >= 0 && a.fps > 0 && a.rate > 0 &&
-        a.slowmo > 0 && a.tMax > 0 && std::isfinite(a.v0) && std::isfinite(a.omega0)))
-    throw CLI::ValidationError("parameters", "need radius, height, mass, g, fps, rate, slowmo, t-max > 0, mu >= 0");
+  if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu >= 0 && a.fps > 0 &&
+        a.rate > 0 && a.slowmo > 0 && a.tMax > 0 && std::isfinite(a.v0) && std::isfinite(a.omega0)))
+    throw CLI::ValidationError(
+        "parameters", "need radius, height, mass, g, fps, rate, slowmo, t-max > 0, mu >= 0");
   if (a.frames < 1) throw CLI::ValidationError("--frames", "must be >= 1");
 
   // coins: exact, ellipsoidal, stock, side by side along y
@@ -218,7 +217,8 @@ int run(const Args& a) {
   addCoin("exact", "exact", {0.90, 0.60, 0.15});
   addCoin("ellipsoidal", "ellipsoidal", {0.25, 0.50, 0.90});
   addCoin("stock", "stock Bullet", {0.60, 0.60, 0.62});
-  if (coins.empty()) throw CLI::ValidationError("--model", "must be ellipsoidal, exact, stock or all");
+  if (coins.empty())
+    throw CLI::ValidationError("--model", "must be ellipsoidal, exact, stock or all");
   const double spacing = kSpacingRadii * a.radius;
   for (std::size_t i = 0; i < coins.size(); ++i)
     coins[i].offset = Vec3(0, spacing * (0.5 * double(coins.size() - 1) - double(i)), 0);
@@ -234,8 +234,10 @@ int run(const Args& a) {
   // camera: fits every coin at every rendered instant
   std::vector<render::SceneBody> extent;
   for (const Coin& c : coins)
-    for (long s = 0; s <= frameSteps; s += k) extent.push_back(coinBody(c, c.samples[std::size_t(s)], a));
-  const render::Camera camera = render::fitCamera(extent, -90.0, 42.0, double(width) / height, 1.25);
+    for (long s = 0; s <= frameSteps; s += k)
+      extent.push_back(coinBody(c, c.samples[std::size_t(s)], a));
+  const render::Camera camera =
+      render::fitCamera(extent, -90.0, 42.0, double(width) / height, 1.25);
 
   render::RenderOptions options;
   options.width = width;
@@ -245,7 +247,8 @@ int run(const Args& a) {
   const double tEnd = double(frameSteps) * dt;
 
   char title[160];
-  std::snprintf(title, sizeof title, "coin R = %g cm, H = %g mm, mu = %g, v0 = %g m/s, omega0 = %g rad/s",
+  std::snprintf(title, sizeof title,
+                "coin R = %g cm, H = %g mm, mu = %g, v0 = %g m/s, omega0 = %g rad/s",
                 100 * a.radius, 1000 * a.height, a.mu, a.v0, a.omega0);
   if (a.progress) patchspin::demos::printProgress("coin", 0, a.frames);
   for (int f = 0; f < a.frames; ++f) {
@@ -254,9 +257,11 @@ int run(const Args& a) {
     scene.camera = camera;
     scene.overlay.time = coins.front().samples[now].t;
     scene.overlay.title = title;
-    scene.overlay.model = a.model == "all" ? "exact | ellipsoidal | stock Bullet" : coins.front().label;
-    scene.overlay.caption = "exact stops near v/(R\xcf\x89) = 0.653; ellipsoidal ends in pure spin; "
-                            "stock Bullet rocks and drifts";
+    scene.overlay.model =
+        a.model == "all" ? "exact | ellipsoidal | stock Bullet" : coins.front().label;
+    scene.overlay.caption =
+        "exact stops near v/(R\xcf\x89) = 0.653; ellipsoidal ends in pure spin; "
+        "stock Bullet rocks and drifts";
     render::OverlayChart chart;
     chart.title = "v/(R\xcf\x89)";
     chart.tMin = 0.0;
@@ -275,7 +280,8 @@ int run(const Args& a) {
       const std::size_t stride = std::max<std::size_t>(1, now / 200);
       for (std::size_t j = now % stride; j <= now; j += stride)
         trail.points.push_back(Vec3(c.samples[j].patchCentre.x() + c.offset.x(),
-                                    c.samples[j].patchCentre.y() + c.offset.y(), options.groundHeight));
+                                    c.samples[j].patchCentre.y() + c.offset.y(),
+                                    options.groundHeight));
       scene.trails.push_back(trail);
       render::TrackedBody tracked;
       tracked.label = c.label;
@@ -308,11 +314,12 @@ int run(const Args& a) {
 
   // summary.json
   nlohmann::json summary;
-  summary["parameters"] = {{"radius", a.radius}, {"height", a.height}, {"mass", a.mass},   {"mu", a.mu},
-                           {"v0", a.v0},         {"omega0", a.omega0}, {"g", a.g},         {"dt", dt},
-                           {"steps", steps},     {"t_end", double(steps) * dt}};
-  summary["video"] = {{"frames", a.frames}, {"fps", a.fps}, {"steps_per_frame", k}, {"width", width},
-                      {"height", height}, {"t_last_frame", tEnd}};
+  summary["parameters"] = {
+      {"radius", a.radius}, {"height", a.height},         {"mass", a.mass}, {"mu", a.mu},
+      {"v0", a.v0},         {"omega0", a.omega0},         {"g", a.g},       {"dt", dt},
+      {"steps", steps},     {"t_end", double(steps) * dt}};
+  summary["video"] = {{"frames", a.frames}, {"fps", a.fps},     {"steps_per_frame", k},
+                      {"width", width},     {"height", height}, {"t_last_frame", tEnd}};
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["reference_ratio"] = kReferenceRatio;
   nlohmann::json models = nlohmann::json::object();
@@ -321,7 +328,8 @@ int run(const Args& a) {
     m["stopped"] = c.stopped;
     m["t_stop"] = c.stopped ? nlohmann::json(c.tStop) : nlohmann::json(nullptr);
     m["eps_stop"] = c.epsStop ? patchspin::demos::jsonOrNull(*c.epsStop) : nlohmann::json(nullptr);
-    m["w_stop"] = c.recorded ? nlohmann::json{c.wStop.x(), c.wStop.y(), c.wStop.z()} : nlohmann::json(nullptr);
+    m["w_stop"] = c.recorded ? nlohmann::json{c.wStop.x(), c.wStop.y(), c.wStop.z()}
+                             : nlohmann::json(nullptr);
     m["max_tilt_rate"] = c.maxTilt;
     m["max_slip_after_stop"] = c.maxCreep;
     m["displacement"] = {c.displacement.x(), c.displacement.y()};
@@ -360,7 +368,8 @@ int run(const Args& a) {
         series.r.push_back(s.r >= kPlotFloor * c.r0() ? s.r : 0.0);
       }
       char line[160];
-      std::snprintf(line, sizeof line, "%s,%.9g,%.9g,%.9g\n", c.label.c_str(), s.t, c.slipRatio(s, a.radius), s.r);
+      std::snprintf(line, sizeof line, "%s,%.9g,%.9g,%.9g\n", c.label.c_str(), s.t,
+                    c.slipRatio(s, a.radius), s.r);
       csv << line;
     }
     plot.series.push_back(series);
@@ -376,7 +385,8 @@ int run(const Args& a) {
     }
   }
   std::printf("coin: %d frames (%s ...), summary.json%s in %s\n", writer.count(),
-              fs::path(writer.framePath(0)).filename().c_str(), a.plot ? ", coin_ratio.png" : "", a.out.c_str());
+              fs::path(writer.framePath(0)).filename().c_str(), a.plot ? ", coin_ratio.png" : "",
+              a.out.c_str());
   return 0;
 }
 
@@ -384,13 +394,15 @@ int run(const Args& a) {
 
 int main(int argc, char** argv) {
   Args a;
-  CLI::App app{"coin: a thin coin sliding and spinning to rest with the exact, the ellipsoidal and stock "
-               "Bullet friction, side by side (headless, PNG frames)"};
+  CLI::App app{
+      "coin: a thin coin sliding and spinning to rest with the exact, the ellipsoidal and stock "
+      "Bullet friction, side by side (headless, PNG frames)"};
   app.add_option("--out", a.out, "output directory (frames, summary.json, coin_ratio.png)");
   app.add_option("--frames", a.frames, "number of frames (default 150)");
   app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
   app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
-  app.add_option("--model", a.model, "ellipsoidal | exact | stock | all (default all, side by side)");
+  app.add_option("--model", a.model,
+                 "ellipsoidal | exact | stock | all (default all, side by side)");
   app.add_option("--radius", a.radius, "coin radius R [m] (default 0.05)");
   app.add_option("--height", a.height, "coin thickness H [m] (default 0.005)");
   app.add_option("--mass", a.mass, "coin mass [kg] (default 0.03)");

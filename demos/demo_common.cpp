@@ -2,10 +2,10 @@
 #include "demo_common.hpp"
 
 #include <patchspin/analysis.hpp>
-#include <patchspin/scenes/simulate.hpp>
 #include <patchspin/geometry.hpp>
 #include <patchspin/render/plot.hpp>
 #include <patchspin/render/renderer.hpp>
+#include <patchspin/scenes/simulate.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -25,11 +25,6 @@ namespace fs = std::filesystem;
 constexpr double kSpacingRadii = 3.0;
 // Automatic force arrow: the largest force is drawn this many radii long.
 constexpr double kArrowRadii = 2.0;
-
-
-
-
-
 
 // The body's sample at step index i (held at the last one after the stop).
 const SimulationSample& sampleAt(const SimulationResult& r, std::size_t i) {
@@ -63,10 +58,14 @@ FlatBody flatBodyOf(const SimulationSpec& s) {
 
 render::LimitKind kindOf(LimitType t) {
   switch (t) {
-    case LimitType::Dominant: return render::LimitKind::Dominant;
-    case LimitType::Isolated: return render::LimitKind::Isolated;
-    case LimitType::Saddle: return render::LimitKind::Saddle;
-    default: return render::LimitKind::Nonhyperbolic;
+    case LimitType::Dominant:
+      return render::LimitKind::Dominant;
+    case LimitType::Isolated:
+      return render::LimitKind::Isolated;
+    case LimitType::Saddle:
+      return render::LimitKind::Saddle;
+    default:
+      return render::LimitKind::Nonhyperbolic;
   }
 }
 
@@ -77,7 +76,8 @@ void addCommonOptions(CLI::App& app, CommonArgs& a, bool* noPlot, bool* quiet) {
   app.add_option("--frames", a.frames, "number of frames");
   app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
   app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
-  app.add_option("--model", a.model, "friction model: exact | ellipsoidal | stock (| all where side by side)");
+  app.add_option("--model", a.model,
+                 "friction model: exact | ellipsoidal | stock (| all where side by side)");
   app.add_option("--rate", a.rate, "simulation steps per second (default 240)");
   app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 2)");
   app.add_option("--t-max", a.tMax, "simulated time limit [s] (default 3)");
@@ -119,16 +119,20 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
     maxR = std::max(maxR, spec.R);
   }
   const double spacing = kSpacingRadii * maxR;
-  for (std::size_t i = 0; i < n; ++i) offsets[i] = Vec3(0, spacing * (0.5 * double(n - 1) - double(i)), 0);
-  const double arrowScale =
-      config.forceArrowScale > 0 ? config.forceArrowScale : (maxForce > 0 ? kArrowRadii * maxR / maxForce : 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    offsets[i] = Vec3(0, spacing * (0.5 * double(n - 1) - double(i)), 0);
+  const double arrowScale = config.forceArrowScale > 0
+                                ? config.forceArrowScale
+                                : (maxForce > 0 ? kArrowRadii * maxR / maxForce : 0.0);
 
   // camera: fits every body at every rendered instant
   std::vector<render::SceneBody> extent;
   for (std::size_t i = 0; i < n; ++i)
     for (long s = 0; s <= frameSteps; s += k)
-      extent.push_back(drawBody(config.bodies[i], sampleAt(results[i], std::size_t(s)), offsets[i]));
-  const render::Camera camera = render::fitCamera(extent, -90.0, 42.0, double(width) / height, 1.25);
+      extent.push_back(
+          drawBody(config.bodies[i], sampleAt(results[i], std::size_t(s)), offsets[i]));
+  const render::Camera camera =
+      render::fitCamera(extent, -90.0, 42.0, double(width) / height, 1.25);
 
   render::RenderOptions options;
   options.width = width;
@@ -155,7 +159,8 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
       const std::size_t last = std::min(now, r.trajectory.size() - 1);
       const std::size_t stride = std::max<std::size_t>(1, last / 200);
       for (std::size_t j = last % stride; j <= last; j += stride)
-        trail.points.push_back(offsets[i] + Vec3(r.trajectory[j].position.x(), r.trajectory[j].position.y(),
+        trail.points.push_back(offsets[i] + Vec3(r.trajectory[j].position.x(),
+                                                 r.trajectory[j].position.y(),
                                                  options.groundHeight));
       scene.trails.push_back(trail);
       if (b.spec.force.norm() > 0) {
@@ -186,8 +191,9 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
 
   // summary.json: per body as `patchspin simulate --engine bullet --json`
   nlohmann::json summary;
-  summary["video"] = {{"frames", a.frames}, {"fps", a.fps},       {"steps_per_frame", k},
-                      {"width", width},     {"height", height},   {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
+                      {"steps_per_frame", k}, {"width", width},
+                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
@@ -263,7 +269,6 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
   return 0;
 }
 
-
 void parseSize(const std::string& size, int& width, int& height) {
   const auto x = size.find('x');
   try {
@@ -283,17 +288,22 @@ void parseSize(const std::string& size, int& width, int& height) {
 void printProgress(const std::string& name, int done, int total) {
   constexpr int kBar = 40;
   static const bool kTerminal = ::isatty(STDERR_FILENO) != 0;
-  if (!kTerminal && done != total && (done * 10 / total == (done - 1) * 10 / total || done == 0)) return;
+  if (!kTerminal && done != total && (done * 10 / total == (done - 1) * 10 / total || done == 0))
+    return;
   const int filled = total > 0 ? done * kBar / total : kBar;
   std::fprintf(stderr, "%s%s: [%s%s] %d/%d frames%s", kTerminal ? "\r" : "", name.c_str(),
-               std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(kBar - filled), ' ').c_str(),
-               done, total, kTerminal && done != total ? "" : "\n");
+               std::string(std::size_t(filled), '#').c_str(),
+               std::string(std::size_t(kBar - filled), ' ').c_str(), done, total,
+               kTerminal && done != total ? "" : "\n");
   std::fflush(stderr);
 }
 
-nlohmann::json jsonOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json jsonOrNull(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
-int runMain(CLI::App& app, int argc, char** argv, const char* name, const std::function<int()>& run) {
+int runMain(CLI::App& app, int argc, char** argv, const char* name,
+            const std::function<int()>& run) {
   try {
     app.parse(argc, argv);
     return run();

@@ -37,9 +37,9 @@ struct CommonArgs {
   double fps = 30.0;
   std::string size = "960x540";
   std::string model = "exact";
-  double rate = 240.0;   // simulation steps per simulated second
-  double slowmo = 2.0;   // video seconds per simulated second
-  double tMax = 3.0;     // simulated time limit [s]
+  double rate = 240.0;  // simulation steps per simulated second
+  double slowmo = 2.0;  // video seconds per simulated second
+  double tMax = 3.0;    // simulated time limit [s]
   bool plot = true;
   bool progress = true;
 };
@@ -74,6 +74,7 @@ nlohmann::json jsonOrNull(double value);
 
 // Parses the command line and calls `run`, turning errors into one line on
 // stderr ("<name>: error: ...") and an exit code, as every demo does.
-int runMain(CLI::App& app, int argc, char** argv, const char* name, const std::function<int()>& run);
+int runMain(CLI::App& app, int argc, char** argv, const char* name,
+            const std::function<int()>& run);
 
 }  // namespace patchspin::demos

@@ -16,7 +16,8 @@ namespace {
 using namespace patchspin;
 
 struct Args {
-  double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, v0Angle = 90.0, omega0 = 20.0;
+  double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, v0Angle = 90.0,
+         omega0 = 20.0;
   double g = 9.81;
   double zeta = 0.15;  // T / (m g R)
   double force = 0.1;  // F / (mu m g)
@@ -30,12 +31,15 @@ int run(const Args& a, demos::CommonArgs c) {
   demos::DemoConfig config;
   config.name = "disk_torque";
   char title[220];
-  std::snprintf(title, sizeof title,
-                "disk with torque (Sect. 6.3, Case 4) R = %g cm, zeta = T/(mgR) = %g, F = %g mu m g "
-                "(F_crit = %.3g mu m g)",
-                100 * a.radius, a.zeta, a.force, fCrit);
+  std::snprintf(
+      title, sizeof title,
+      "disk with torque (Sect. 6.3, Case 4) R = %g cm, zeta = T/(mgR) = %g, F = %g mu m g "
+      "(F_crit = %.3g mu m g)",
+      100 * a.radius, a.zeta, a.force, fCrit);
   config.title = title;
-  config.caption = "paper (Case 4): force and parallel in-plane torque; see sphere_*.png for the limit directions";
+  config.caption =
+      "paper (Case 4): force and parallel in-plane torque; see sphere_*.png for the limit "
+      "directions";
   const double angle = a.v0Angle * std::acos(-1.0) / 180.0;
   struct M {
     const char* model;
@@ -72,8 +76,9 @@ int main(int argc, char** argv) {
   demos::CommonArgs c;
   c.out = "demo-out/disk_torque";
   c.model = "all";
-  CLI::App app{"disk_torque: a thin disk under an in-plane force and a parallel in-plane torque, Case 4 of "
-               "Sect. 6.3; ellipsoidal and exact side by side (headless, PNG frames)"};
+  CLI::App app{
+      "disk_torque: a thin disk under an in-plane force and a parallel in-plane torque, Case 4 of "
+      "Sect. 6.3; ellipsoidal and exact side by side (headless, PNG frames)"};
   bool noPlot = false, quiet = false;
   demos::addCommonOptions(app, c, &noPlot, &quiet);
   app.add_option("--radius", a.radius, "disk radius R [m] (default 0.05)");

@@ -24,6 +24,7 @@
 // gets its gnuplot script next to it (<png without .png>.gp).
 #include <patchspin/render/plot.hpp>
 
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,6 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
-#include <unistd.h>
 #include <string>
 #include <vector>
 
@@ -53,7 +53,8 @@ render::SweepPanel parsePanel(const std::string& text) {
     panel.title = text.substr(0, eq);
     panel.csvPath = text.substr(eq + 1);
   }
-  if (panel.csvPath.empty()) throw std::invalid_argument("--panel needs TITLE=CSV, got '" + text + "'");
+  if (panel.csvPath.empty())
+    throw std::invalid_argument("--panel needs TITLE=CSV, got '" + text + "'");
   return panel;
 }
 
@@ -61,7 +62,8 @@ render::SweepPanel parsePanel(const std::string& text) {
 void parseSize(const std::string& text, render::PlotOptions& options) {
   int w = 0, h = 0;
   char x = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w < 100 || h < 100)
+  if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w < 100 ||
+      h < 100)
     throw std::invalid_argument("--size needs WxH with W, H >= 100, got '" + text + "'");
   options.width = w;
   options.height = h;
@@ -96,9 +98,12 @@ std::vector<std::string> splitCsvLine(const std::string& line) {
   std::vector<std::string> out(1);
   bool quoted = false;
   for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) out.emplace_back();
-    else if (c != '\r') out.back() += c;
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      out.emplace_back();
+    else if (c != '\r')
+      out.back() += c;
   }
   return out;
 }
@@ -139,7 +144,8 @@ struct ParetoCsv {
     }
     ++kept;
     char line[512];
-    std::snprintf(line, sizeof line, "\"%s\",%.6g,%.6g,\"%s\"\n", model.c_str(), time, error, label.c_str());
+    std::snprintf(line, sizeof line, "\"%s\",%.6g,%.6g,\"%s\"\n", model.c_str(), time, error,
+                  label.c_str());
     out << line;
   }
   std::string finish() {
@@ -171,8 +177,9 @@ void plotPatchPareto(const std::string& csv, const std::string& level, const std
       model += ", " + setting.substr(0, comma);
       setting = setting.substr(comma + 2);
     }
-    auto it = std::find_if(points.begin(), points.end(),
-                           [&](const Point& p) { return p.model == model && p.setting == setting; });
+    auto it = std::find_if(points.begin(), points.end(), [&](const Point& p) {
+      return p.model == model && p.setting == setting;
+    });
     if (it == points.end()) it = points.insert(points.end(), Point{model, setting, {}, {}});
     it->times.push_back(1e-9 * t.number(i, "time_ns"));
     it->errors.push_back(t.number(i, "err_" + statistic));
@@ -199,26 +206,31 @@ void plotPatchPareto(const std::string& csv, const std::string& level, const std
       }
       bool apart = true;
       for (const auto& [t0, e0] : labelled)
-        apart = apart && (std::abs(std::log10(time / t0)) > 0.2 || std::abs(std::log10(error / e0)) > 0.5);
+        apart = apart &&
+                (std::abs(std::log10(time / t0)) > 0.2 || std::abs(std::log10(error / e0)) > 0.5);
       if (apart) labelled.emplace_back(time, error);
       pareto.add(model, time, error, p.setting == "-" || !apart ? "" : p.setting);
     }
   }
   const std::string data = pareto.finish();
   render::ParetoOptions p;
-  p.timeLabel = level == "block" ? "CPU time per friction-block solve [s]" : "CPU time per law evaluation [s]";
+  p.timeLabel = level == "block" ? "CPU time per friction-block solve [s]"
+                                 : "CPU time per law evaluation [s]";
   p.errorLabel = statistic + " relative error of the " + (level == "block" ? "impulse" : "wrench") +
                  " against the exact law";
   if (options.title.empty())
-    options.title = std::string("per patch: time against error (") + (level == "block" ? "friction block" : "law") +
+    options.title = std::string("per patch: time against error (") +
+                    (level == "block" ? "friction block" : "law") +
                     "; disk, rectangle, hexagon pooled)";
-  if (pareto.dropped) options.title += " (" + std::to_string(pareto.dropped) + " zero-error rows off the log axes)";
+  if (pareto.dropped)
+    options.title += " (" + std::to_string(pareto.dropped) + " zero-error rows off the log axes)";
   render::plotPareto(data, out, p, options);
 }
 
 // per simulation: one series per model, one point per time step
-void plotSimulationPareto(const std::string& csv, const std::string& scene, const std::string& metric,
-                          const std::string& out, render::PlotOptions options) {
+void plotSimulationPareto(const std::string& csv, const std::string& scene,
+                          const std::string& metric, const std::string& out,
+                          render::PlotOptions options) {
   const Table t = readTable(csv);
   ParetoCsv pareto("sim");
   std::vector<std::string> series;
@@ -233,28 +245,37 @@ void plotSimulationPareto(const std::string& csv, const std::string& scene, cons
   for (const std::string& model : series)
     for (std::size_t i : rowsOf[model]) {
       const double stop = t.number(i, "err_tstop"), terminal = t.number(i, "err_terminal");
-      double e = metric == "tstop" ? stop : metric == "terminal" ? terminal : std::max(stop, terminal);
-      if (metric == "combined" && (std::isnan(stop) || std::isnan(terminal))) e = NAN;  // did not stop
+      double e = metric == "tstop"      ? stop
+                 : metric == "terminal" ? terminal
+                                        : std::max(stop, terminal);
+      if (metric == "combined" && (std::isnan(stop) || std::isnan(terminal)))
+        e = NAN;  // did not stop
       pareto.add(model, t.number(i, "cpu_per_sim_s"), e, t.at(i, "dt"));
     }
   const std::string data = pareto.finish();
   render::ParetoOptions p;
   p.timeLabel = "CPU time per simulated second [s]";
-  const bool ratio = !t.rows.empty() && t.at(rowsOf[series.front()].front(), "terminal_kind") == "ratio";
-  const std::string terminalName = ratio ? "rel. error of terminal v/(R{/Symbol w})" : "|w - w_{ref}| at the end";
+  const bool ratio =
+      !t.rows.empty() && t.at(rowsOf[series.front()].front(), "terminal_kind") == "ratio";
+  const std::string terminalName =
+      ratio ? "rel. error of terminal v/(R{/Symbol w})" : "|w - w_{ref}| at the end";
   p.errorLabel = metric == "tstop"      ? "relative error of the stopping time"
                  : metric == "terminal" ? terminalName
                                         : "max(rel. error of t_{stop}, " + terminalName + ")";
-  if (options.title.empty()) options.title = scene + ": error against the exact law's reference dynamics";
+  if (options.title.empty())
+    options.title = scene + ": error against the exact law's reference dynamics";
   if (pareto.dropped)
-    options.title += " (" + std::to_string(pareto.dropped) + " runs off the log axes: no stop or zero error)";
+    options.title +=
+        " (" + std::to_string(pareto.dropped) + " runs off the log axes: no stop or zero error)";
   render::plotPareto(data, out, p, options);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"plots: bifurcation diagrams from `patchspin sweep` CSVs and time-against-error plots (gnuplot PNG)"};
+  CLI::App app{
+      "plots: bifurcation diagrams from `patchspin sweep` CSVs and time-against-error plots "
+      "(gnuplot PNG)"};
   app.require_subcommand(1);
 
   std::string size = "900x600", title, out;
@@ -269,47 +290,58 @@ int main(int argc, char** argv) {
     sub->add_option("--title", title, "plot title (gnuplot enhanced text)");
   };
   auto addSweep = [&](CLI::App* sub) {
-    sub->add_option("--panel", panels, "TITLE=CSV of `patchspin sweep --out`, one per panel, left to right")
+    sub->add_option("--panel", panels,
+                    "TITLE=CSV of `patchspin sweep --out`, one per panel, left to right")
         ->required();
     sub->add_option("--force-label", forceLabel, "F axis title (default F)");
     sub->add_option("--torque-label", torqueLabel, "T axis title (default T)");
   };
 
-  CLI::App* force = app.add_subcommand("force", "limit directions against F (Fig. 11), one panel per sweep");
+  CLI::App* force =
+      app.add_subcommand("force", "limit directions against F (Fig. 11), one panel per sweep");
   addCommon(force);
   addSweep(force);
-  force->add_option("--component", component, "0: angle atan2(w3, w1) [deg] (default); 1, 2, 3: w1, w2, w3")
+  force
+      ->add_option("--component", component,
+                   "0: angle atan2(w3, w1) [deg] (default); 1, 2, 3: w1, w2, w3")
       ->check(CLI::Range(0, 3));
   force->add_option("--torque", torque, "use the rows with this T (default: smallest |T|)");
 
-  CLI::App* plane = app.add_subcommand("plane", "number and types of limit directions over (F, T) (Fig. 13)");
+  CLI::App* plane =
+      app.add_subcommand("plane", "number and types of limit directions over (F, T) (Fig. 13)");
   addCommon(plane);
   addSweep(plane);
 
   std::string csv;
   render::ParetoOptions pareto;
-  CLI::App* paretoCmd = app.add_subcommand("pareto", "time against error, CSV model,time,error[,label]");
+  CLI::App* paretoCmd =
+      app.add_subcommand("pareto", "time against error, CSV model,time,error[,label]");
   addCommon(paretoCmd);
   paretoCmd->add_option("--csv", csv, "input CSV")->required();
   paretoCmd->add_option("--time-label", pareto.timeLabel, "x axis title");
   paretoCmd->add_option("--error-label", pareto.errorLabel, "y axis title");
 
   std::string level = "block", statistic = "rms", scene, metric = "combined";
-  CLI::App* patchCmd =
-      app.add_subcommand("pareto-patch", "time against error per patch, from bench_patch_error's CSV");
+  CLI::App* patchCmd = app.add_subcommand(
+      "pareto-patch", "time against error per patch, from bench_patch_error's CSV");
   addCommon(patchCmd);
   patchCmd->add_option("--csv", csv, "docs/bench/patch_error.csv")->required();
-  patchCmd->add_option("--level", level, "block (friction-block solve, default) or law (Q(w) evaluation)")
+  patchCmd
+      ->add_option("--level", level,
+                   "block (friction-block solve, default) or law (Q(w) evaluation)")
       ->check(CLI::IsMember({"block", "law"}));
-  patchCmd->add_option("--statistic", statistic, "error over the sample: median, rms (default) or max")
+  patchCmd
+      ->add_option("--statistic", statistic, "error over the sample: median, rms (default) or max")
       ->check(CLI::IsMember({"median", "rms", "max"}));
-  CLI::App* simCmd =
-      app.add_subcommand("pareto-sim", "time against error per simulation, from bench_bullet_simulation's CSV");
+  CLI::App* simCmd = app.add_subcommand(
+      "pareto-sim", "time against error per simulation, from bench_bullet_simulation's CSV");
   addCommon(simCmd);
   simCmd->add_option("--csv", csv, "docs/bench/simulation_error.csv")->required();
-  simCmd->add_option("--scene", scene, "scene name as in the CSV (e.g. \"coin from 1\")")->required();
-  simCmd->add_option("--metric", metric,
-                     "combined (max of stopping-time and terminal error, default), tstop or terminal")
+  simCmd->add_option("--scene", scene, "scene name as in the CSV (e.g. \"coin from 1\")")
+      ->required();
+  simCmd
+      ->add_option("--metric", metric,
+                   "combined (max of stopping-time and terminal error, default), tstop or terminal")
       ->check(CLI::IsMember({"combined", "tstop", "terminal"}));
 
   CLI11_PARSE(app, argc, argv);

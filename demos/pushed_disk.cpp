@@ -14,23 +14,29 @@ namespace {
 using namespace patchspin;
 
 struct Args {
-  double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, v0Angle = 90.0, omega0 = 20.0;
+  double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, v0Angle = 90.0,
+         omega0 = 20.0;
   double g = 9.81;
   double case1 = 1.2, case2 = 0.5, case3 = 0.05;  // F / (mu m g)
 };
 
 int run(const Args& a, const demos::CommonArgs& c) {
   demos::validateCommonArgs(c);
-  if (c.model == "all") throw CLI::ValidationError("--model", "must be exact, ellipsoidal or stock");
+  if (c.model == "all")
+    throw CLI::ValidationError("--model", "must be exact, ellipsoidal or stock");
   if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu >= 0))
     throw CLI::ValidationError("parameters", "need radius, height, mass, g > 0, mu >= 0");
   demos::DemoConfig config;
   config.name = "pushed_disk";
   char title[200];
-  std::snprintf(title, sizeof title, "pushed disk (Sect. 6.1) R = %g cm, H = %g mm, mu = %g, v0 = %g m/s at %g deg, "
-                "omega0 = %g rad/s", 100 * a.radius, 1000 * a.height, a.mu, a.v0, a.v0Angle, a.omega0);
+  std::snprintf(title, sizeof title,
+                "pushed disk (Sect. 6.1) R = %g cm, H = %g mm, mu = %g, v0 = %g m/s at %g deg, "
+                "omega0 = %g rad/s",
+                100 * a.radius, 1000 * a.height, a.mu, a.v0, a.v0Angle, a.omega0);
   config.title = title;
-  config.caption = "paper: Case 1 never sticks; Case 2 stops sliding along F (w1); Case 3 stops in slip and spin (w3, w4)";
+  config.caption =
+      "paper: Case 1 never sticks; Case 2 stops sliding along F (w1); Case 3 stops in slip and "
+      "spin (w3, w4)";
   const double pi = std::acos(-1.0);
   const double angle = a.v0Angle * pi / 180.0;
   const double factors[3] = {a.case1, a.case2, a.case3};
@@ -64,8 +70,10 @@ int main(int argc, char** argv) {
   Args a;
   demos::CommonArgs c;
   c.out = "demo-out/pushed_disk";
-  CLI::App app{"pushed_disk: a thin disk under a constant in-plane force, Cases 1-3 of Sect. 6.1 side by side "
-               "(headless, PNG frames)"};
+  CLI::App app{
+      "pushed_disk: a thin disk under a constant in-plane force, Cases 1-3 of Sect. 6.1 side by "
+      "side "
+      "(headless, PNG frames)"};
   bool noPlot = false, quiet = false;
   demos::addCommonOptions(app, c, &noPlot, &quiet);
   app.add_option("--radius", a.radius, "disk radius R [m] (default 0.05)");

@@ -15,7 +15,8 @@ namespace {
 using namespace patchspin;
 
 struct Args {
-  double radius = 0.05, muHOverR = 0.2, mass = 0.3, mu = 0.3, v0 = 0.3, v0Angle = 90.0, omega0 = 15.0;
+  double radius = 0.05, muHOverR = 0.2, mass = 0.3, mu = 0.3, v0 = 0.3, v0Angle = 90.0,
+         omega0 = 15.0;
   double g = 9.81;
   double force = 0.1;  // F / (mu m g)
 };
@@ -24,16 +25,18 @@ int run(const Args& a, demos::CommonArgs c) {
   demos::validateCommonArgs(c);
   if (!(a.radius > 0 && a.muHOverR > 0 && a.mass > 0 && a.g > 0 && a.mu > 0))
     throw CLI::ValidationError("parameters", "need radius, mu-h-over-r, mass, g, mu > 0");
-  const double h = a.muHOverR * a.radius / a.mu;  // centre of mass height [m]
+  const double h = a.muHOverR * a.radius / a.mu;                     // centre of mass height [m]
   const double fCrit = (1.0 + std::pow(4.0 * a.muHOverR, 2)) / 9.0;  // Eq. (127) / (mu m g)
   demos::DemoConfig config;
   config.name = "thick_disk";
   char title[220];
   std::snprintf(title, sizeof title,
-                "thick disk (Sect. 6.2) R = %g cm, H = %.3g cm (mu h/R = %g), F = %g mu m g (F_crit = %.3g mu m g)",
+                "thick disk (Sect. 6.2) R = %g cm, H = %.3g cm (mu h/R = %g), F = %g mu m g "
+                "(F_crit = %.3g mu m g)",
                 100 * a.radius, 200 * h, a.muHOverR, a.force, fCrit);
   config.title = title;
-  config.caption = "paper: below F_crit the thick disk stops in slip and spin, its path turned away from F";
+  config.caption =
+      "paper: below F_crit the thick disk stops in slip and spin, its path turned away from F";
   const double angle = a.v0Angle * std::acos(-1.0) / 180.0;
   struct M {
     const char* model;
@@ -69,12 +72,15 @@ int main(int argc, char** argv) {
   demos::CommonArgs c;
   c.out = "demo-out/thick_disk";
   c.model = "all";
-  CLI::App app{"thick_disk: a thick disk pushed below the critical force of Eq. (127) turns away from the force "
-               "as it stops; ellipsoidal and exact side by side (headless, PNG frames)"};
+  CLI::App app{
+      "thick_disk: a thick disk pushed below the critical force of Eq. (127) turns away from the "
+      "force "
+      "as it stops; ellipsoidal and exact side by side (headless, PNG frames)"};
   bool noPlot = false, quiet = false;
   demos::addCommonOptions(app, c, &noPlot, &quiet);
   app.add_option("--radius", a.radius, "disk radius R [m] (default 0.05)");
-  app.add_option("--mu-h-over-r", a.muHOverR, "mu h / R, h = H/2 the height of the centre of mass (default 0.2)");
+  app.add_option("--mu-h-over-r", a.muHOverR,
+                 "mu h / R, h = H/2 the height of the centre of mass (default 0.2)");
   app.add_option("--mass", a.mass, "mass [kg] (default 0.3)");
   app.add_option("--mu", a.mu, "friction coefficient (default 0.3)");
   app.add_option("--g", a.g, "gravity [m/s^2] (default 9.81)");

@@ -48,7 +48,8 @@ void checkExact(const Vec3& Q, const Bounds& b, const char* what) {
   if (f > b.force * (1.0 + kBoundSlack) + kBoundSlack * b.scale + b.roundOffForce + kTiny) {
     fail("%s: |(Px, Py)| = %.17g exceeds mu ∫|p| = %.17g", what, f, b.force);
   }
-  if (std::abs(Q.z()) > b.torque * (1.0 + kBoundSlack) + kBoundSlack * b.scale + b.roundOffTorque + kTiny) {
+  if (std::abs(Q.z()) >
+      b.torque * (1.0 + kBoundSlack) + kBoundSlack * b.scale + b.roundOffTorque + kTiny) {
     fail("%s: |Tz/rho| = %.17g exceeds mu ∫|p| max|r| / rho = %.17g", what, std::abs(Q.z()),
          b.torque);
   }
@@ -62,7 +63,8 @@ void checkExact(const Vec3& Q, const Bounds& b, const char* what) {
 // (|J| << terms) does not shrink (found: Pz/A = 1e-19 from terms 7e-3)
 void checkHomogeneous(const Mat3& J, const Vec3& w, double lever, double terms, const char* what) {
   checkFinite(J, what);
-  const double lhs = Vec3(J * w).stableNorm(), rhs = std::max(stableMatrixNorm(J) * w.stableNorm(), terms);
+  const double lhs = Vec3(J * w).stableNorm(),
+               rhs = std::max(stableMatrixNorm(J) * w.stableNorm(), terms);
   if (lhs > kHomogeneitySlack * (1.0 + lever) * rhs + kTiny) {
     fail("%s: |dQ/dw w| = %.17g, not 0 (|dQ/dw| |w| = %.17g)", what, lhs, rhs);
   }
@@ -99,7 +101,8 @@ void run(ByteReader& in) {
     }
     case 2: {
       const double Pz = in.number(), Tx = in.number(), Ty = in.number();
-      const PatchLoads l = nearestAdmissibleLoads(shape, PatchLoads{Pz, Tx, Ty}, shape.defaultRho());
+      const PatchLoads l =
+          nearestAdmissibleLoads(shape, PatchLoads{Pz, Tx, Ty}, shape.defaultRho());
       pressure = LinearPressure::fromLoads(shape, l);
       break;
     }
@@ -108,8 +111,8 @@ void run(ByteReader& in) {
       hertzPz = in.number();
       break;
   }
-  note("mode %d, mu = %.17g, rho = %.17g, pressure (%.17g, %.17g, %.17g), Hertz Pz %.17g", mode % 4, mu,
-       rho, pressure.p0, pressure.cx, pressure.cy, hertzPz);
+  note("mode %d, mu = %.17g, rho = %.17g, pressure (%.17g, %.17g, %.17g), Hertz Pz %.17g", mode % 4,
+       mu, rho, pressure.p0, pressure.cx, pressure.cy, hertzPz);
   const FrictionPatch patch = hertz ? FrictionPatch(shape, HertzPressure{hertzPz}, mu, rho)
                                     : FrictionPatch(shape, pressure, mu, rho);
   if (!std::isfinite(mu) || mu < 0.0) fail("mu = %.17g accepted", mu);
@@ -150,7 +153,8 @@ void run(ByteReader& in) {
   {
     const LinearPressure& pc = patch.pressure();
     const double rmax = shape.maxDistanceFromOrigin();
-    const double termsA = hertz ? Pz : shape.area() * (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax);
+    const double termsA =
+        hertz ? Pz : shape.area() * (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax);
     const double sliver = std::max(1.0, shape.diameter() / shape.area() * shape.diameter());
     termsRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * sliver * termsA;
     bounds.roundOffForce = mu * termsRoundOff;
@@ -178,10 +182,10 @@ void run(ByteReader& in) {
   // (and on reasonably shaped patches: slivers and long levers max|r| / rho
   // lose digits to cancellation in both laws, differently)
   const double d = shape.diameter();
-  const bool moderateInput =
-      shape.area() >= 1e-3 * d * d && lever <= 1e3 && moderate(mu * Pz) && moderate(patch.Pi().cwiseAbs().maxCoeff()) &&
-      moderate(bounds.scale + ellipsoidalBound) &&
-      moderate(patch.pressure().coefficients().cwiseAbs().maxCoeff() + Pz);
+  const bool moderateInput = shape.area() >= 1e-3 * d * d && lever <= 1e3 && moderate(mu * Pz) &&
+                             moderate(patch.Pi().cwiseAbs().maxCoeff()) &&
+                             moderate(bounds.scale + ellipsoidalBound) &&
+                             moderate(patch.pressure().coefficients().cwiseAbs().maxCoeff() + Pz);
 
   const uint8_t accuracyMode = in.byte();
   ExactAccuracy accuracy;
@@ -201,7 +205,8 @@ void run(ByteReader& in) {
       checkFinite(Qe, "ellipsoidal Q");
       checkFinite(J, "ellipsoidal dQ/dw");
       if (Qe.stableNorm() > ellipsoidalBound * (1.0 + kBoundSlack) + kTiny) {
-        fail("ellipsoidal |Q| = %.17g exceeds mu Pz |Pi| = %.17g", Qe.stableNorm(), ellipsoidalBound);
+        fail("ellipsoidal |Q| = %.17g exceeds mu Pz |Pi| = %.17g", Qe.stableNorm(),
+             ellipsoidalBound);
       }
       const Vec3 Qx = patch.exactQ(w, &J, accuracy);
       if (!toleranceValid) fail("exactQ accepted tolerance %.17g", accuracy.tolerance);
@@ -213,8 +218,9 @@ void run(ByteReader& in) {
       // (at full accuracy: the accuracy knob truncates series, Jacobian included)
       if (moderateInput && moderate(w.cwiseAbs().maxCoeff()) && accuracy.tolerance == 0.0) {
         const LinearPressure& pc = patch.pressure();
-        const double terms = mu * shape.area() *
-                             (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * shape.maxDistanceFromOrigin());
+        const double terms =
+            mu * shape.area() *
+            (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * shape.maxDistanceFromOrigin());
         checkHomogeneous(J, w, lever, terms, "exact dQ/dw");
       }
       // without the Jacobian: the same value
@@ -228,8 +234,10 @@ void run(ByteReader& in) {
                                     shape.diameter() / shape.area() * shape.diameter();
       const double same = std::max({kBoundSlack, 10.0 * accuracy.tolerance, sliverRoundOff});
       if (!(Qx2 == Qx) && (Qx2 - Qx).stableNorm() > same * bounds.scale + kTiny) {
-        fail("exact Q differs with and without the Jacobian: (%.17g %.17g %.17g) vs (%.17g %.17g %.17g)",
-             Qx.x(), Qx.y(), Qx.z(), Qx2.x(), Qx2.y(), Qx2.z());
+        fail(
+            "exact Q differs with and without the Jacobian: (%.17g %.17g %.17g) vs (%.17g %.17g "
+            "%.17g)",
+            Qx.x(), Qx.y(), Qx.z(), Qx2.x(), Qx2.y(), Qx2.z());
       }
       checkExact(patch.unitQ(Model::Exact, w, &J), unit, "exact unit q");
       checkFinite(patch.unitQ(Model::Ellipsoidal, w, &J), "ellipsoidal unit q");
@@ -250,10 +258,11 @@ void run(ByteReader& in) {
       // (the unit law unitQ divides by Pz instead of multiplying by mu: its
       // terms are ∫|p| / Pz; found: a 2e-16 m disk with |p| ~ 2.6e31 and
       // Pz = 2e-308, whose unit Jacobian is ~1e313 at |w| = 4.5e-5)
-      const double pressureTerms = shape.area() * (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax) *
+      const double pressureTerms = shape.area() *
+                                   (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * rmax) *
                                    (1.0 + rmax / patch.rho());
-      const double terms = mu * pressureTerms + pressureTerms / std::abs(patch.Pz()) + bounds.scale +
-                           ellipsoidalBound;
+      const double terms = mu * pressureTerms + pressureTerms / std::abs(patch.Pz()) +
+                           bounds.scale + ellipsoidalBound;
       // (or the unscaled sum c_k dF_k itself, before mu or 1/Pz and 1/|w|:
       // found, p0 = DBL_MAX on a 4e-16 m patch at |w| = 8e-33, terms 1e310;
       // and coefficients 2.9e300 on a 0.5 m disk, terms 2.3e300 at any w.
@@ -272,8 +281,9 @@ void run(ByteReader& in) {
       const double leverRatio = rmax / patch.rho();
       const double jacobianTerms = pressureTerms * (1.0 + leverRatio + 1.0 / leverRatio);
       const double unscaled = std::max(jacobianTerms, jacobianTerms / wMax);
-      const bool tiny = usable && (wMax < 1e-100 || terms / wMax > 1e100 ||
-                                   unscaled > std::numeric_limits<double>::max() / kOverflowMargin) &&
+      const bool tiny = usable &&
+                        (wMax < 1e-100 || terms / wMax > 1e100 ||
+                         unscaled > std::numeric_limits<double>::max() / kOverflowMargin) &&
                         std::strstr(e.what(), "dQ/dw overflows") != nullptr;
       // Q itself overflowing where its bound mu ∫|p| (1 + lever) is within
       // kOverflowMargin of double's range (found: bound 4.7e307, Tz/rho inf)
@@ -295,16 +305,17 @@ void run(ByteReader& in) {
   const double agreeScale = bounds.scale + ellipsoidalBound;
   if (!moderateInput) return;
   std::vector<Vec3> special = {Vec3(0.0, 0.0, 1.0), Vec3(0.0, 0.0, -1.0)};
-  if (firstW.head<2>().cwiseAbs().maxCoeff() > 0.0) special.emplace_back(firstW.x(), firstW.y(), 0.0);
+  if (firstW.head<2>().cwiseAbs().maxCoeff() > 0.0)
+    special.emplace_back(firstW.x(), firstW.y(), 0.0);
   // the exact law's kernel integrals about O and the table's moments round
   // differently: eps (max|r| / diameter)^2 for a patch far from O, times the
   // cancellation of the pressure's terms about O, times a sliver's (found:
   // a 1.7e-3 m 26-gon 850 diameters from O, terms / ∫|p| = 3e3: 2e-8 apart,
   // where eps 850^2 3e3 = 4.8e-7)
   const double farOffset = shape.maxDistanceFromOrigin() / shape.diameter();
-  const double conditioning = kTermsUlps * std::numeric_limits<double>::epsilon() *
-                              std::max(1.0, farOffset * farOffset) *
-                              std::max(1.0, termsRoundOff / (kTermsUlps * std::numeric_limits<double>::epsilon()) / absP);
+  const double conditioning =
+      kTermsUlps * std::numeric_limits<double>::epsilon() * std::max(1.0, farOffset * farOffset) *
+      std::max(1.0, termsRoundOff / (kTermsUlps * std::numeric_limits<double>::epsilon()) / absP);
   for (const Vec3& w : special) {
     checkAgree(patch.exactQ(w), patch.ellipsoidalQ(w), agreeScale, conditioning,
                w.z() == 0.0 ? "pure translation" : "pure spin about O");
@@ -313,4 +324,6 @@ void run(ByteReader& in) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return runInput(data, size, run); }
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return runInput(data, size, run);
+}

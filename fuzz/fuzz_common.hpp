@@ -121,8 +121,8 @@ class ByteReader {
                                    1e-8};
       return specials[tag % 16];
     }
-    const int16_t mantissa = static_cast<int16_t>(static_cast<uint16_t>(byte()) |
-                                                  static_cast<uint16_t>(byte()) << 8);
+    const int16_t mantissa =
+        static_cast<int16_t>(static_cast<uint16_t>(byte()) | static_cast<uint16_t>(byte()) << 8);
     return std::ldexp(static_cast<double>(mantissa), (tag & 63) - 44);
   }
 
@@ -194,7 +194,8 @@ inline PatchShape takeShape(ByteReader& in) {
     shape = shape.inFrame(origin, in.number());
   }
   if (shape.isDisk()) {
-    note("disk R = %.17g, centre (%.17g, %.17g)", shape.radius(), shape.centre().x(), shape.centre().y());
+    note("disk R = %.17g, centre (%.17g, %.17g)", shape.radius(), shape.centre().x(),
+         shape.centre().y());
   } else {
     note("polygon with %zu vertices:", shape.vertices().size());
     for (const Vec2& v : shape.vertices()) note("  (%.17g, %.17g)", v.x(), v.y());
@@ -214,7 +215,8 @@ inline long double pressureAt(const LinearPressure& p, const Vec2& point) {
 // |p0| + |cx x| + |cy y|: the size of the terms whose double sum (the core's
 // own evaluation) rounds to ~eps times it
 inline long double pressureTerms(const LinearPressure& p, const Vec2& point) {
-  return std::abs(static_cast<long double>(p.p0)) + std::abs(static_cast<long double>(p.cx) * point.x()) +
+  return std::abs(static_cast<long double>(p.p0)) +
+         std::abs(static_cast<long double>(p.cx) * point.x()) +
          std::abs(static_cast<long double>(p.cy) * point.y());
 }
 

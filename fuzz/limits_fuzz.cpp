@@ -61,9 +61,10 @@ void run(ByteReader& in) {
     return LinearPressure{c[0], c[1], c[2]};
   }();
   const double rmax = shape.maxDistanceFromOrigin();
-  const double absP = shape.area() * (std::abs(rest.p0) + (std::abs(rest.cx) + std::abs(rest.cy)) * rmax);
-  const double scale = body.mu * std::max(std::abs(loads.force.z()), absP) * (1.0 + rmax / flat.rho()) *
-                           stableMatrixNorm(Minv) +
+  const double absP =
+      shape.area() * (std::abs(rest.p0) + (std::abs(rest.cx) + std::abs(rest.cy)) * rmax);
+  const double scale = body.mu * std::max(std::abs(loads.force.z()), absP) *
+                           (1.0 + rmax / flat.rho()) * stableMatrixNorm(Minv) +
                        Vec3(Minv * flat.externalWrench(loads)).stableNorm();
   note("field scale %.17g", scale);
   LimitOptions options;
@@ -87,8 +88,8 @@ void run(ByteReader& in) {
     checkFinite(F, "limit field");
     const double off = (F - d.w.dot(F) * d.w).stableNorm();
     if (off > kFixedPointSlack * scale + std::numeric_limits<double>::min()) {
-      fail("direction (%.17g %.17g %.17g) is no fixed point: |V*| = %.3g, scale %.3g", d.w.x(), d.w.y(),
-           d.w.z(), off, scale);
+      fail("direction (%.17g %.17g %.17g) is no fixed point: |V*| = %.3g, scale %.3g", d.w.x(),
+           d.w.y(), d.w.z(), off, scale);
     }
   }
   for (const LimitContinuum& c : result.continua) {
@@ -103,4 +104,6 @@ void run(ByteReader& in) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return runInput(data, size, run); }
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return runInput(data, size, run);
+}

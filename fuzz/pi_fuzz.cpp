@@ -64,16 +64,20 @@ void checkTable(const PatchShape& shape) {
     fail("∫r dA = %.17g outside [0, A r_max = %.17g]", m(Row::kR, 0), A * rmax);
   }
   if (!within(std::hypot(m(Row::kXOverR, 0), m(Row::kYOverR, 0)), A, A)) {
-    fail("|∫(x, y)/r dA| = %.17g > A = %.17g", std::hypot(m(Row::kXOverR, 0), m(Row::kYOverR, 0)), A);
+    fail("|∫(x, y)/r dA| = %.17g > A = %.17g", std::hypot(m(Row::kXOverR, 0), m(Row::kYOverR, 0)),
+         A);
   }
-  if (!within(std::hypot(m(Row::kX, 0), m(Row::kY, 0)), A * rmax, A * rmax)) fail("|∫(x, y) dA| > A r_max");
+  if (!within(std::hypot(m(Row::kX, 0), m(Row::kY, 0)), A * rmax, A * rmax))
+    fail("|∫(x, y) dA| > A r_max");
   // columns x, y: |phi| <= r_max
   for (int k = 1; k < 3; ++k) {
     const double s = A * rmax;
     if (!within(m(Row::kOne, k), s, s)) fail("|∫phi dA| > A r_max");
     if (!within(m(Row::kR, k), s * rmax, s * rmax)) fail("|∫r phi dA| > A r_max^2");
-    if (!within(std::hypot(m(Row::kXOverR, k), m(Row::kYOverR, k)), s, s)) fail("|∫phi (x, y)/r| > A r_max");
-    if (!within(std::hypot(m(Row::kX, k), m(Row::kY, k)), s * rmax, s * rmax)) fail("|∫phi (x, y)| > A r_max^2");
+    if (!within(std::hypot(m(Row::kXOverR, k), m(Row::kYOverR, k)), s, s))
+      fail("|∫phi (x, y)/r| > A r_max");
+    if (!within(std::hypot(m(Row::kX, k), m(Row::kY, k)), s * rmax, s * rmax))
+      fail("|∫phi (x, y)| > A r_max^2");
   }
   // the polynomial rows are the area moments
   const AreaMoments& am = shape.areaMoments();
@@ -106,9 +110,10 @@ void checkPi(const PiMoments& pm, double rho) {
     if (!(rho > 0.0) || !std::isfinite(rho)) fail("ellipsoidalPi accepted rho = %.17g", rho);
     checkFinite(Pi, "Pi");
     // Eq. (40), entry by entry
-    const bool same = Pi(0, 0) == 1.0 && Pi(0, 1) == 0.0 && Pi(0, 2) == -pm.pi_y0 && Pi(1, 0) == 0.0 &&
-                      Pi(1, 1) == 1.0 && Pi(1, 2) == pm.pi_x0 && Pi(2, 0) == -pm.pi_y / rho &&
-                      Pi(2, 1) == pm.pi_x / rho && Pi(2, 2) == pm.pi_xy / rho;
+    const bool same = Pi(0, 0) == 1.0 && Pi(0, 1) == 0.0 && Pi(0, 2) == -pm.pi_y0 &&
+                      Pi(1, 0) == 0.0 && Pi(1, 1) == 1.0 && Pi(1, 2) == pm.pi_x0 &&
+                      Pi(2, 0) == -pm.pi_y / rho && Pi(2, 1) == pm.pi_x / rho &&
+                      Pi(2, 2) == pm.pi_xy / rho;
     if (!same) fail("Pi differs from Eq. (40)");
   } catch (const Error& e) {
     checkErrorMessage(e);
@@ -123,7 +128,8 @@ void checkPi(const PiMoments& pm, double rho) {
 void run(ByteReader& in) {
   const PatchShape shape = takeShape(in);
   const double offset = shape.maxDistanceFromOrigin() / shape.diameter();
-  const double sliver = shape.maxDistanceFromOrigin() / shape.area() * shape.maxDistanceFromOrigin();
+  const double sliver =
+      shape.maxDistanceFromOrigin() / shape.area() * shape.maxDistanceFromOrigin();
   offsetSlack = 4.0 * std::numeric_limits<double>::epsilon() * std::max(offset * offset, sliver);
   farRowsSlack = 0.0;
   checkTable(shape);
@@ -134,7 +140,8 @@ void run(ByteReader& in) {
     // Hertz pressure (57) on a disk
     const double Pz = in.number();
     const PiMoments pm = piMomentsHertz(shape, HertzPressure{Pz});
-    if (!shape.isDisk() || !(Pz > 0.0) || !std::isfinite(Pz)) fail("piMomentsHertz accepted bad input");
+    if (!shape.isDisk() || !(Pz > 0.0) || !std::isfinite(Pz))
+      fail("piMomentsHertz accepted bad input");
     checkMoments(pm, 1.0, rmax, "Hertz pi moments");
     checkPi(pm, rho);
     return;
@@ -150,14 +157,15 @@ void run(ByteReader& in) {
     // refusing is right for non-finite coefficients or Pz <= 0
     const double Pz = shape.momentTable().m.row(MomentTable::kOne).dot(p.coefficients());
     // (or averages that overflow: a Pz much smaller than the coefficients' terms)
-    const double terms = shape.area() * maxAbsPressure(shape, p) * (1.0 + shape.maxDistanceFromOrigin());
+    const double terms =
+        shape.area() * maxAbsPressure(shape, p) * (1.0 + shape.maxDistanceFromOrigin());
     // (or a Pz within the round-off of its three terms, whose sign is then
     // noise: found, Pz = 1.6e-82 from terms of 3e-32 that cancel)
     const double rmaxIn = shape.maxDistanceFromOrigin();
     const double noise = 4.0 * std::numeric_limits<double>::epsilon() * shape.area() *
                          (std::abs(p0) + (std::abs(cx) + std::abs(cy)) * rmaxIn);
-    if (p.coefficients().allFinite() && Pz > noise && std::isfinite(Pz) && std::isfinite(1.0 / Pz) &&
-        terms / Pz < 1e300) {
+    if (p.coefficients().allFinite() && Pz > noise && std::isfinite(Pz) &&
+        std::isfinite(1.0 / Pz) && terms / Pz < 1e300) {
       fail("piMoments refused a pressure with Pz = %.17g: %s", Pz, e.what());
     }
     return;
@@ -165,8 +173,8 @@ void run(ByteReader& in) {
   if (!p.coefficients().allFinite()) fail("piMoments accepted non-finite coefficients");
   if (!shape.isDisk()) {
     const double far = std::min(rmax / shape.diameter(), kClosedFormRowsMaxOffset);
-    farRowsSlack = std::numeric_limits<double>::epsilon() * far * far * far *
-                   std::hypot(cx, cy) * shape.diameter() * shape.area() / pm.Pz;
+    farRowsSlack = std::numeric_limits<double>::epsilon() * far * far * far * std::hypot(cx, cy) *
+                   shape.diameter() * shape.area() / pm.Pz;
   }
   const double absRatio = absPressureIntegral(shape, p, pm.Pz) / pm.Pz;
   if (std::isfinite(absRatio)) checkMoments(pm, std::max(1.0, absRatio), rmax, "pi moments");
@@ -175,4 +183,6 @@ void run(ByteReader& in) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return runInput(data, size, run); }
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return runInput(data, size, run);
+}

@@ -60,7 +60,8 @@ void run(ByteReader& in) {
     const Mat3 G = shape.areaMoments().loadMatrix();
     const double cond = conditionOf(G);
     // |G (G^-1 y) - y| <= eps cond(G) |y| (the product adds |G| |G^-1 y| ~ the same)
-    const double tol = kSolveSlack * cond * (rhs.norm() + G.norm() * p.coefficients().norm() / cond);
+    const double tol =
+        kSolveSlack * cond * (rhs.norm() + G.norm() * p.coefficients().norm() / cond);
     // (checked where cond(G) < kMaxCondition: beyond, the explicit inverse's
     // error grows like eps cond^2 and no fixed factor bounds it)
     constexpr double kMaxCondition = 1e4;
@@ -88,18 +89,21 @@ void run(ByteReader& in) {
       // which on a sliver is off by ~eps diameter^3 / area (found: a 5e-9 m^2
       // sliver 1 m long, centroid off by 2e-8 m, with |grad p| = 2.4e14 Pa/m)
       const long double mean = pressureAt(p, shape.centre());
-      if (above(shape.centre())) fail("minPressure %.17g above the mean pressure %.17Lg", pmin, mean);
+      if (above(shape.centre()))
+        fail("minPressure %.17g above the mean pressure %.17Lg", pmin, mean);
       for (int k = 0; k < 16; ++k) {
         const double a = 2.0 * kPi * k / 16.0;
         const Vec2 rim = shape.centre() + shape.radius() * Vec2(std::cos(a), std::sin(a));
         if (above(rim)) {
-          fail("minPressure %.17g above the pressure on the rim %.17Lg (slack %.3g)", pmin, pressureAt(p, rim), slack);
+          fail("minPressure %.17g above the pressure on the rim %.17Lg (slack %.3g)", pmin,
+               pressureAt(p, rim), slack);
         }
       }
     } else {
       for (const Vec2& v : shape.vertices()) {
         if (above(v)) {
-          fail("minPressure %.17g above the pressure at a vertex %.17Lg (slack %.3g)", pmin, pressureAt(p, v), slack);
+          fail("minPressure %.17g above the pressure at a vertex %.17Lg (slack %.3g)", pmin,
+               pressureAt(p, v), slack);
         }
       }
     }
@@ -129,7 +133,8 @@ void run(ByteReader& in) {
   const PatchLoads near = nearestAdmissibleLoads(shape, loads, rhoIn);
   note("nearest (%.17g, %.17g, %.17g)", near.Pz, near.Tx, near.Ty);
   if (!finiteLoads) fail("nearestAdmissibleLoads accepted non-finite loads");
-  if (!(rhoIn > 0.0) || !std::isfinite(rhoIn)) fail("nearestAdmissibleLoads accepted rho = %.17g", rhoIn);
+  if (!(rhoIn > 0.0) || !std::isfinite(rhoIn))
+    fail("nearestAdmissibleLoads accepted rho = %.17g", rhoIn);
   checkFinite(near.asVector(), "nearest admissible loads");
   if (!(Pz > 0.0)) {
     if (!near.asVector().isZero(0.0)) fail("Pz <= 0 not mapped to zero load");
@@ -144,8 +149,10 @@ void run(ByteReader& in) {
   // (denormal loads excepted: there the relative tolerance itself underflows)
   if (near.Pz > 1e-290 && !isAdmissible(shape, near, kProjectionSlack + kSolveSlack * cond)) {
     const double pmin = minPressure(shape, LinearPressure::fromLoads(shape, near));
-    fail("nearest admissible loads (%.17g %.17g %.17g) not admissible: min pressure %.17g, mean %.17g",
-         near.Pz, near.Tx, near.Ty, pmin, near.Pz / shape.area());
+    fail(
+        "nearest admissible loads (%.17g %.17g %.17g) not admissible: min pressure %.17g, mean "
+        "%.17g",
+        near.Pz, near.Tx, near.Ty, pmin, near.Pz / shape.area());
   }
   if (near.Pz < 0.0) fail("nearest admissible loads with Pz < 0");
   // no farther than the zero load and the uniform pressure with the same Pz
@@ -157,11 +164,15 @@ void run(ByteReader& in) {
   const double best = uniform.asVector().allFinite() ? std::min(dist(PatchLoads{}), dist(uniform))
                                                      : dist(PatchLoads{});
   const double d = dist(near);
-  if (d > best * (1.0 + kDistanceSlack) + kDistanceSlack * Vec3(Pz, Tx / rhoIn, Ty / rhoIn).norm()) {
-    fail("nearest admissible loads at distance %.17g, but an admissible candidate is at %.17g", d, best);
+  if (d >
+      best * (1.0 + kDistanceSlack) + kDistanceSlack * Vec3(Pz, Tx / rhoIn, Ty / rhoIn).norm()) {
+    fail("nearest admissible loads at distance %.17g, but an admissible candidate is at %.17g", d,
+         best);
   }
 }
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return runInput(data, size, run); }
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return runInput(data, size, run);
+}

@@ -128,12 +128,15 @@ void run(ByteReader& in) {
     input.tolerance = std::isfinite(t) ? std::min(std::abs(t), 1e-14) : t;
   }
   const bool finite = input.b.allFinite() && std::isfinite(input.L) && input.K.allFinite() &&
-                      input.warmSlip.allFinite() && input.warmGauge.allFinite() && std::isfinite(input.tolerance);
+                      input.warmSlip.allFinite() && input.warmGauge.allFinite() &&
+                      std::isfinite(input.tolerance);
 
   note("mu %.17g, rho %.17g, loads (%.17g %.17g %.17g)", mu, rho, loads.Pz, loads.Tx, loads.Ty);
   note("%s, b (%.17g %.17g %.17g), L %.17g, warm (%.17g %.17g %.17g)", toString(model), input.b.x(),
-       input.b.y(), input.b.z(), input.L, input.warmSlip.x(), input.warmSlip.y(), input.warmSlip.z());
-  for (int i = 0; i < 3; ++i) note("K (%.17g %.17g %.17g)", input.K(i, 0), input.K(i, 1), input.K(i, 2));
+       input.b.y(), input.b.z(), input.L, input.warmSlip.x(), input.warmSlip.y(),
+       input.warmSlip.z());
+  for (int i = 0; i < 3; ++i)
+    note("K (%.17g %.17g %.17g)", input.K(i, 0), input.K(i, 1), input.K(i, 2));
   note("warm gauge (%.17g %.17g %.17g), tolerance %.17g", input.warmGauge.x(), input.warmGauge.y(),
        input.warmGauge.z(), input.tolerance);
   // the block's features, for triage: min p over the mean pressure, the
@@ -147,8 +150,8 @@ void run(ByteReader& in) {
     } catch (const Error&) {
     }
     note("features: minp/mean %.3g, lever %.3g, K spread %.3g, K cond %.3g", minP / meanP,
-         shape.maxDistanceFromOrigin() / patch.rho(),
-         kd.maxCoeff() / kd.minCoeff(), isSpd(input.K) ? scaledCondition(input.K) : -1.0);
+         shape.maxDistanceFromOrigin() / patch.rho(), kd.maxCoeff() / kd.minCoeff(),
+         isSpd(input.K) ? scaledCondition(input.K) : -1.0);
   }
   // the block's domain in the patch (step.hpp): pressure >= 0 to 1e-6 of
   // the mean, lever max|r| / rho in [1e-5, 1e5]. Outside it (beyond
@@ -177,23 +180,27 @@ void run(ByteReader& in) {
     if (model != Model::Exact) return 0.0;
     const LinearPressure& pq = patch.pressure();
     const double rm = shape.maxDistanceFromOrigin();
-    const double terms = shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rm);
-    return 64.0 * std::numeric_limits<double>::epsilon() * lawRoundOffFactor(shape) * terms / std::abs(patch.Pz());
+    const double terms =
+        shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rm);
+    return 64.0 * std::numeric_limits<double>::epsilon() * lawRoundOffFactor(shape) * terms /
+           std::abs(patch.Pz());
   }();
   // and K's diagonal spanning at most 1e30, where it is positive (a K with
   // a diagonal entry <= 0 is not positive definite: refused for that)
   constexpr double kMaxDiagonalSpan = 1e30;
   const Vec3 kDiagonal = input.K.diagonal();
-  const double span = kDiagonal.minCoeff() > 0.0 ? kDiagonal.maxCoeff() / kDiagonal.minCoeff() : 1.0;
+  const double span =
+      kDiagonal.minCoeff() > 0.0 ? kDiagonal.maxCoeff() / kDiagonal.minCoeff() : 1.0;
   // (the Hertz pressure is not fuzzed here: every patch has a linear one)
-  const bool outsideDomain = lever > kMaxLever * kDomainMargin || lever < kMinLever / kDomainMargin ||
-                             lowest < -kNegativePressureTol * kDomainMargin * meanPressure ||
-                             span > kMaxDiagonalSpan * kDomainMargin || lawNoise > kLawNoDigits * kDomainMargin;
-  const bool nearDomainEdge = !outsideDomain && (lever > kMaxLever / kDomainMargin ||
-                                                 lever < kMinLever * kDomainMargin ||
-                                                 lowest < -kNegativePressureTol / kDomainMargin * meanPressure ||
-                                                 span > kMaxDiagonalSpan / kDomainMargin ||
-                                                 lawNoise > kLawNoDigits / kDomainMargin);
+  const bool outsideDomain =
+      lever > kMaxLever * kDomainMargin || lever < kMinLever / kDomainMargin ||
+      lowest < -kNegativePressureTol * kDomainMargin * meanPressure ||
+      span > kMaxDiagonalSpan * kDomainMargin || lawNoise > kLawNoDigits * kDomainMargin;
+  const bool nearDomainEdge =
+      !outsideDomain &&
+      (lever > kMaxLever / kDomainMargin || lever < kMinLever * kDomainMargin ||
+       lowest < -kNegativePressureTol / kDomainMargin * meanPressure ||
+       span > kMaxDiagonalSpan / kDomainMargin || lawNoise > kLawNoDigits / kDomainMargin);
   FrictionBlockResult out;
   try {
     out = solveFrictionBlock(patch, model, input);
@@ -203,16 +210,18 @@ void run(ByteReader& in) {
     // (and for magnitudes whose products overflow: kRange; and, exact law,
     // for a numerically singular K: scaledCondition)
     constexpr double kRange = 1e100;
-    const double size = input.b.stableNorm() + input.L * stableMatrixNorm(input.K) + input.warmSlip.stableNorm();
+    const double size =
+        input.b.stableNorm() + input.L * stableMatrixNorm(input.K) + input.warmSlip.stableNorm();
     const bool moderate = size < kRange && stableMatrixNorm(input.K) < kRange &&
                           stableMatrixNorm(Mat3(input.K.inverse())) < kRange && input.L < kRange;
     // (or a pressure whose unscaled terms c_k dF_k, before 1/Pz, are within
     // 1e8 of overflow: the law's Jacobian refuses those, as in friction_q;
     // found, loads ~1e300 on a 0.5 m disk)
     const LinearPressure& pc = patch.pressure();
-    const double pressureTerms = shape.area() *
-                                 (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * shape.maxDistanceFromOrigin()) *
-                                 (1.0 + shape.maxDistanceFromOrigin() / patch.rho());
+    const double pressureTerms =
+        shape.area() *
+        (std::abs(pc.p0) + (std::abs(pc.cx) + std::abs(pc.cy)) * shape.maxDistanceFromOrigin()) *
+        (1.0 + shape.maxDistanceFromOrigin() / patch.rho());
     const bool hugePressure = !(pressureTerms < std::numeric_limits<double>::max() / 1e8);
     const bool singular = isSpd(input.K) && scaledCondition(input.K) >= kSingularCondition;
     const bool unverified =
@@ -242,14 +251,18 @@ void run(ByteReader& in) {
     }
   }
   if (outsideDomain && finite) {
-    fail("block outside the domain accepted: lever %.17g, min p %.17g of the mean, K's diagonal spans %.17g, "
-         "law round-off %.3g", lever, lowest / meanPressure, span, lawNoise);
+    fail(
+        "block outside the domain accepted: lever %.17g, min p %.17g of the mean, K's diagonal "
+        "spans %.17g, "
+        "law round-off %.3g",
+        lever, lowest / meanPressure, span, lawNoise);
   }
   if (input.L < 0.0) fail("L = %.17g accepted", input.L);
   checkFinite(out.impulse, "block impulse");
   checkFinite(out.slip, "block slip");
   note("impulse (%.17g %.17g %.17g), slip (%.17g %.17g %.17g), sticking %d", out.impulse.x(),
-       out.impulse.y(), out.impulse.z(), out.slip.x(), out.slip.y(), out.slip.z(), int(out.sticking));
+       out.impulse.y(), out.impulse.z(), out.slip.x(), out.slip.y(), out.slip.z(),
+       int(out.sticking));
   if (out.sticking && !out.slip.isZero(0.0)) fail("sticking with nonzero slip");
   // the stick test's boundary point, where located: a unit slip and a finite law value
   if (!out.gaugeSlip.isZero(0.0)) {
@@ -261,9 +274,12 @@ void run(ByteReader& in) {
   // (plus the rounding of slip and impulse to the denormal grid, half a step
   // per entry, the impulse's through K; found: b of denormals against
   // K_xx = 3.8e146, where K^-1 b = 0 in x)
-  const double slipScale = input.b.stableNorm() + stableMatrixNorm(input.K) * out.impulse.stableNorm();
-  const double slipDenormals = 4.0 * std::numeric_limits<double>::denorm_min() * (1.0 + stableMatrixNorm(input.K));
-  if (Vec3(out.slip - input.b - input.K * out.impulse).stableNorm() > kBoundSlack * slipScale + slipDenormals) {
+  const double slipScale =
+      input.b.stableNorm() + stableMatrixNorm(input.K) * out.impulse.stableNorm();
+  const double slipDenormals =
+      4.0 * std::numeric_limits<double>::denorm_min() * (1.0 + stableMatrixNorm(input.K));
+  if (Vec3(out.slip - input.b - input.K * out.impulse).stableNorm() >
+      kBoundSlack * slipScale + slipDenormals) {
     fail("slip != b + K impulse");
   }
   if (input.L == 0.0) {
@@ -288,9 +304,10 @@ void run(ByteReader& in) {
   // finding)
   constexpr double kTermsUlps = 64.0;
   const LinearPressure& pq = patch.pressure();
-  const double termsA = shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rmax);
-  const double forceRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() * lawRoundOffFactor(shape) * termsA /
-                               std::abs(patch.Pz());
+  const double termsA =
+      shape.area() * (std::abs(pq.p0) + (std::abs(pq.cx) + std::abs(pq.cy)) * rmax);
+  const double forceRoundOff = kTermsUlps * std::numeric_limits<double>::epsilon() *
+                               lawRoundOffFactor(shape) * termsA / std::abs(patch.Pz());
   const double lawRoundOff = forceRoundOff * (1.0 + rmax / patch.rho());
   note("law round-off model: %.3g of the set", lawRoundOff / unitScale);
   // (plus the rounding of the impulse to the denormal grid: each of its
@@ -300,11 +317,13 @@ void run(ByteReader& in) {
   const double denormalRounding = 4.0 * std::numeric_limits<double>::denorm_min();
   if (model == Model::Ellipsoidal) {
     if (out.impulse.stableNorm() > L * unitScale * (1.0 + kBoundSlack) + denormalRounding) {
-      fail("ellipsoidal impulse %.17g outside L |Pi| = %.17g", out.impulse.stableNorm(), L * unitScale);
+      fail("ellipsoidal impulse %.17g outside L |Pi| = %.17g", out.impulse.stableNorm(),
+           L * unitScale);
     }
   } else {
-    if (std::hypot(out.impulse.x(), out.impulse.y()) >
-        L * absRatio * (1.0 + kBoundSlack) + kBoundSlack * L * unitScale + L * forceRoundOff + denormalRounding) {
+    if (std::hypot(out.impulse.x(), out.impulse.y()) > L * absRatio * (1.0 + kBoundSlack) +
+                                                           kBoundSlack * L * unitScale +
+                                                           L * forceRoundOff + denormalRounding) {
       fail("exact impulse force %.17g outside L ∫|p|/Pz = %.17g",
            std::hypot(out.impulse.x(), out.impulse.y()), L * absRatio);
     }
@@ -323,13 +342,15 @@ void run(ByteReader& in) {
   const double s = out.slip.stableNorm();
   const double scale = input.b.stableNorm() + L * stableMatrixNorm(input.K) * unitScale;
   // where the law itself has digits (lawRoundOff above)
-  const bool lawHasDigits = model == Model::Ellipsoidal || lawRoundOff < kLawSlack / 100.0 * unitScale;
+  const bool lawHasDigits =
+      model == Model::Ellipsoidal || lawRoundOff < kLawSlack / 100.0 * unitScale;
   // (and where the slip's direction survives its rounding to the denormal
   // grid, half a step per entry: found, b and K of denorm_min against L =
   // 0.5 solve at unit scale to a slip (1, 1, 0.4), which rounds to (1, 1, 0)
   // denormal steps; its direction, and the law at it, are lost)
   const bool slipResolved = std::numeric_limits<double>::denorm_min() < kLawSlack / 100.0 * s;
-  if (!out.sticking && s > 1e4 * kLawSlack * scale && slipResolved && isSpd(input.K) && lawHasDigits) {
+  if (!out.sticking && s > 1e4 * kLawSlack * scale && slipResolved && isSpd(input.K) &&
+      lawHasDigits) {
     const Vec3 q = patch.unitQ(model, out.slip);
     if ((out.impulse - L * q).stableNorm() > kLawSlack * L * unitScale + denormalRounding) {
       fail("%s slip: impulse != L q(s^), error %.3g of %.3g", toString(model),
@@ -344,7 +365,8 @@ void run(ByteReader& in) {
   // (and only where the law has digits: a law that is round-off noise is no
   // maximum-dissipation law either; found, the sliver above with
   // terms / Pz = 3e10 gained energy 4e-16 -> 2.7)
-  if (model == Model::Exact && isSpd(input.K) && lawHasDigits && minPressure(shape, patch.pressure()) >= 0.0) {
+  if (model == Model::Exact && isSpd(input.K) && lawHasDigits &&
+      minPressure(shape, patch.pressure()) >= 0.0) {
     const Eigen::LLT<Mat3> llt(input.K);
     const double e0 = input.b.dot(llt.solve(input.b)), e1 = out.slip.dot(llt.solve(out.slip));
     if (std::isfinite(e0) &&
@@ -356,4 +378,6 @@ void run(ByteReader& in) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) { return runInput(data, size, run); }
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  return runInput(data, size, run);
+}

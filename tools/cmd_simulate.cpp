@@ -154,7 +154,9 @@ const RegisterCommand registration([](CLI::App& app) {
   cmd->add_option("--t-max", a->tMax, "time limit [s] (default 10)");
   cmd->add_option("--record-at", a->recordAt,
                   "record w when r first falls below FRAC r0 (default 0.01)");
-  cmd->add_option("--precision", a->precision, "float | double (bullet only; default: the precision patchspin::bullet was built with)");
+  cmd->add_option(
+      "--precision", a->precision,
+      "float | double (bullet only; default: the precision patchspin::bullet was built with)");
   cmd->add_flag(
       "--json", a->json,
       "print {stopped, t_stop, w_stop, eps_stop, displacement, rotation} as one JSON object");

@@ -36,8 +36,8 @@ int main() {
   for (int step = 1; step <= 240 && !stopped; ++step) {
     world.stepSimulation(btScalar(1.0 / 240.0), 0);
     if (const patchspin::bullet::PatchReport* patch = solver.findPatchReport(&coin)) {
-      std::printf("t = %.4f s  Pz = %.4f N  r = %.4f m/s  w = (%+.3f %+.3f %+.3f)  %s\n", step / 240.0,
-                  patch->loads.Pz, patch->r, patch->w.x(), patch->w.y(), patch->w.z(),
+      std::printf("t = %.4f s  Pz = %.4f N  r = %.4f m/s  w = (%+.3f %+.3f %+.3f)  %s\n",
+                  step / 240.0, patch->loads.Pz, patch->r, patch->w.x(), patch->w.y(), patch->w.z(),
                   patch->sticking ? "stick" : "slip");
       stopped = patch->sticking;
     }

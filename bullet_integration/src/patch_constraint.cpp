@@ -26,8 +26,9 @@ BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r) {
   return t;
 }
 
-bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
-                         const btContactSolverInfo& info, PatchConstraint& pc) {
+bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA,
+                         const btSolverBody& sbB, int idB, const btContactSolverInfo& info,
+                         PatchConstraint& pc) {
   PatchState& st = *cand.state;
   const double dt = double(info.m_timeStep);
   pc.state = &st;
@@ -51,18 +52,22 @@ bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA
   pc.ids[1] = idB;
   // effective masses of the 6 DOFs and the friction block's Schur
   // complement (normal block held bilateral)
-  if (!parts::makePatchBlocks(parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho), pc.k)) return false;
+  if (!parts::makePatchBlocks(parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho),
+                              pc.k))
+    return false;
   // position error: gap at O (< 0 penetrating) and tilt of the face
   const Vec3 tilt = toEigen(st.geometry.tilt);
-  const parts::NormalTargets targets = parts::normalTargets(
-      st.geometry.gap, st.geometry.clearance, Vec3(0.0, tilt.dot(ex), tilt.dot(ey)), st.geometry.outline.size(),
-      dt, info.m_splitImpulse != 0, double(info.m_erp), double(info.m_erp2));
+  const parts::NormalTargets targets =
+      parts::normalTargets(st.geometry.gap, st.geometry.clearance,
+                           Vec3(0.0, tilt.dot(ex), tilt.dot(ey)), st.geometry.outline.size(), dt,
+                           info.m_splitImpulse != 0, double(info.m_erp), double(info.m_erp2));
   pc.targetN = targets.velocity;
   pc.targetPush = targets.push;
   return true;
 }
 
-bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc, Vec6& lam) {
+bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc,
+               Vec6& lam) {
   if (!(info.m_solverMode & SOLVER_USE_WARMSTARTING) || !cand.wasFlat) return false;
   const PatchState& st = *cand.state;
   const Vec3 ex = pc.F.col(0), ey = pc.F.col(1);

@@ -19,13 +19,15 @@ constexpr double kPatchWarmStartFactor = 1.0;
 // The constraint of `cand` between solver bodies sbA (id idA) and sbB (idB);
 // false if its effective mass has no usable blocks (e.g. a body with locked
 // rotation: the manifold goes to Bullet).
-bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
-                         const btContactSolverInfo& info, PatchConstraint& pc);
+bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA,
+                         const btSolverBody& sbB, int idB, const btContactSolverInfo& info,
+                         PatchConstraint& pc);
 
 // The warm start of a patch that ended the last step flat (false otherwise
 // or without SOLVER_USE_WARMSTARTING): sets pc.lamN, pc.lamF and the friction
 // block's warm slip, and `lam`, the impulse to apply.
-bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc, Vec6& lam);
+bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc,
+               Vec6& lam);
 
 // The end of the step: warm start, stick state, the law's pressure record
 // and tipping into the PatchState; c is the patch's final DOF velocity.

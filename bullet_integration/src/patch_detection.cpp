@@ -24,12 +24,15 @@ constexpr int kDiskSides = 64;
 // (PatchShape rejects repeated vertices).
 constexpr double kMergeFraction = 1e-9;
 
-Vec2 toPlane(const btVector3& p, const btVector3& origin, const btVector3& ex, const btVector3& ey) {
+Vec2 toPlane(const btVector3& p, const btVector3& origin, const btVector3& ex,
+             const btVector3& ey) {
   const btVector3 d = p - origin;
   return Vec2(double(d.dot(ex)), double(d.dot(ey)));
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // Puts the points of a convex set in counter-clockwise order and merges
 // near-duplicates. Faces and clipped overlaps arrive in cyclic order
@@ -61,8 +64,10 @@ void counterClockwise(std::vector<Vec2>& pts) {
   if (!ordered || windings != 1) {
     std::vector<std::pair<double, Vec2>> byAngle;
     byAngle.reserve(n);
-    for (const Vec2& p : pts) byAngle.emplace_back(std::atan2(p.y() - mean.y(), p.x() - mean.x()), p);
-    std::sort(byAngle.begin(), byAngle.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const Vec2& p : pts)
+      byAngle.emplace_back(std::atan2(p.y() - mean.y(), p.x() - mean.x()), p);
+    std::sort(byAngle.begin(), byAngle.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
     for (size_t i = 0; i < n; ++i) pts[i] = byAngle[i].second;
   }
   // merged in place: pts[0, kept) are the points kept so far
@@ -440,7 +445,8 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
 
   Buffers& buf = buffers();
   auto polygonOf = [&](const Face& f, std::vector<Vec2>& pts) {
-    if (f.kind == Face::Kind::Disk) return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius, pts);
+    if (f.kind == Face::Kind::Disk)
+      return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius, pts);
     pts.clear();
     for (const btVector3& p : f.polygonVertices()) pts.push_back(toPlane(p, base, ex, ey));
     counterClockwise(pts);

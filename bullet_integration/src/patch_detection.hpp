@@ -21,20 +21,20 @@ namespace patchspin::bullet::internal {
 struct Face {
   enum class Kind { Disk, Polygon, Plane };
   Kind kind = Kind::Polygon;
-  btVector3 normal{0, 0, 1};        // outward unit normal
-  btVector3 centre{0, 0, 0};        // disk centre / polygon centroid / a point of the plane
-  double radius = 0.0;              // disk only [m]
+  btVector3 normal{0, 0, 1};  // outward unit normal
+  btVector3 centre{0, 0, 0};  // disk centre / polygon centroid / a point of the plane
+  double radius = 0.0;        // disk only [m]
   // Polygon only: its vertices. A box face's are made when first asked for:
   // most lookups (a contact off the faces, an overlap kept from the last
   // step) need the normal and the centre only.
   const std::vector<btVector3>& polygonVertices() const;
 
   // (written by findFaceAlong)
-  mutable std::vector<btVector3> vertices;  // made (hulls), or made on demand (boxes)
-  mutable bool boxPending = false;          // a box face whose vertices are not made yet
-  btTransform boxTransform;                 // the box's world transform
+  mutable std::vector<btVector3> vertices;         // made (hulls), or made on demand (boxes)
+  mutable bool boxPending = false;                 // a box face whose vertices are not made yet
+  btTransform boxTransform;                        // the box's world transform
   btVector3 boxCentre{0, 0, 0}, boxHalf{0, 0, 0};  // face centre, half extents (box frame)
-  int boxU = 0, boxV = 0;                   // the face's in-plane axes (box frame)
+  int boxU = 0, boxV = 0;                          // the face's in-plane axes (box frame)
 };
 
 // The face of `object` whose outward normal is closest to `direction`
@@ -59,8 +59,8 @@ bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& su
 // the PatchShape (moment tables) is built from it only when it changes.
 struct PatchOutline {
   bool disk = true;
-  double radius = 0.0;           // disk, centred at O [m]
-  std::vector<Vec2> vertices;    // polygon, counter-clockwise, centroid at O [m]
+  double radius = 0.0;         // disk, centred at O [m]
+  std::vector<Vec2> vertices;  // polygon, counter-clockwise, centroid at O [m]
   // Same outline up to `tol` [m] in every coordinate.
   bool matches(const PatchOutline& other, double tol) const;
   // Its size for relative tolerances [m]: the radius, or the distance of the
@@ -72,18 +72,18 @@ struct PatchOutline {
 
 // A flat patch between face `a` of the moving body and face `b` it stands on.
 struct DetectedPatch {
-  btVector3 origin{0, 0, 0};          // O (on b's plane), world
-  btVector3 normal{0, 0, 1};          // z: b's outward normal (into a's body)
-  btVector3 xAxis{1, 0, 0};           // in-plane axes
+  btVector3 origin{0, 0, 0};  // O (on b's plane), world
+  btVector3 normal{0, 0, 1};  // z: b's outward normal (into a's body)
+  btVector3 xAxis{1, 0, 0};   // in-plane axes
   btVector3 yAxis{0, 1, 0};
-  PatchOutline outline;               // overlap, patch frame about O
-  Vec2 centre = Vec2::Zero();         // O in the plane frame about a's projected face centre
-  double gap = 0.0;                   // signed distance of a's face centre above b's plane [m]
+  PatchOutline outline;        // overlap, patch frame about O
+  Vec2 centre = Vec2::Zero();  // O in the plane frame about a's projected face centre
+  double gap = 0.0;            // signed distance of a's face centre above b's plane [m]
   // least distance of a's face above b's plane over the overlap [m]: the
   // gap where the faces are parallel, less where a is tilted on b (its low
   // side is the first to touch)
   double clearance = 0.0;
-  btVector3 tilt{0, 0, 0};            // small rotation of a that makes it flat on b [rad]
+  btVector3 tilt{0, 0, 0};  // small rotation of a that makes it flat on b [rad]
 };
 
 // Builds the overlap of the two faces (a disk stays a disk while it lies

@@ -70,7 +70,8 @@ Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<bt
     w = internal::toEigen(t.w0 + pool[t.id].m_deltaAngularVelocity);
   });
 }
-void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool, const Vec6& lam) {
+void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool,
+                  const Vec6& lam) {
   parts::applyPatchImpulse(pc.a.body, pc.b.body, pc.F, pc.fb.rho, lam,
                            [&](int side, const Vec3& dv, const Vec3& dw) {
                              btSolverBody& sb = pool[side == 0 ? pc.a.id : pc.b.id];
@@ -80,7 +81,8 @@ void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>&
 }
 // The delta velocities of a patch's two solver bodies (a settled patch is
 // skipped while they are unchanged).
-void snapshotOf(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool, btVector3* out) {
+void snapshotOf(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool,
+                btVector3* out) {
   const btSolverBody& a = pool[pc.ids[0]];
   const btSolverBody& b = pool[pc.ids[1]];
   out[0] = a.m_deltaLinearVelocity;
@@ -101,14 +103,14 @@ struct VisitContext {
 // support's normal block, 2 all six DOFs; sup: the held patch). False: the
 // held support cannot take its share, and the visit is to be redone with
 // less held (nothing was applied). `worst` gets the largest squared change.
-bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup, const parts::HeldBlocks* hold,
-                int held, double& worst) {
+bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup,
+                const parts::HeldBlocks* hold, int held, double& worst) {
   const parts::PatchBlocks& k = hold ? static_cast<const parts::PatchBlocks&>(*hold) : pc.k;
   FrictionPatch& friction = *pc.state->friction;
   // normal block (S4)-(S6)
   const Vec6 c = constraintVelocity(pc, cx.pool);
-  const parts::NormalImpulse normal =
-      parts::solveNormalVelocity(k.Winv, pc.lamN, c.head<3>(), pc.targetN, pc.shape, friction.shape());
+  const parts::NormalImpulse normal = parts::solveNormalVelocity(
+      k.Winv, pc.lamN, c.head<3>(), pc.targetN, pc.shape, friction.shape());
   pc.interior = normal.interior;
   pc.tipping = normal.tipping;
   Vec6 d = Vec6::Zero();
@@ -118,8 +120,9 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup, con
   // complement Ks) while it is inside the admissible set (S7)-(S14)
   const Vec3 s = c.tail<3>() + k.Knf.transpose() * d.head<3>();
   bool refreshed = false;
-  const Vec3 lamF = parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
-                                                 pc.lamF, pc.lamN, held, cx.friction, cx.stats, refreshed);
+  const Vec3 lamF =
+      parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
+                                   pc.lamF, pc.lamN, held, cx.friction, cx.stats, refreshed);
   d.tail<3>() = lamF - pc.lamF;
   pc.lamF = lamF;
   if (pc.interior) {
@@ -128,7 +131,8 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup, con
     d.head<3>() += dn;
     pc.lamN += dn;
   }
-  if (held == 2 && !parts::frictionCanTake(sup->fb, *sup->state->friction, sup->lamN, sup->lamF, hold->gain * d))
+  if (held == 2 &&
+      !parts::frictionCanTake(sup->fb, *sup->state->friction, sup->lamN, sup->lamF, hold->gain * d))
     return false;
   applyImpulse(pc, cx.pool, d);
   worst = std::max(worst, d.squaredNorm());
@@ -176,20 +180,26 @@ void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOpti
   if (!body) throw Error("enablePatchFriction: body is null");
   if (options.mu) {
     patchspin::internal::requireFinite(*options.mu, "PatchOptions::mu");
-    if (*options.mu < 0.0) throw Error("PatchOptions::mu must be >= 0: got " + formatDouble(*options.mu));
+    if (*options.mu < 0.0)
+      throw Error("PatchOptions::mu must be >= 0: got " + formatDouble(*options.mu));
   }
   if (options.rho) patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
-  patchspin::internal::requirePositive(options.flatnessTolerance, "PatchOptions::flatnessTolerance");
+  patchspin::internal::requirePositive(options.flatnessTolerance,
+                                       "PatchOptions::flatnessTolerance");
   impl_->selection.setOptions(body, options);
 }
 
-void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) { impl_->selection.eraseOptions(body); }
+void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) {
+  impl_->selection.eraseOptions(body);
+}
 
 bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
   return impl_->selection.optionsOf(body) != nullptr;
 }
 
-const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const { return impl_->reports.reports(); }
+const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
+  return impl_->reports.reports();
+}
 
 const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
   return impl_->reports.find(body);
@@ -197,17 +207,24 @@ const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject*
 
 void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
   using patchspin::internal::formatDouble;
-  for (const auto& [value, name] : {std::pair{settings.pressureRefreshTolerance, "pressureRefreshTolerance"},
-                                    std::pair{settings.pressureLagTolerance, "pressureLagTolerance"}}) {
-    patchspin::internal::requireFinite(value, (std::string("PatchSolverSettings::") + name).c_str());
+  for (const auto& [value, name] :
+       {std::pair{settings.pressureRefreshTolerance, "pressureRefreshTolerance"},
+        std::pair{settings.pressureLagTolerance, "pressureLagTolerance"}}) {
+    patchspin::internal::requireFinite(value,
+                                       (std::string("PatchSolverSettings::") + name).c_str());
     if (value < 0.0)
-      throw Error(std::string("PatchSolverSettings::") + name + " must be >= 0: got " + formatDouble(value));
+      throw Error(std::string("PatchSolverSettings::") + name + " must be >= 0: got " +
+                  formatDouble(value));
   }
   impl_->settings = settings;
   impl_->friction = frictionSettings(settings);
 }
-const PatchSolverSettings& PatchFrictionSolver::settings() const { return impl_->settings; }
-const PatchSolverStats& PatchFrictionSolver::stats() const { return impl_->stats; }
+const PatchSolverSettings& PatchFrictionSolver::settings() const {
+  return impl_->settings;
+}
+const PatchSolverStats& PatchFrictionSolver::stats() const {
+  return impl_->stats;
+}
 
 void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
   btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
@@ -259,8 +276,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(cand.B), info.m_timeStep);
       im.patches.emplace_back();
       PatchConstraint& pc = im.patches.back();
-      if (!internal::makePatchConstraint(cand, m_tmpSolverBodyPool[idA], idA, m_tmpSolverBodyPool[idB], idB, info,
-                                         pc)) {
+      if (!internal::makePatchConstraint(cand, m_tmpSolverBodyPool[idA], idA,
+                                         m_tmpSolverBodyPool[idB], idB, info, pc)) {
         im.patches.pop_back();
         cand.state->flat = false;  // no usable effective mass: Bullet's contact
         convertContact(m, info);
@@ -272,10 +289,12 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   }
   // 3 link stacks
   if (im.settings.supportedStacks &&
-      std::any_of(im.patches.begin(), im.patches.end(), [](const PatchConstraint& pc) { return pc.b.body.dynamic; })) {
+      std::any_of(im.patches.begin(), im.patches.end(),
+                  [](const PatchConstraint& pc) { return pc.b.body.dynamic; })) {
     // the bodies in Bullet's rows (joints are converted before the contacts)
     im.otherRows.assign(std::size_t(m_tmpSolverBodyPool.size()), 0);
-    for (const btConstraintArray* pool : {&m_tmpSolverContactConstraintPool, &m_tmpSolverNonContactConstraintPool})
+    for (const btConstraintArray* pool :
+         {&m_tmpSolverContactConstraintPool, &m_tmpSolverNonContactConstraintPool})
       for (int i = 0; i < pool->size(); ++i) {
         im.otherRows[std::size_t((*pool)[i].m_solverBodyIdA)] = 1;
         im.otherRows[std::size_t((*pool)[i].m_solverBodyIdB)] = 1;
@@ -283,18 +302,20 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     im.stackViews.clear();
     for (const PatchConstraint& pc : im.patches)
       im.stackViews.push_back({pc.a.id, pc.b.id, &pc.a.body, &pc.b.body, &pc.F, pc.fb.rho});
-    parts::linkStackedPatches(im.stackViews, m_tmpSolverBodyPool.size(), im.otherRows, im.stackLinks, im.holds);
+    parts::linkStackedPatches(im.stackViews, m_tmpSolverBodyPool.size(), im.otherRows,
+                              im.stackLinks, im.holds);
     for (std::size_t i = 0; i < im.patches.size(); ++i) im.patches[i].stack = im.stackLinks[i];
   }
 }
 
 // Stage 5, after Bullet's rows in each iteration.
-btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
-                                                   btPersistentManifold** manifolds, int numManifolds,
-                                                   btTypedConstraint** constraints, int numConstraints,
-                                                   const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
+btScalar PatchFrictionSolver::solveSingleIteration(
+    int iteration, btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+    int numManifolds, btTypedConstraint** constraints, int numConstraints,
+    const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
   const btScalar residual = btSequentialImpulseConstraintSolver::solveSingleIteration(
-      iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+      iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info,
+      debugDrawer);
   if (iteration >= info.m_numIterations) return residual;
   Impl& im = *impl_;
   VisitContext cx{m_tmpSolverBodyPool, im.settings, im.friction, im.stats};
@@ -323,13 +344,15 @@ btScalar PatchFrictionSolver::solveSingleIteration(int iteration, btCollisionObj
       sup = &im.patches[std::size_t(pc.stack.load)];
       stackHold = &im.holds[std::size_t(pc.stack.loadHold)];
     }
-    const parts::HeldBlocks* normalHold = stackHold && stackHold->normal.valid ? &stackHold->normal : nullptr;
+    const parts::HeldBlocks* normalHold =
+        stackHold && stackHold->normal.valid ? &stackHold->normal : nullptr;
     if (!stackHold || !sup->interior) {
       visitPatch(cx, pc, nullptr, nullptr, 0, worst);
     } else if (sup->fb.sticking && stackHold->all.valid) {
       im.retry = pc;
       if (!visitPatch(cx, pc, sup, &stackHold->all, 2, worst)) {
-        const parts::PressureRecord law = pc.fb.law;  // the law is not rolled back: nor is its record
+        const parts::PressureRecord law =
+            pc.fb.law;  // the law is not rolled back: nor is its record
         pc = im.retry;
         pc.fb.law = law;
         visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
@@ -373,7 +396,8 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
 }
 
 // Stage 6.
-btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies,
+                                                            int numBodies,
                                                             const btContactSolverInfo& info) {
   Impl& im = *impl_;
   im.stats.patches += long(im.patches.size());
@@ -385,8 +409,8 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     const PatchLoads l = parts::toLoads(pc.lamN);
     if (l.Pz > 0.0 && pc.fb.mu > 0.0) {
       const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
-      im.stats.maxPressureLag =
-          std::max(im.stats.maxPressureLag, (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
+      im.stats.maxPressureLag = std::max(im.stats.maxPressureLag,
+                                         (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
     }
   }
   im.flushBodies.clear();
@@ -394,7 +418,8 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     if (btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(pc.state->body)))
       im.flushBodies.push_back(body);
   im.patches.clear();
-  const btScalar out = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
+  const btScalar out =
+      btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
   for (btRigidBody* body : im.flushBodies) internal::flushCrumbs(*body);
   return out;
 }

@@ -48,8 +48,10 @@ bool contactOnFaces(const btPersistentManifold& m, bool aIs0, const internal::Fa
     const btManifoldPoint& p = m.getContactPoint(k);
     const btVector3& onA = aIs0 ? p.m_positionWorldOnA : p.m_positionWorldOnB;
     const btVector3& onB = aIs0 ? p.m_positionWorldOnB : p.m_positionWorldOnA;
-    if (btFabs(faceA.normal.dot(onA - faceA.centre)) > tol + ulps * (onA.length() + faceA.centre.length()) ||
-        btFabs(faceB.normal.dot(onB - faceB.centre)) > tol + ulps * (onB.length() + faceB.centre.length()))
+    if (btFabs(faceA.normal.dot(onA - faceA.centre)) >
+            tol + ulps * (onA.length() + faceA.centre.length()) ||
+        btFabs(faceB.normal.dot(onB - faceB.centre)) >
+            tol + ulps * (onB.length() + faceB.centre.length()))
       return false;
   }
   return true;
@@ -166,7 +168,8 @@ bool PatchSelection::select(btPersistentManifold* m, int index, double dt, Patch
     const bool support0 = o0->isStaticOrKinematicObject();
     if (support0 != o1->isStaticOrKinematicObject()) {
       const int type = (support0 ? o0 : o1)->getCollisionShape()->getShapeType();
-      probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE || type == CYLINDER_SHAPE_PROXYTYPE;
+      probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE ||
+               type == CYLINDER_SHAPE_PROXYTYPE;
     }
     if (!probed) {
       if (!mayHaveBeenFlat(m)) return false;
@@ -174,7 +177,8 @@ bool PatchSelection::select(btPersistentManifold* m, int index, double dt, Patch
       // (the same pair: a manifold deleted in this step's broadphase may
       // have been reused for another)
       if (it == states_.end() || !it->second.flat || it->second.lastSeen != step_ - 1 ||
-          !((it->second.body == o0 && it->second.other == o1) || (it->second.body == o1 && it->second.other == o0)))
+          !((it->second.body == o0 && it->second.other == o1) ||
+            (it->second.body == o1 && it->second.other == o0)))
         return false;
       persisting = &it->second;
     }
@@ -199,12 +203,15 @@ bool PatchSelection::select(btPersistentManifold* m, int index, double dt, Patch
     btVector3 lowest;
     const btCollisionObject* body = opt0 ? o0 : o1;
     const btCollisionObject* support = opt0 ? o1 : o0;
-    if (!internal::probeSupportFace(*body, *support, &probeNormal, &clearance, &lowest)) return false;
+    if (!internal::probeSupportFace(*body, *support, &probeNormal, &clearance, &lowest))
+      return false;
     auto pointVelocity = [&](const btCollisionObject* o) {
       const btRigidBody* rb = btRigidBody::upcast(o);
-      return rb ? rb->getVelocityInLocalPoint(lowest - o->getWorldTransform().getOrigin()) : btVector3(0, 0, 0);
+      return rb ? rb->getVelocityInLocalPoint(lowest - o->getWorldTransform().getOrigin())
+                : btVector3(0, 0, 0);
     };
-    const double approach = std::max(0.0, -double(probeNormal.dot(pointVelocity(body) - pointVelocity(support))));
+    const double approach =
+        std::max(0.0, -double(probeNormal.dot(pointVelocity(body) - pointVelocity(support))));
     if (!(clearance >= -reach && clearance <= reach + approach * dt)) return false;
     reach += approach * dt;
   }
@@ -240,8 +247,8 @@ bool PatchSelection::select(btPersistentManifold* m, int index, double dt, Patch
   // has one: for a convex hull that builds the polyhedral features Bullet's
   // own contact clipping then uses)
   double cosA = 0.0, cosB = 0.0;
-  const bool haveFaces =
-      internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_) && internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
+  const bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_) &&
+                         internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
   bool flat = false;
   std::optional<internal::DetectedPatch> geo;
   bool kept = false;  // st.geometry is this step's patch (geo unset)
@@ -262,7 +269,8 @@ bool PatchSelection::select(btPersistentManifold* m, int index, double dt, Patch
                   double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
                       kOverlapRelTol * st.geometry.outline.size();
       for (int row = 0; keep && row < 3; ++row)
-        keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <= kOverlapRelTol;
+        keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
+               kOverlapRelTol;
       // a kept overlap is updated in place (no copy of its outline)
       const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
       if (keep) {

@@ -26,7 +26,8 @@ class PatchSelection {
   void beginIsland(int numSolverBodies);
   // The manifold becomes a patch (a Candidate appended to `out`) or is left
   // to Bullet (false). `dt` [s] is the step.
-  bool select(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats, std::vector<Candidate>& out);
+  bool select(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
+              std::vector<Candidate>& out);
   // Forgets manifolds not seen for a while (they may have been deleted);
   // every kSweepSteps steps.
   void endStep(long step);
@@ -40,8 +41,9 @@ class PatchSelection {
   static constexpr int kFlatFilterLog2 = 16;
   // (inline: asked for every empty manifold of an opted-in body's pairs)
   static std::size_t flatBit(const btPersistentManifold* m) {
-    return std::size_t((std::uint64_t(reinterpret_cast<std::uintptr_t>(m)) * 0x9E3779B97F4A7C15ull) >>
-                       (64 - kFlatFilterLog2));
+    return std::size_t(
+        (std::uint64_t(reinterpret_cast<std::uintptr_t>(m)) * 0x9E3779B97F4A7C15ull) >>
+        (64 - kFlatFilterLog2));
   }
   void markFlat(const btPersistentManifold* m) {
     const std::size_t bit = flatBit(m);

@@ -31,14 +31,18 @@ namespace patchspin::bullet::internal {
 using parts::Mat6;
 using parts::Vec6;
 
-inline Vec3 toEigen(const btVector3& v) { return Vec3(double(v.x()), double(v.y()), double(v.z())); }
+inline Vec3 toEigen(const btVector3& v) {
+  return Vec3(double(v.x()), double(v.y()), double(v.z()));
+}
 // Double -> btScalar with values below the smallest normal btScalar flushed
 // to zero: subnormal operands slow float arithmetic ~100x, and a patch that
 // holds a body flat leaves such crumbs in its velocity changes.
 inline btScalar flushed(double x) {
   return std::abs(x) < double(std::numeric_limits<btScalar>::min()) ? btScalar(0) : btScalar(x);
 }
-inline btVector3 toBt(const Vec3& v) { return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z())); }
+inline btVector3 toBt(const Vec3& v) {
+  return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z()));
+}
 
 // Steps a tipped contact stays with Bullet before it may become a patch again.
 constexpr long kTipCooldownSteps = 10;
@@ -69,8 +73,9 @@ struct PatchState {
   bool sticking = false;      // the friction block stuck at the end of the last step
   bool overlapValid = false;  // see overlapPose
   // the faces' kinds when geometry's overlap was last clipped (see overlapPose)
-  internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon, internal::Face::Kind::Polygon};
-  long shapeId = 0;  // unique per built `friction`
+  internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
+                                          internal::Face::Kind::Polygon};
+  long shapeId = 0;           // unique per built `friction`
   double innerRadius2 = 0.0;  // parts::PatchOutlineSummary::innerRadius2 of `friction`
   parts::PressureRecord law;  // the pressure `friction` was last refreshed with
   // warm start in world axes (the patch frame turns with the body): normal
@@ -88,14 +93,17 @@ struct PatchState {
 
 // A state not seen since the cooldown of a tip: its manifold may have been
 // deleted (and its address reused). Checked at the end of step `step`.
-inline bool isStale(const PatchState& st, long step) { return st.lastSeen < step - kTipCooldownSteps - 1; }
+inline bool isStale(const PatchState& st, long step) {
+  return st.lastSeen < step - kTipCooldownSteps - 1;
+}
 
 // One flat patch of one manifold, for one island solve. Every iteration
 // streams over all of them, so what a visit reads lies together, copied in
 // from the PatchState (shape, fb.law).
 struct PatchConstraint {
   // read by every visit, a skipped one included
-  bool settled = false;  // the last visit changed nothing, and no body velocity changed since (snapshot)
+  bool settled =
+      false;  // the last visit changed nothing, and no body velocity changed since (snapshot)
   bool interior = true;  // centre of pressure on the patch: normal block bilateral
   bool tipping = false;
   PatchState* state = nullptr;

@@ -51,7 +51,8 @@ FlatBodyModel::FlatBodyModel(const FlatBody& body, Model model) : body_(body), m
     throw Error("friction coefficient mu = " + internal::formatDouble(body.mu) +
                 " is denormal (below 2.2e-308): use 0 or a normal double");
   if (body.g < kSmallest)
-    throw Error("gravity g = " + internal::formatDouble(body.g) + " m/s^2 is denormal (below 2.2e-308)");
+    throw Error("gravity g = " + internal::formatDouble(body.g) +
+                " m/s^2 is denormal (below 2.2e-308)");
   internal::requireFinite(body.force, "force");
   internal::requireFinite(body.torque, "torque");
   internal::requireFinite(body.rho, "length scale rho");

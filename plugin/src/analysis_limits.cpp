@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <string>
 #include <patchspin/analysis.hpp>
+#include <string>
 
 namespace patchspin {
 
@@ -432,7 +432,9 @@ namespace {
 
 // Exponent (ilogb) of |x|, or kNoExponent for 0.
 constexpr int kNoExponent = -100000;
-int exponentOf(double x) { return x == 0.0 ? kNoExponent : std::ilogb(std::abs(x)); }
+int exponentOf(double x) {
+  return x == 0.0 ? kNoExponent : std::ilogb(std::abs(x));
+}
 
 LimitAnalysis solveAtScale(const FlatBodyModel& model, const LimitOptions& options);
 
@@ -456,7 +458,8 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   const int eForce = std::max(exponentOf(body.force.x()), exponentOf(body.force.y()));
   const int eTipping = std::max(exponentOf(body.torque.x()), exponentOf(body.torque.y()));
   const int eSpin = exponentOf(body.torque.z());
-  const int eCom = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(body.com.z())});
+  const int eCom =
+      std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(body.com.z())});
   const int eLever = eCom == kNoExponent ? 0 : std::max(0, eCom - eLength);
   auto plus = [](int e, int d) { return e == kNoExponent ? kNoExponent : e + d; };
   // the pressure's loads (weight, tipping couples, force on its lever) set
@@ -469,7 +472,8 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   // Jz = 1e300, a field part of 1e-115, set the scale while friction's was
   // 1e8)
   const int ePressure = std::max({eWeight, plus(eForce, eLever), plus(eTipping, -eLength)});
-  const int eOffset = std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(rho)});
+  const int eOffset =
+      std::max({exponentOf(body.com.x()), exponentOf(body.com.y()), exponentOf(rho)});
   const int eMass = std::max(-exponentOf(body.mass), 2 * eOffset - exponentOf(body.Jz));
   const int eMu = exponentOf(body.mu);
   const int eFrictionField = eMu == kNoExponent ? kNoExponent : ePressure + eMu + eMass;
@@ -482,7 +486,8 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   // direction was 1.4e-3 of the field off the fixed point)
   const int eComXY = std::max(exponentOf(body.com.x()), exponentOf(body.com.y()));
   const int eLeverXY = eComXY == kNoExponent ? 0 : std::max(0, eComXY - eLength);
-  const int eExternalField = std::max(plus(plus(eForce, eLeverXY), eMass), plus(eSpin, eOffset - exponentOf(body.Jz)));
+  const int eExternalField =
+      std::max(plus(plus(eForce, eLeverXY), eMass), plus(eSpin, eOffset - exponentOf(body.Jz)));
   int eLoad = std::max(eFrictionField, eExternalField);
   eLoad = eLoad == kNoExponent ? ePressure : eLoad - eMass;
   // (not beyond pressures of 2^600 at unit scale: mu of 1e-300 stays tiny)
@@ -497,7 +502,8 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
     for (const LimitDirection& d : out.directions) {
       if (!std::isfinite(d.rdot) || !d.eigenvalues.allFinite() || !std::isfinite(d.residual) ||
           !std::isfinite(d.minPressure))
-        throw Error("limit directions: the limit field overflows double (rate " + internal::formatDouble(d.rdot) + ")");
+        throw Error("limit directions: the limit field overflows double (rate " +
+                    internal::formatDouble(d.rdot) + ")");
     }
     for (const LimitContinuum& c : out.continua) {
       if (!std::isfinite(c.rdot)) throw Error("limit directions: the limit field overflows double");
@@ -518,8 +524,8 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   const bool inRange = std::isnormal(unit.mass) && std::isnormal(unit.Jz) && std::isnormal(unit.g);
   if (!inRange) {
     throw Error("limit directions: the body's mass and loads span more than double's range (m " +
-                internal::formatDouble(body.mass) + ", Jz " + internal::formatDouble(body.Jz) + ", g " +
-                internal::formatDouble(body.g) + ")");
+                internal::formatDouble(body.mass) + ", Jz " + internal::formatDouble(body.Jz) +
+                ", g " + internal::formatDouble(body.g) + ")");
   }
   LimitAnalysis out = solveAtScale(FlatBodyModel(unit, model.model()), options);
   // back to the body's own scale (F_o times 2^(eLoad + eMass))
@@ -527,15 +533,17 @@ LimitAnalysis solveNormalised(const FlatBodyModel& model, const LimitOptions& op
   for (LimitDirection& d : out.directions) {
     d.rdot = std::ldexp(d.rdot, eField);
     d.residual = std::ldexp(d.residual, eField);
-    d.eigenvalues = Eigen::Vector2cd(std::complex<double>(std::ldexp(d.eigenvalues[0].real(), eField),
-                                                          std::ldexp(d.eigenvalues[0].imag(), eField)),
-                                     std::complex<double>(std::ldexp(d.eigenvalues[1].real(), eField),
-                                                          std::ldexp(d.eigenvalues[1].imag(), eField)));
+    d.eigenvalues =
+        Eigen::Vector2cd(std::complex<double>(std::ldexp(d.eigenvalues[0].real(), eField),
+                                              std::ldexp(d.eigenvalues[0].imag(), eField)),
+                         std::complex<double>(std::ldexp(d.eigenvalues[1].real(), eField),
+                                              std::ldexp(d.eigenvalues[1].imag(), eField)));
     d.minPressure = std::ldexp(d.minPressure, eLoad);
     if (!std::isfinite(d.rdot) || !d.eigenvalues.allFinite() || !std::isfinite(d.residual) ||
         !std::isfinite(d.minPressure)) {
-      throw Error("limit directions: the limit field overflows double (rate " + internal::formatDouble(d.rdot) +
-                  " at unit scale times 2^" + std::to_string(eField) + ")");
+      throw Error("limit directions: the limit field overflows double (rate " +
+                  internal::formatDouble(d.rdot) + " at unit scale times 2^" +
+                  std::to_string(eField) + ")");
     }
   }
   for (LimitContinuum& c : out.continua) {
@@ -596,8 +604,9 @@ bool solveDegenerate(const FlatBodyModel& model, LimitAnalysis& out) {
   const FlatBody& body = model.body();
   const ContactState rest = model.contactAtRest(Vec3::Zero(), loads);
   const double rmax = body.shape.maxDistanceFromOrigin();
-  const double absP = body.shape.area() *
-                      (std::abs(rest.pressure[0]) + (std::abs(rest.pressure[1]) + std::abs(rest.pressure[2])) * rmax);
+  const double absP =
+      body.shape.area() * (std::abs(rest.pressure[0]) +
+                           (std::abs(rest.pressure[1]) + std::abs(rest.pressure[2])) * rmax);
   const double friction = body.mu * Minv.norm() * absP * (1.0 + rmax / model.rho());
   if (body.mu == 0.0 && external == 0.0) {
     LimitContinuum sphere;
@@ -609,8 +618,10 @@ bool solveDegenerate(const FlatBodyModel& model, LimitAnalysis& out) {
   }
   if (!(external > 0.0 && friction <= kNegligibleFriction * external)) {
     if (!(friction + external >= kUnresolvableField)) {
-      throw Error("limit directions: the limit field is below double's resolution (friction scale " +
-                  internal::formatDouble(friction) + " at unit loads; mu = " + internal::formatDouble(body.mu) + ")");
+      throw Error(
+          "limit directions: the limit field is below double's resolution (friction scale " +
+          internal::formatDouble(friction) +
+          " at unit loads; mu = " + internal::formatDouble(body.mu) + ")");
     }
     return false;
   }

@@ -149,11 +149,13 @@ void addSignedTriangle(double ax, double ay, double bx, double by, double L, dou
     ge[k] = phi.gx[k] * ex + phi.gy[k] * ey;
     gn[k] = phi.gx[k] * nx + phi.gy[k] * ny;
     const double pc = phi.pc[k];
-    const double an = (pc * halfForceN) + (ge[k] * J2 - gn[k] * deltaJ1) * kThird;       // along n
+    const double an = (pc * halfForceN) + (ge[k] * J2 - gn[k] * deltaJ1) * kThird;        // along n
     const double ae = (pc * halfForceE) + (ge[k] * deltaJ1 - gn[k] * delta2J0) * kThird;  // along e
-    const double tq = pc * torque0 +
-                      (ge[k] * (ce * J2) - (ge[k] * cn + gn[k] * ce) * deltaJ1 + gn[k] * (cn * delta2J0)) * kThird +
-                      (ge[k] * K1 - gn[k] * (delta * K0)) * 0.25;
+    const double tq =
+        pc * torque0 +
+        (ge[k] * (ce * J2) - (ge[k] * cn + gn[k] * ce) * deltaJ1 + gn[k] * (cn * delta2J0)) *
+            kThird +
+        (ge[k] * K1 - gn[k] * (delta * K0)) * 0.25;
     sums.fx[k] += delta * (an * nx + ae * ex);
     sums.fy[k] += delta * (an * ny + ae * ey);
     sums.tz[k] += delta * tq;

@@ -22,10 +22,10 @@
 // w3 = 0); dF to ~1e-11 (worst measured 1.4e-10, elongated patch with small
 // rho, at the branch switch; the edge-integral derivative agreed with the
 // former dual-number one to 1.6e-10 of |dF| over 2000 random polygons and
-// 40000 directions, ICRs on vertices and edges included). `tolerance` > 0 lowers only the far branch's
-// order (measured error <= 0.02 tolerance); the edge sum has no knob.
-// The polygon must be convex (the far rule fans from vertex 0); this is not
-// checked here (PatchShape::polygon checks it).
+// 40000 directions, ICRs on vertices and edges included). `tolerance` > 0 lowers only the far
+// branch's order (measured error <= 0.02 tolerance); the edge sum has no knob. The polygon must be
+// convex (the far rule fans from vertex 0); this is not checked here (PatchShape::polygon checks
+// it).
 #include "exact_edge_integrals.hpp"
 
 #include <patchspin/internal/exact.hpp>
@@ -89,7 +89,9 @@ const GaussTables& gaussTables() {
   return tables;
 }
 
-[[noreturn]] void fail(const std::string& what) { throw Error("exactPolygonBasis: " + what); }
+[[noreturn]] void fail(const std::string& what) {
+  throw Error("exactPolygonBasis: " + what);
+}
 
 // Accumulated F' (g-frame) and dF'/dw', one column per integrated function:
 // the basis (1, x, y) (M = 3) or one linear pressure (M = 1).
@@ -157,7 +159,8 @@ template <bool kJacobian, int M>
 void farBranch(const Vec2* v, std::size_t N, const Vec3& w, double rho, int n, const Vec3& pressure,
                Accumulator<M>& acc) {
   std::size_t i = 1;
-  for (; i + 2 < N; i += 2) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[i + 2], n, w, rho, pressure, acc);
+  for (; i + 2 < N; i += 2)
+    addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[i + 2], n, w, rho, pressure, acc);
   if (i + 1 < N) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[0], n, w, rho, pressure, acc);
 }
 
@@ -177,7 +180,7 @@ int farOrder(double kappaSq, double tol, bool jacobian) {
   constexpr double kErrorConstant = 1.0;
   // the Jacobian's integrand m m^T phi det has one more polynomial degree
   const double degree = jacobian ? 4.0 : 3.0;
-  const int minOrder = jacobian ? 3 : 2;  // exact for that degree (2n - 1 >= degree)
+  const int minOrder = jacobian ? 3 : 2;         // exact for that degree (2n - 1 >= degree)
   if (!std::isfinite(kappaSq)) return minOrder;  // pure translation: v/|v| constant
   const double K = std::sqrt(kappaSq) - 1.0;
   const double beta = K + std::sqrt(K * K - 1.0);
@@ -204,8 +207,8 @@ void nearBranch(const Vec2* v, std::size_t N, double cx, double cy, double delta
     const double Rb = i + 1 == N ? R0 : dist(b);
     const double L = (b - a).norm();
     if (L > 0.0) {  // a repeated vertex adds no triangle
-      addSignedTriangle(a.x(), a.y(), b.x(), b.y(), L, cx, cy, Ra, Rb, deltaZeroRel * L, phi, sums, gradient,
-                        firstGradient);
+      addSignedTriangle(a.x(), a.y(), b.x(), b.y(), L, cx, cy, Ra, Rb, deltaZeroRel * L, phi, sums,
+                        gradient, firstGradient);
     }
     Ra = Rb;
   }
@@ -261,9 +264,9 @@ void nearColumns(const Vec2* v, std::size_t N, const Vec3& wl, double rho, bool 
 // g-frame (pressure: the law's coefficients about O, used when M = 1), with
 // S and the w scale for the way back to O.
 template <int M>
-void evaluateInFrame(const std::vector<Vec2>& vertices, double rho, const Vec3& w, bool wantJacobian,
-                     double tolerance, const Vec3& pressure, Accumulator<M>& acc, Vec2& g, Mat3& S,
-                     double& wScale) {
+void evaluateInFrame(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
+                     bool wantJacobian, double tolerance, const Vec3& pressure, Accumulator<M>& acc,
+                     Vec2& g, Mat3& S, double& wScale) {
   const std::size_t N = vertices.size();
   if (N < 3) fail("need at least 3 vertices, got " + std::to_string(N));
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
@@ -294,7 +297,8 @@ void evaluateInFrame(const std::vector<Vec2>& vertices, double rho, const Vec3& 
   }
   if (!(twiceArea > 0.0)) fail("polygon must be counter-clockwise with positive area");
   // the pressure about g: p = p0 + px (gx + x') + py (gy + y')
-  const Vec3 localPressure(pressure[0] + pressure[1] * g.x() + pressure[2] * g.y(), pressure[1], pressure[2]);
+  const Vec3 localPressure(pressure[0] + pressure[1] * g.x() + pressure[2] * g.y(), pressure[1],
+                           pressure[2]);
 
   // S = [[1,0,-gy/rho],[0,1,gx/rho],[0,0,1]], w' = S w; c' = rho (-w'2, w'1) / w3
   S = Mat3::Identity();
@@ -354,8 +358,8 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
   }
 }
 
-Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w, const Vec3& pressure,
-                     Mat3* jacobian, double tolerance) {
+Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
+                     const Vec3& pressure, Mat3* jacobian, double tolerance) {
   if (!pressure.allFinite()) fail("pressure coefficients must be finite");
   Accumulator<1> acc;
   Vec2 g;

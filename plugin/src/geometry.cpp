@@ -23,7 +23,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 // The rows with r of a table from the eight integrals
 // (r, r x, r y, x/r, x^2/r, xy/r, y/r, y^2/r); xy/r fills two entries.
@@ -48,7 +50,8 @@ void setRRows(const Eigen::Matrix<double, 8, 1>& sum, MomentTable& table) {
 double largestDistance(const std::vector<Vec2>& v) {
   double best2 = 0.0;
   for (std::size_t i = 0; i < v.size(); ++i)
-    for (std::size_t j = i + 1; j < v.size(); ++j) best2 = std::max(best2, (v[j] - v[i]).squaredNorm());
+    for (std::size_t j = i + 1; j < v.size(); ++j)
+      best2 = std::max(best2, (v[j] - v[i]).squaredNorm());
   return std::sqrt(best2);
 }
 
@@ -70,7 +73,8 @@ double asinhDifference(double u, double v) {
 // (truncation < 1e-17 relative at |u| = 0.01), each power difference
 // factored as (ub - ua) (ub^(k-1) + ... + ua^(k-1)) with ub - ua = L / d.
 double farEdgeJm2(double ua, double ub, double L, double d) {
-  constexpr double kCoefficients[5] = {2.0 / 3.0, -1.0 / 5.0, 3.0 / 28.0, -5.0 / 72.0, 35.0 / 704.0};
+  constexpr double kCoefficients[5] = {2.0 / 3.0, -1.0 / 5.0, 3.0 / 28.0, -5.0 / 72.0,
+                                       35.0 / 704.0};
   // sums[k] = ub^k + ub^(k-1) ua + ... + ua^k by sums[k] = ub sums[k-1] + ua^k
   double sum = 1.0, uaPower = 1.0, total = 0.0;
   for (int k = 1; k <= 10; ++k) {
@@ -250,7 +254,7 @@ MomentTable polygonMomentTable(const std::vector<Vec2>& v, bool aboutVertexMean,
     // 1 m end edges gave rb - ra = 1e-8 +- 1e-7, and ∫xy/r was 4x off)
     const double jm1 = L * (ta + tb) / (ra + rb);
     const double trDiff = L * rb + ta * jm1;  // tb rb - ta ra
-    constexpr double kFarEdge = 0.01;  // |tau| / d below which jm2 takes the series
+    constexpr double kFarEdge = 0.01;         // |tau| / d below which jm2 takes the series
     const double jm2 = std::max(std::abs(ta), std::abs(tb)) <= kFarEdge * d
                            ? farEdgeJm2(ta / d, tb / d, L, d)
                            : 0.5 * (trDiff - d * d * jm0);
@@ -315,9 +319,9 @@ MomentTable diskMomentTable(const Vec2& centre, double R) {
   // (ca, sa) = (cos, sin) of the ray's polar angle alpha about O
   auto angular = [&](double ca, double sa, double s1, double s2, double ds) {
     const double s22 = s2 * s2, s12 = s1 * s1;
-    const double d2 = ds * (s2 + s1) / 2.0;                 // k = 0
-    const double d3 = ds * (s22 + s1 * s2 + s12) / 3.0;     // k = 1
-    const double d4 = ds * (s2 + s1) * (s22 + s12) / 4.0;   // k = 2
+    const double d2 = ds * (s2 + s1) / 2.0;                // k = 0
+    const double d3 = ds * (s22 + s1 * s2 + s12) / 3.0;    // k = 1
+    const double d4 = ds * (s2 + s1) * (s22 + s12) / 4.0;  // k = 2
     V8 out;
     out << d3, d4 * ca, d4 * sa, d2 * ca, d3 * ca * ca, d3 * ca * sa, d2 * sa, d3 * sa * sa;
     return out;
@@ -345,8 +349,8 @@ MomentTable diskMomentTable(const Vec2& centre, double R) {
           const double sphi = s1 * ct, cphi = -s1 * s2 * st;
           const double S =
               std::sqrt(std::max(0.0, ((R - delta) + 2.0 * delta * ht * ht) * (R + delta * ct)));
-          const double outer = cphi >= 0.0 ? delta * cphi + S
-                                           : (R - delta) * (R + delta) / (S - delta * cphi);
+          const double outer =
+              cphi >= 0.0 ? delta * cphi + S : (R - delta) * (R + delta) / (S - delta * cphi);
           // alpha = beta + phi
           return angular(cb * cphi - sb * sphi, sb * cphi + cb * sphi, 0.0, outer, outer);
         };
@@ -476,18 +480,22 @@ PatchShape PatchShape::rectangle(double lx, double ly, const Vec2& centre, doubl
   return polygon(std::move(v));
 }
 
-PatchShape PatchShape::regularPolygon(int n, double circumradius, const Vec2& centre, double angle) {
+PatchShape PatchShape::regularPolygon(int n, double circumradius, const Vec2& centre,
+                                      double angle) {
   if (n < 3) throw Error("regular polygon needs n >= 3: got " + std::to_string(n));
   internal::requirePositive(circumradius, "regular polygon circumradius");
   std::vector<Vec2> v;
   for (int i = 0; i < n; ++i) {
     const double a = angle + 2.0 * kPi * i / n;
-    v.emplace_back(centre.x() + circumradius * std::cos(a), centre.y() + circumradius * std::sin(a));
+    v.emplace_back(centre.x() + circumradius * std::cos(a),
+                   centre.y() + circumradius * std::sin(a));
   }
   return polygon(std::move(v));
 }
 
-void PatchShape::throwNotA(const char* what) { throw Error(what); }
+void PatchShape::throwNotA(const char* what) {
+  throw Error(what);
+}
 
 const std::vector<Vec2>& PatchShape::vertices() const {
   if (kind_ != Kind::Polygon) throw Error("vertices() asked of a disk patch");
@@ -537,8 +545,8 @@ void PatchShape::finish() {
       load_inverse_ = moments_.loadMatrix().inverse();
     }
     if (!table_.m.allFinite() || !(moments_.area > 0.0) || !load_inverse_.allFinite() ||
-        !local_load_inverse_.allFinite() ||
-        !std::isfinite(max_distance_) || !std::isfinite(diameter_) || !(!complete || defaultRho() > 0.0)) {
+        !local_load_inverse_.allFinite() || !std::isfinite(max_distance_) ||
+        !std::isfinite(diameter_) || !(!complete || defaultRho() > 0.0)) {
       throw Error("patch size out of range: its area moments over- or underflow double (diameter " +
                   formatDouble(diameter_) + " m, farthest point " + formatDouble(max_distance_) +
                   " m from O)");
@@ -559,8 +567,8 @@ void PatchShape::finish() {
     loads_about_mean_ = max_distance_ > diameter_;
     // and the rows with r by quadrature about it where O is far (item 65)
     const bool farRows = max_distance_ > kFarRowsOffset * diameter_;
-    const MomentTable table =
-        polygonMomentTable(vertices_, loads_about_mean_, farRows, local_load_inverse_, load_origin_);
+    const MomentTable table = polygonMomentTable(vertices_, loads_about_mean_, farRows,
+                                                 local_load_inverse_, load_origin_);
     takeTable(table, true);
   }
 }
@@ -579,7 +587,8 @@ Vec3 PatchShape::solveLoadMatrix(const Vec3& rhs) const {
   const int e = std::ilogb(largest);
   const Vec3 unit = rhs.unaryExpr([e](double x) { return std::ldexp(x, -e); });
   const Vec2& g = load_origin_;
-  const Vec3 local = local_load_inverse_ * Vec3(unit[0], unit[1] - g.x() * unit[0], unit[2] - g.y() * unit[0]);
+  const Vec3 local =
+      local_load_inverse_ * Vec3(unit[0], unit[1] - g.x() * unit[0], unit[2] - g.y() * unit[0]);
   const Vec3 c(local[0] - (g.x() * local[1] + g.y() * local[2]), local[1], local[2]);
   return c.unaryExpr([e](double x) { return std::ldexp(x, e); });
 }

@@ -29,7 +29,8 @@ double resolveRho(const PatchShape& shape, double rho) {
 
 void requireMu(double mu) {
   internal::requireFinite(mu, "friction coefficient mu");
-  if (mu < 0.0) throw Error("friction coefficient mu must be >= 0: got " + internal::formatDouble(mu));
+  if (mu < 0.0)
+    throw Error("friction coefficient mu must be >= 0: got " + internal::formatDouble(mu));
 }
 
 // |w| without overflow or underflow (w may be scaled by 1e+-200).
@@ -54,14 +55,16 @@ Vec3 unitDirection(const Vec3& w, double* invNorm = nullptr) {
 // std::hypot (a slow libm call) only where it under- or overflows.
 double planarNorm(double x, double y) {
   const double s = x * x + y * y;
-  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max()) return std::sqrt(s);
+  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max())
+    return std::sqrt(s);
   if (x == 0.0 && y == 0.0) return 0.0;
   return std::hypot(x, y);
 }
 
 // Largest |p| of a linear pressure on the closed patch.
 double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
-  if (shape.isDisk()) return std::abs(p.at(shape.centre())) + shape.radius() * planarNorm(p.cx, p.cy);
+  if (shape.isDisk())
+    return std::abs(p.at(shape.centre())) + shape.radius() * planarNorm(p.cx, p.cy);
   double m = 0.0;
   for (const Vec2& v : shape.vertices()) m = std::max(m, std::abs(p.at(v)));
   return m;
@@ -199,11 +202,13 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
   Mat3 sum;
   if (shape_.isDisk()) {
     internal::ExactBasis basis;
-    internal::exactDiskBasis(shape_.centre(), shape_.radius(), rho_, u, jacobian != nullptr, basis, tolerance);
+    internal::exactDiskBasis(shape_.centre(), shape_.radius(), rho_, u, jacobian != nullptr, basis,
+                             tolerance);
     if (jacobian) sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
     integral = basis.F * c;
   } else {
-    integral = internal::exactPolygonLaw(shape_.vertices(), rho_, u, c, jacobian ? &sum : nullptr, tolerance);
+    integral = internal::exactPolygonLaw(shape_.vertices(), rho_, u, c, jacobian ? &sum : nullptr,
+                                         tolerance);
   }
   if (jacobian) {
     // scale (-1/Pz for the unit law) times invNorm may overflow on its own
@@ -219,7 +224,8 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
   // fuzzing: a 3.5e9 m disk with that bound 4.7e307 gave Tz/rho = inf)
   if (!Q.allFinite()) {
     throw Error("exact law: Q overflows double (mu = " + internal::formatDouble(mu_) +
-                ", Pz = " + internal::formatDouble(moments_.Pz) + " N); reduce the pressure or the lever max|r| / rho");
+                ", Pz = " + internal::formatDouble(moments_.Pz) +
+                " N); reduce the pressure or the lever max|r| / rho");
   }
   return Q;
 }
@@ -227,7 +233,7 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
 std::optional<Vec3> FrictionPatch::QofSlip(Model model, const Vec3& x_o) const {
   internal::requireFinite(x_o, "slip state x_o");
   if (x_o.cwiseAbs().maxCoeff() == 0.0) return std::nullopt;  // sticking: set-valued
-  return Q(model, x_o);  // Q normalises without under/overflow
+  return Q(model, x_o);                                       // Q normalises without under/overflow
 }
 
 }  // namespace patchspin

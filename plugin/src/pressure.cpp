@@ -21,14 +21,17 @@ constexpr double kPi = 3.14159265358979323846;
 // ~50 instructions and a long-latency call on every pressure check.
 double planarNorm(double x, double y) {
   const double s = x * x + y * y;
-  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max()) return std::sqrt(s);
+  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max())
+    return std::sqrt(s);
   if (x == 0.0 && y == 0.0) return 0.0;
   return std::hypot(x, y);
 }
 
 // (each visit of a patch refreshes its pressure: the common, finite case
 // tests inline and calls out only to name the offending value)
-bool finite3(double a, double b, double c) { return std::isfinite(a) && std::isfinite(b) && std::isfinite(c); }
+bool finite3(double a, double b, double c) {
+  return std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
+}
 
 void requireFiniteLoads(const PatchLoads& loads) {
   if (finite3(loads.Pz, loads.Tx, loads.Ty)) return;
@@ -38,8 +41,12 @@ void requireFiniteLoads(const PatchLoads& loads) {
 }
 
 // (Pz, Tx, Ty) <-> the right-hand side (Pz, Ty, -Tx) of Eq. (94).
-Vec3 loadsToRhs(const PatchLoads& l) { return Vec3(l.Pz, l.Ty, -l.Tx); }
-PatchLoads rhsToLoads(const Vec3& r) { return PatchLoads{r[0], -r[2], r[1]}; }
+Vec3 loadsToRhs(const PatchLoads& l) {
+  return Vec3(l.Pz, l.Ty, -l.Tx);
+}
+PatchLoads rhsToLoads(const Vec3& r) {
+  return PatchLoads{r[0], -r[2], r[1]};
+}
 
 }  // namespace
 
@@ -88,7 +95,8 @@ double minPressure(const PatchShape& shape, const LinearPressure& p) {
           break;
         }
         const int e = std::ilogb(p.coefficients().cwiseAbs().maxCoeff());
-        const LinearPressure scaled{std::ldexp(p.p0, -e), std::ldexp(p.cx, -e), std::ldexp(p.cy, -e)};
+        const LinearPressure scaled{std::ldexp(p.p0, -e), std::ldexp(p.cx, -e),
+                                    std::ldexp(p.cy, -e)};
         at = std::ldexp(scaled.at(v), e);
         if (!std::isfinite(at)) {
           lowest = at;
@@ -153,21 +161,24 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   constexpr double kVerifyTol = 1e-6;  // of the mean pressure; normal cases: ~1e-12
   if (!out.asVector().isZero(0.0) && !(out.asVector() == loads.asVector()) &&
       !isAdmissible(shape, out, kVerifyTol)) {
-    throw Error("nearest admissible loads out of range: no admissible projection to double "
-                "precision for (Pz, Tx, Ty) = (" + internal::formatDouble(loads.Pz) + ", " +
-                internal::formatDouble(loads.Tx) + ", " + internal::formatDouble(loads.Ty) + ")");
+    throw Error(
+        "nearest admissible loads out of range: no admissible projection to double "
+        "precision for (Pz, Tx, Ty) = (" +
+        internal::formatDouble(loads.Pz) + ", " + internal::formatDouble(loads.Tx) + ", " +
+        internal::formatDouble(loads.Ty) + ")");
   }
   return out;
 }
 
 namespace {
-PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads, double rho) {
+PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads,
+                                      double rho) {
   if (!(loads.Pz > 0.0)) return PatchLoads{};  // documented: no normal force, no load
   if (isAdmissible(shape, loads, 0.0)) return loads;
   // M maps pressure coefficients to scaled loads
   const Mat3 G = shape.areaMoments().loadMatrix();
-  Mat3 P;  // (Pz, Ty, -Tx) -> (Pz, Tx/rho, Ty/rho)
-  P << 1.0, 0.0, 0.0,       //
+  Mat3 P;                    // (Pz, Ty, -Tx) -> (Pz, Tx/rho, Ty/rho)
+  P << 1.0, 0.0, 0.0,        //
       0.0, 0.0, -1.0 / rho,  //
       0.0, 1.0 / rho, 0.0;
   const Mat3 M = P * G;
@@ -180,7 +191,7 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
     // about a far O loses ~(max|r| / size)^4 eps; P^-1 is exact up to rho's
     // rounding. A patch about a point inside it keeps M^-1.)
     const bool aboutMean = shape.maxDistanceFromOrigin() > shape.diameter();
-    Mat3 PinvT;  // P^-T
+    Mat3 PinvT;              // P^-T
     PinvT << 1.0, 0.0, 0.0,  //
         0.0, 0.0, -rho,      //
         0.0, rho, 0.0;
@@ -196,7 +207,8 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
     rows.reserve(shape.vertices().size());
     for (const Vec2& v : shape.vertices()) {
       const Vec3 phi(1.0, v.x(), v.y());
-      const Vec3 a = aboutMean ? Vec3(PinvT * shape.solveLoadMatrix(phi)) : Vec3(Minv.transpose() * phi);
+      const Vec3 a =
+          aboutMean ? Vec3(PinvT * shape.solveLoadMatrix(phi)) : Vec3(Minv.transpose() * phi);
       rows.push_back({a, a.norm()});
     }
     // feasibility with a small relative slack for round-off
@@ -324,8 +336,8 @@ PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
   PiMoments out;
   out.Pz = v[MomentTable::kOne];
   if (!(out.Pz > 0.0)) {
-    throw Error("pressure carries no positive normal force: Pz = " +
-                internal::formatDouble(out.Pz) + " N");
+    throw Error(
+        "pressure carries no positive normal force: Pz = " + internal::formatDouble(out.Pz) + " N");
   }
   if (!v.allFinite()) {
     throw Error("pressure out of range: its moments (36) overflow double (Pz = " +
@@ -348,7 +360,8 @@ PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
 }
 
 Mat3 ellipsoidalPi(const PiMoments& m, double rho) {
-  if (!(rho > 0.0 && rho <= std::numeric_limits<double>::max())) internal::requirePositive(rho, "length scale rho");
+  if (!(rho > 0.0 && rho <= std::numeric_limits<double>::max()))
+    internal::requirePositive(rho, "length scale rho");
   // Eq. (40) without the factor -mu Pz
   Mat3 Pi;
   Pi << 1.0, 0.0, -m.pi_y0,  //

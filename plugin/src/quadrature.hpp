@@ -12,7 +12,7 @@
 namespace patchspin::internal {
 
 struct GaussRule {
-  std::vector<double> nodes;    // on [-1, 1]
+  std::vector<double> nodes;  // on [-1, 1]
   std::vector<double> weights;
 };
 
@@ -48,8 +48,8 @@ void gaussOnInterval(F& f, double a, double b, Eigen::Matrix<double, N, 1>& valu
 template <int N, class F>
 Eigen::Matrix<double, N, 1> adaptiveGaussRecurse(F& f, double a, double b,
                                                  const Eigen::Matrix<double, N, 1>& whole,
-                                                 const Eigen::Matrix<double, N, 1>& tol,
-                                                 int depth, long& budget) {
+                                                 const Eigen::Matrix<double, N, 1>& tol, int depth,
+                                                 long& budget) {
   using V = Eigen::Matrix<double, N, 1>;
   const double m = 0.5 * (a + b);
   V left, right, absLeft, absRight;
@@ -65,8 +65,7 @@ Eigen::Matrix<double, N, 1> adaptiveGaussRecurse(F& f, double a, double b,
   if (!sum.allFinite()) return sum;
   // the budget bounds the work when noise in f keeps the rule from converging
   // (each split may otherwise double the work down to depth 50: 2^50 calls)
-  if (depth >= 50 || --budget <= 0 ||
-      ((sum - whole).cwiseAbs().array() <= accept.array()).all()) {
+  if (depth >= 50 || --budget <= 0 || ((sum - whole).cwiseAbs().array() <= accept.array()).all()) {
     return sum;
   }
   // halve the tolerance per half so the errors add up to at most tol

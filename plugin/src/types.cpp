@@ -24,7 +24,8 @@ std::string formatDouble(double value) {
 }
 
 void requireFinite(double value, const char* what) {
-  if (!std::isfinite(value)) throw Error(std::string(what) + " must be finite: got " + formatDouble(value));
+  if (!std::isfinite(value))
+    throw Error(std::string(what) + " must be finite: got " + formatDouble(value));
 }
 
 void requireFinite(const Vec2& value, const char* what) {

@@ -34,12 +34,14 @@ constexpr double kVelocityTol = kDouble ? 1e-12 : 2e-4;  // [m/s], [rad/s]
 constexpr double kReportTol = kDouble ? 1e-10 : 1e-4;    // of the body's weight (loads, wrench)
 constexpr double kSlipTol = kDouble ? 1e-16 : 1e-8;      // [m/s]
 
-btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
+btVector3 bt(double x, double y, double z) {
+  return btVector3(btScalar(x), btScalar(y), btScalar(z));
+}
 
 struct Trajectory {
-  std::vector<btTransform> poses;        // per body, at the end, in the original frame
-  std::vector<btVector3> v, w;           // per body, original frame
-  std::vector<PatchReport> reports;      // at the end
+  std::vector<btTransform> poses;    // per body, at the end, in the original frame
+  std::vector<btVector3> v, w;       // per body, original frame
+  std::vector<PatchReport> reports;  // at the end
 };
 
 // A coin sliding and spinning, a box sliding and spinning, a two-box stack

@@ -125,9 +125,9 @@ TEST(PatchFrictionSolver, TiltedPatchDoesNotDriveItsLowEdgeIn) {
 // at rest the loads are Pz = m g and |T| = m g |(0.025, 0.015)|.
 TEST(PatchFrictionSolver, BoxOnOffsetBoxPatchIsTheFaceOverlap) {
   Scene scene(kG);
-  const auto [lower, upper] = addBlockOnBlock(scene, btVector3(0.1f, 0.1f, 0.05f), 5.0,
-                                              btVector3(0.1f, 0.1f, 0.05f), 1.0,
-                                              btVector3(0.05f, 0.03f, 0.15f));
+  const auto [lower, upper] =
+      addBlockOnBlock(scene, btVector3(0.1f, 0.1f, 0.05f), 5.0, btVector3(0.1f, 0.1f, 0.05f), 1.0,
+                      btVector3(0.05f, 0.03f, 0.15f));
   // Bullet's box-box test reports the exactly touching faces once they
   // overlap by round-off: a few steps of settling
   for (int k = 0; k < 5; ++k) scene.step(kDt);
@@ -235,9 +235,9 @@ TEST(PatchFrictionSolver, BoxesWithZeroMarginsStillMakeAPatch) {
 TEST(PatchFrictionSolver, PatchShapeIsRebuiltOnlyWhenTheOutlineChanges) {
   for (bool sliding : {false, true}) {
     Scene scene(kG);
-    const auto [lower, upper] = addBlockOnBlock(scene, btVector3(0.1f, 0.1f, 0.05f), 5.0,
-                                                btVector3(0.1f, 0.1f, 0.05f), 1.0,
-                                                btVector3(0.05f, 0.03f, 0.15f));
+    const auto [lower, upper] =
+        addBlockOnBlock(scene, btVector3(0.1f, 0.1f, 0.05f), 5.0, btVector3(0.1f, 0.1f, 0.05f), 1.0,
+                        btVector3(0.05f, 0.03f, 0.15f));
     for (int k = 0; k < 120; ++k) scene.step(kDt);  // settled (see the test above)
     constexpr int kSteps = 20;  // sliding: the centre of mass stays over the lower box
     long rebuilds = 0;

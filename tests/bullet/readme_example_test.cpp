@@ -21,10 +21,13 @@ std::string readFile(const std::string& path) {
 
 const std::string kDir = std::string(__FILE__).substr(0, std::string(__FILE__).rfind('/'));
 
-TEST(ReadmeExample, RunsAndTheCoinComesToRest) { EXPECT_EQ(readmeExampleMain(), 0); }
+TEST(ReadmeExample, RunsAndTheCoinComesToRest) {
+  EXPECT_EQ(readmeExampleMain(), 0);
+}
 
 TEST(ReadmeExample, ReadmeShowsExactlyThisProgram) {
-  const std::string program = readFile(kDir + "/../../bullet_integration/examples/readme_example.cpp");
+  const std::string program =
+      readFile(kDir + "/../../bullet_integration/examples/readme_example.cpp");
   const std::string readme = readFile(kDir + "/../../bullet_integration/README.md");
   ASSERT_FALSE(program.empty());
   ASSERT_FALSE(readme.empty());

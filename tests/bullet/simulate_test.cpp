@@ -55,7 +55,10 @@ DiskLimit diskLimit() {
   const double ga = g(a);
   for (int k = 0; k < 30; ++k) {
     const double m = 0.5 * (a + b);
-    if ((g(m) > 0) == (ga > 0)) a = m; else b = m;
+    if ((g(m) > 0) == (ga > 0))
+      a = m;
+    else
+      b = m;
   }
   DiskLimit d;
   d.eps = 0.5 * (a + b);
@@ -71,7 +74,7 @@ constexpr double kOracleTol = 5e-4;
 TEST(Simulate, OracleReproducesTheIssuesDiskConstants) {
   const DiskLimit d = diskLimit();
   std::printf("[oracle] eps* = %.6f, t_stop = %.6f R w0 / (mu g)\n", d.eps, d.stopCoefficient);
-  EXPECT_NEAR(d.eps, 0.6530, kOracleTol);           // Farkas et al. 2003
+  EXPECT_NEAR(d.eps, 0.6530, kOracleTol);  // Farkas et al. 2003
   EXPECT_NEAR(d.stopCoefficient, 1.0600, kOracleTol);
 }
 
@@ -111,8 +114,9 @@ TEST(Simulate, ExactFreeThinDiskKeepsItsLimitRatioAndStopsOnTime) {
     if (q.r < s.recordAt * r.trajectory.front().r) break;
     worst = std::max(worst, std::abs(q.velocity.norm() / (s.R * std::abs(q.omega)) - d.eps));
   }
-  std::printf("[exact disk] t_stop %.5f s (predicted %.5f), eps_stop %.5f, worst ratio error %.2e\n", r.tStop,
-              tPredicted, r.epsStop.value_or(-1), worst);
+  std::printf(
+      "[exact disk] t_stop %.5f s (predicted %.5f), eps_stop %.5f, worst ratio error %.2e\n",
+      r.tStop, tPredicted, r.epsStop.value_or(-1), worst);
   EXPECT_LT(worst, kRatioTol);
   ASSERT_TRUE(r.epsStop);
   EXPECT_NEAR(*r.epsStop, d.eps, kRatioTol);
@@ -161,7 +165,8 @@ TEST(Simulate, ExactFreeThinDiskFromRatioOneFallsTowardLimitRatio) {
     eps += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
     lnw += h;
   }
-  std::printf("[exact disk] from ratio 1: eps_stop %.5f, ODE %.5f (limit %.5f)\n", *r.epsStop, eps, d.eps);
+  std::printf("[exact disk] from ratio 1: eps_stop %.5f, ODE %.5f (limit %.5f)\n", *r.epsStop, eps,
+              d.eps);
   EXPECT_NEAR(*r.epsStop, eps, kRatioTol);
 }
 
@@ -188,8 +193,10 @@ TEST(Simulate, EllipsoidalThinDiskStaysOnSlipSpinLimitDirectionBelowMuMgOverNine
     if (q.r < s.recordAt * r0) break;
     worst = std::max(worst, (q.w - w).norm());
   }
-  std::printf("[ellipsoidal limit dir] t_stop %.5f (predicted %.5f), w_stop (%.4f %.4f %.4f), worst |w - w*| %.2e\n",
-              r.tStop, tPredicted, r.wStop.x(), r.wStop.y(), r.wStop.z(), worst);
+  std::printf(
+      "[ellipsoidal limit dir] t_stop %.5f (predicted %.5f), w_stop (%.4f %.4f %.4f), worst |w - "
+      "w*| %.2e\n",
+      r.tStop, tPredicted, r.wStop.x(), r.wStop.y(), r.wStop.z(), worst);
   EXPECT_LT(worst, kRatioTol);
   EXPECT_LT((r.wStop - w).norm(), kRatioTol);
   EXPECT_NEAR(r.tStop, tPredicted, kStopRelTol * tPredicted);
@@ -235,8 +242,9 @@ TEST(Simulate, EllipsoidalFreeThinDiskFallsTowardPureSpin) {
     EXPECT_LE(ratio, previous + 1e-9);  // falls toward pure spin
     previous = ratio;
   }
-  std::printf("[ellipsoidal free disk] eps_stop %.5f from 1; worst deviation from the implicit flow %.2e\n",
-              *r.epsStop, worst);
+  std::printf(
+      "[ellipsoidal free disk] eps_stop %.5f from 1; worst deviation from the implicit flow %.2e\n",
+      *r.epsStop, worst);
   EXPECT_LT(worst, kDiscreteTol);
   EXPECT_LT(*r.epsStop, 0.6);
 }
@@ -251,7 +259,8 @@ double meanDistance(double lx, double ly) {
   constexpr int kN = 2000;
   double sum = 0;
   for (int i = 0; i < kN; ++i)
-    for (int j = 0; j < kN; ++j) sum += std::hypot((i + 0.5) / kN - 0.5, ((j + 0.5) / kN - 0.5) * ly / lx);
+    for (int j = 0; j < kN; ++j)
+      sum += std::hypot((i + 0.5) / kN - 0.5, ((j + 0.5) / kN - 0.5) * ly / lx);
   return lx * sum / (double(kN) * kN);
 }
 
@@ -272,8 +281,8 @@ TEST(Simulate, BoxSpinDownTimeFromExactSpinTorque) {
     const SimulationResult r = simulate(s);
     const double jz = s.mass * (lx * lx + ly * ly) / 12;
     const double tPredicted = s.omega0 * jz / (s.mu * s.mass * s.g * meanR);
-    std::printf("[box spin-down] %-11s t_stop %.5f s, predicted %.5f s (%+.2f %%), stopped %d\n", model, r.tStop,
-                tPredicted, 100 * (r.tStop / tPredicted - 1), int(r.stopped));
+    std::printf("[box spin-down] %-11s t_stop %.5f s, predicted %.5f s (%+.2f %%), stopped %d\n",
+                model, r.tStop, tPredicted, 100 * (r.tStop / tPredicted - 1), int(r.stopped));
     if (std::string(model) == "stock") continue;  // printed for comparison only
     ASSERT_TRUE(r.stopped) << model;
     EXPECT_NEAR(r.tStop, tPredicted, 0.01 * tPredicted) << model;
@@ -314,7 +323,9 @@ void checkLimitCase(LimitCase c) {
   const LimitAnalysis analysis = findLimitDirections(model);
   const LimitDirection* best = nullptr;
   for (const LimitDirection& d : analysis.directions)
-    if (d.attracting && d.type == LimitType::Dominant && d.w.z() > 0 && (!best || d.w.z() > best->w.z())) best = &d;
+    if (d.attracting && d.type == LimitType::Dominant && d.w.z() > 0 &&
+        (!best || d.w.z() > best->w.z()))
+      best = &d;
   ASSERT_NE(best, nullptr) << c.name << ": no attracting-dominant limit direction with spin";
   const Vec3 w = best->w;
   const double r0 = 1.5;  // [m/s]
@@ -334,10 +345,12 @@ void checkLimitCase(LimitCase c) {
     if (q.r < s.recordAt * r0) break;
     worst = std::max(worst, (q.w - w).norm());
   }
-  std::printf("[limit %s] w* (%.4f %.4f %.4f) rdot %.4f: bullet t_stop %.5f, reference %.5f, predicted %.5f; "
-              "worst |w - w*| %.2e, |w_stop(bullet) - w_stop(ref)| %.2e\n",
-              c.name, w.x(), w.y(), w.z(), best->rdot, bullet.tStop, reference.tStop, tPredicted, worst,
-              (bullet.wStop - reference.wStop).norm());
+  std::printf(
+      "[limit %s] w* (%.4f %.4f %.4f) rdot %.4f: bullet t_stop %.5f, reference %.5f, predicted "
+      "%.5f; "
+      "worst |w - w*| %.2e, |w_stop(bullet) - w_stop(ref)| %.2e\n",
+      c.name, w.x(), w.y(), w.z(), best->rdot, bullet.tStop, reference.tStop, tPredicted, worst,
+      (bullet.wStop - reference.wStop).norm());
   EXPECT_LT(worst, kLimitWTol) << c.name;
   EXPECT_NEAR(bullet.tStop, tPredicted, kLimitStopTol * tPredicted) << c.name;
   EXPECT_NEAR(bullet.tStop, reference.tStop, kAgreementStopTol * reference.tStop) << c.name;
@@ -359,7 +372,7 @@ TEST(Simulate, AgreesWithReferenceOnThickDisk) {
 
 TEST(Simulate, AgreesWithReferenceOnDiskWithInPlaneTorque) {
   SimulationSpec s = thinDisk("ellipsoidal", 0.0, 0.0);
-  s.force = Vec2(0.03 * s.mu * s.mass * s.g, 0.0);  // fixes the frame of w
+  s.force = Vec2(0.03 * s.mu * s.mass * s.g, 0.0);      // fixes the frame of w
   s.torque = Vec3(0.0, 0.1 * s.mass * s.g * s.R, 0.0);  // centre of pressure 0.1 R off O
   checkLimitCase({"in-plane torque", s});
 }
@@ -378,9 +391,11 @@ TEST(Simulate, LightCoinAgreesWithReferenceOnTravel) {
   ASSERT_TRUE(bullet.stopped);
   ASSERT_TRUE(reference.stopped);
   const double kTravelTol = s.v0.norm() * s.dt;
-  std::printf("[light coin] t_stop bullet %.5f reference %.5f; travel bullet (%.5f %.5f) reference (%.5f %.5f)\n",
-              bullet.tStop, reference.tStop, bullet.displacement.x(), bullet.displacement.y(),
-              reference.displacement.x(), reference.displacement.y());
+  std::printf(
+      "[light coin] t_stop bullet %.5f reference %.5f; travel bullet (%.5f %.5f) reference (%.5f "
+      "%.5f)\n",
+      bullet.tStop, reference.tStop, bullet.displacement.x(), bullet.displacement.y(),
+      reference.displacement.x(), reference.displacement.y());
   EXPECT_NEAR(bullet.tStop, reference.tStop, kAgreementStopTol * reference.tStop);
   EXPECT_LT((bullet.displacement - reference.displacement).norm(), kTravelTol);
   EXPECT_LT((bullet.wStop - reference.wStop).norm(), kLimitWTol);

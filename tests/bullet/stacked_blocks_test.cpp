@@ -60,9 +60,9 @@ TEST(PatchFrictionSolver, StackHoldsOnlyWhereTheHeldBodyCarriesNothingElse) {
   enum Ball { kNone, kOnLower, kOnUpper };
   for (Ball ball : {kNone, kOnLower, kOnUpper}) {
     Scene scene(kG);
-    const auto [lower, upper] = addBlockOnBlock(scene, btVector3(0.1f, 0.1f, 0.05f), 2.0,
-                                                btVector3(0.05f, 0.05f, 0.05f), 1.0,
-                                                btVector3(0, 0, 0.15f));
+    const auto [lower, upper] =
+        addBlockOnBlock(scene, btVector3(0.1f, 0.1f, 0.05f), 2.0, btVector3(0.05f, 0.05f, 0.05f),
+                        1.0, btVector3(0, 0, 0.15f));
     // a 2 cm ball touching the block's side at its mid-height, pressed on
     btRigidBody* sphere = nullptr;
     if (ball == kOnLower) sphere = scene.addSphere(0.02, 0.1, btVector3(0.1199f, 0, 0.05f), 0.0);

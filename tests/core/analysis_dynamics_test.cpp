@@ -2,8 +2,8 @@
 // analysis (which it does not use): invariant rays, approach rates, stopping.
 #include <gtest/gtest.h>
 
-#include <closed_forms.hpp>
 #include <array>
+#include <closed_forms.hpp>
 #include <cmath>
 #include <patchspin/analysis.hpp>
 
@@ -260,7 +260,6 @@ TEST(ReferenceDynamics, EnergyDecreases) {
 
 }  // namespace
 }  // namespace patchspin
-
 
 namespace patchspin {
 namespace {

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "error_matchers.hpp"
-#include "oracle.hpp"
 #include "fuzz_inputs.hpp"
+#include "oracle.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -65,7 +65,8 @@ TEST(LimitDirections, EigenvaluesOfAHugeFieldScaleWithIt) {
     EXPECT_TRUE(d.eigenvalues.allFinite());
     for (int k = 0; k < 2; ++k) {
       const std::complex<double> expected = reference.directions[i].eigenvalues[k] * 1e140;
-      EXPECT_LE(std::abs(d.eigenvalues[k] - expected), kScaleTol * (std::abs(expected) + std::abs(d.rdot)));
+      EXPECT_LE(std::abs(d.eigenvalues[k] - expected),
+                kScaleTol * (std::abs(expected) + std::abs(d.rdot)));
     }
   }
 }
@@ -192,10 +193,12 @@ TEST(LimitDirections, TinyFieldHasTheDirectionsOfTheUnscaledBody) {
     ASSERT_FALSE(reference.directions.empty());
     ASSERT_EQ(scaled.directions.size(), reference.directions.size());
     double rateScale = 0.0;  // the field's size along its fixed points
-    for (const LimitDirection& d : reference.directions) rateScale = std::max(rateScale, std::abs(d.rdot));
+    for (const LimitDirection& d : reference.directions)
+      rateScale = std::max(rateScale, std::abs(d.rdot));
     for (std::size_t i = 0; i < reference.directions.size(); ++i) {
       EXPECT_LT((scaled.directions[i].w - reference.directions[i].w).norm(), kDirectionTol);
-      EXPECT_NEAR(std::ldexp(scaled.directions[i].rdot, 1000), reference.directions[i].rdot, kDirectionTol * rateScale);
+      EXPECT_NEAR(std::ldexp(scaled.directions[i].rdot, 1000), reference.directions[i].rdot,
+                  kDirectionTol * rateScale);
     }
   }
 }
@@ -242,13 +245,18 @@ TEST(LimitDirections, WithoutFrictionFollowTheExternalWrench) {
 // an Error naming the overflow or the mass matrix.
 TEST(LimitDirections, OverflowingFieldGivesFiniteOutputOrAnError) {
   FlatBody body;
-  body.shape = PatchShape::polygon(
-      {{0.52408846025116795, 0.51315958581171628}, {0.51428142560970502, 0.52344076574181153},
-       {0.50064769450935642, 0.5274410114214213},  {0.48684041418828378, 0.52408846025116795},
-       {0.47655923425818847, 0.51428142560970502}, {0.47255898857857875, 0.50064769450935642},
-       {0.47591153974883205, 0.48684041418828378}, {0.48571857439029498, 0.47655923425818847},
-       {0.49935230549064352, 0.47255898857857875}, {0.51315958581171628, 0.47591153974883205},
-       {0.52344076574181153, 0.48571857439029498}, {0.5274410114214213, 0.49935230549064352}});
+  body.shape = PatchShape::polygon({{0.52408846025116795, 0.51315958581171628},
+                                    {0.51428142560970502, 0.52344076574181153},
+                                    {0.50064769450935642, 0.5274410114214213},
+                                    {0.48684041418828378, 0.52408846025116795},
+                                    {0.47655923425818847, 0.51428142560970502},
+                                    {0.47255898857857875, 0.50064769450935642},
+                                    {0.47591153974883205, 0.48684041418828378},
+                                    {0.48571857439029498, 0.47655923425818847},
+                                    {0.49935230549064352, 0.47255898857857875},
+                                    {0.51315958581171628, 0.47591153974883205},
+                                    {0.52344076574181153, 0.48571857439029498},
+                                    {0.5274410114214213, 0.49935230549064352}});
   body.mass = 8647606272.0;
   body.Jz = 1.9010683772582826e+215;
   body.com = Vec3(-8.9595518175365068e+117, 1.0, 1.0);

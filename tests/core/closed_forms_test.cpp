@@ -6,8 +6,8 @@
 #include "closed_forms.hpp"
 #include "oracle.hpp"
 
-#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <gtest/gtest.h>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include <cmath>
 #include <vector>
@@ -36,17 +36,19 @@ constexpr double kRoundOff = 1e-14;
 // including the poles and the equator.
 std::vector<Vec3> sphereDirections() {
   std::vector<Vec3> ws;
-  for (double theta : {-1.5707963267948966, -1.2, -0.6, -0.15, 0.0, 0.15, 0.45, 0.9, 1.3, 1.5707963267948966})
+  for (double theta :
+       {-1.5707963267948966, -1.2, -0.6, -0.15, 0.0, 0.15, 0.45, 0.9, 1.3, 1.5707963267948966})
     for (double phi : {0.0, 0.7, 2.4, 4.0})
-      ws.emplace_back(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta));
+      ws.emplace_back(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi),
+                      std::sin(theta));
   return ws;
 }
 
 ::testing::AssertionResult nearVec(const Vec3& a, const Vec3& b, double tol) {
   if ((a - b).cwiseAbs().maxCoeff() <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "(" << a.transpose() << ") vs (" << b.transpose()
-                                       << "), max diff " << (a - b).cwiseAbs().maxCoeff()
-                                       << " > " << tol;
+  return ::testing::AssertionFailure()
+         << "(" << a.transpose() << ") vs (" << b.transpose() << "), max diff "
+         << (a - b).cwiseAbs().maxCoeff() << " > " << tol;
 }
 
 // ---- elliptic integrals: parameter m vs modulus k ----------------------------------
@@ -60,8 +62,8 @@ TEST(Elliptic, ParameterConvention) {
         [m](double t) { return 1.0 / std::sqrt(1.0 - m * std::sin(t) * std::sin(t)); }, 0.0,
         kPi / 2, 15, 1e-15);
     const double E = gauss_kronrod<double, 61>::integrate(
-        [m](double t) { return std::sqrt(1.0 - m * std::sin(t) * std::sin(t)); }, 0.0, kPi / 2,
-        15, 1e-15);
+        [m](double t) { return std::sqrt(1.0 - m * std::sin(t) * std::sin(t)); }, 0.0, kPi / 2, 15,
+        1e-15);
     EXPECT_NEAR(ellipticK(m), K, 1e-13 * K) << "m = " << m;
     EXPECT_NEAR(ellipticE(m), E, 1e-13 * E) << "m = " << m;
   }
@@ -110,14 +112,15 @@ TEST(UniformDisk, MatchesExactModel) {
   const FrictionPatch patch(disk, LinearPressure::uniform(disk, Pz), mu);
   ASSERT_NEAR(patch.rho(), 2 * R / 3, 1e-15);  // Eq. (47)
   for (const Vec3& w : sphereDirections()) {
-    EXPECT_TRUE(nearVec(patch.exactQ(w), uniformDiskQ(R, mu, Pz, patch.rho(), w),
-                        kExactTol * mu * Pz))
+    EXPECT_TRUE(
+        nearVec(patch.exactQ(w), uniformDiskQ(R, mu, Pz, patch.rho(), w), kExactTol * mu * Pz))
         << "w = " << w.transpose();
   }
   // eps = 1 exactly: the ICR on the rim
   const double theta = std::atan(patch.rho() / R);  // eps = (rho/R) cot(theta) = 1
   const Vec3 w(std::cos(theta), 0.0, std::sin(theta));
-  EXPECT_TRUE(nearVec(patch.exactQ(w), uniformDiskQ(R, mu, Pz, patch.rho(), w), kExactTol * mu * Pz));
+  EXPECT_TRUE(
+      nearVec(patch.exactQ(w), uniformDiskQ(R, mu, Pz, patch.rho(), w), kExactTol * mu * Pz));
 }
 
 // ---- Eq. (57)-(59): Hertz pressure on a disk centred at O -------------------------
@@ -140,7 +143,10 @@ TEST(HertzDisk, PiXY) {
   const double R = 0.45, Pz = 2.0;
   const PatchShape disk = PatchShape::disk(R);
   const double oracle =
-      bruteForceIntegral(disk, [&](const Vec2& q) { return q.norm() * hertzField(Vec2::Zero(), R, Pz)(q); }, kOracleRelTol) / Pz;
+      bruteForceIntegral(
+          disk, [&](const Vec2& q) { return q.norm() * hertzField(Vec2::Zero(), R, Pz)(q); },
+          kOracleRelTol) /
+      Pz;
   EXPECT_NEAR(hertzDiskPiXY(R), oracle, kMomentTol * R);
   EXPECT_NEAR(piMomentsHertz(disk, HertzPressure{Pz}).pi_xy, oracle, kMomentTol * R);
 }
@@ -163,8 +169,8 @@ TEST(HertzDisk, MatchesExactModel) {
   const FrictionPatch patch(PatchShape::disk(R), HertzPressure{Pz}, mu);
   ASSERT_TRUE(patch.isHertz());
   for (const Vec3& w : sphereDirections()) {
-    EXPECT_TRUE(nearVec(patch.exactQ(w), hertzDiskQ(R, mu, Pz, patch.rho(), w),
-                        kExactTol * mu * Pz))
+    EXPECT_TRUE(
+        nearVec(patch.exactQ(w), hertzDiskQ(R, mu, Pz, patch.rho(), w), kExactTol * mu * Pz))
         << "w = " << w.transpose();
   }
 }
@@ -225,7 +231,8 @@ TEST(ThinStrip, ExactModelOfThinRectangle) {
   for (double theta : {0.05, 0.3, 0.7, 1.1, 1.45}) {
     for (const Vec3& w : {Vec3(std::cos(theta), 0.0, std::sin(theta)),
                           Vec3(0.0, std::cos(theta), std::sin(theta))}) {
-      const Vec3 line = w.x() != 0.0 ? thinStripQAlong(mu, Pz, theta) : thinStripQAcross(mu, Pz, theta);
+      const Vec3 line =
+          w.x() != 0.0 ? thinStripQAlong(mu, Pz, theta) : thinStripQAcross(mu, Pz, theta);
       const Vec3 q = patch.exactQ(w);
       EXPECT_NEAR(q.x(), line.x(), forceBudget * mu * Pz) << "theta = " << theta;
       EXPECT_NEAR(q.y(), line.y(), forceBudget * mu * Pz) << "theta = " << theta;
@@ -284,8 +291,8 @@ TEST(MovedReference, CorePiOfThinRectangle) {
 // with rho = 2R/3 (Pi31 = -pi_y / rho = -3 cy R / (8 p0)). Both as printed.
 TEST(LinearDisk, PiMomentsMatchOracleAndCore) {
   const double R = 0.5;
-  for (const Vec3& c : {Vec3(1.0, 0.0, 0.0), Vec3(2.0, 1.0, 0.0), Vec3(1.0, -0.5, 1.5),
-                        Vec3(3.0, 2.0, -4.0)}) {
+  for (const Vec3& c :
+       {Vec3(1.0, 0.0, 0.0), Vec3(2.0, 1.0, 0.0), Vec3(1.0, -0.5, 1.5), Vec3(3.0, 2.0, -4.0)}) {
     const double p0 = c[0], cx = c[1], cy = c[2];
     const PatchShape disk = PatchShape::disk(R);
     const LinearPressure p{p0, cx, cy};
@@ -302,7 +309,8 @@ TEST(LinearDisk, PiMomentsMatchOracleAndCore) {
     }
     const FrictionPatch patch(disk, p, 0.5);
     EXPECT_TRUE(patch.Pi().isApprox(linearDiskPi(R, p0, cx, cy), kMomentTol))
-        << patch.Pi() << "\nvs\n" << linearDiskPi(R, p0, cx, cy);
+        << patch.Pi() << "\nvs\n"
+        << linearDiskPi(R, p0, cx, cy);
     EXPECT_TRUE(ellipsoidalPi(closed, 2 * R / 3).isApprox(linearDiskPi(R, p0, cx, cy), kRoundOff));
   }
 }

@@ -114,8 +114,8 @@ TEST(ExactPolygonBasis, ManyVerticesMatchOracle) {
   const double rho = 0.35;
   const Vec3 scale = columnScales(poly, rho);
   gOracleCapped = 0;
-  for (const Vec3& w : {Vec3(0, 0, 1), wForIcr(poly[3], rho, -1.0), wForIcr(Vec2(0.3, 0.1), rho, 1.0),
-                        Vec3(0.3, -0.2, 0.01).normalized()}) {
+  for (const Vec3& w : {Vec3(0, 0, 1), wForIcr(poly[3], rho, -1.0),
+                        wForIcr(Vec2(0.3, 0.1), rho, 1.0), Vec3(0.3, -0.2, 0.01).normalized()}) {
     ExactBasis out;
     exactPolygonBasis(poly, rho, w, false, out);
     EXPECT_LE(relativeError(out.F, oracleF(poly, rho, w), scale), kContractTol) << w.transpose();
@@ -273,10 +273,10 @@ TEST(ExactPolygonBasis, BranchesAgreeAtTheSwitch) {
     for (double angle : {0.3, 1.9, 4.0}) {
       const Vec2 dir(std::cos(angle), std::sin(angle));
       ExactBasis in, out;
-      exactPolygonBasis(np.poly, np.rho, wForIcr(g + kSwitchRatio * (1 - 1e-14) * R * dir, np.rho, 1),
-                        true, in);
-      exactPolygonBasis(np.poly, np.rho, wForIcr(g + kSwitchRatio * (1 + 1e-14) * R * dir, np.rho, 1),
-                        true, out);
+      exactPolygonBasis(np.poly, np.rho,
+                        wForIcr(g + kSwitchRatio * (1 - 1e-14) * R * dir, np.rho, 1), true, in);
+      exactPolygonBasis(np.poly, np.rho,
+                        wForIcr(g + kSwitchRatio * (1 + 1e-14) * R * dir, np.rho, 1), true, out);
       EXPECT_LE(relativeError(in.F, out.F, scale), kSwitchTol) << np.name << " angle " << angle;
       for (int k = 0; k < 3; ++k) {
         EXPECT_LE((in.dF[k] - out.dF[k]).cwiseAbs().maxCoeff() / scale[k], kSwitchJacobianTol)

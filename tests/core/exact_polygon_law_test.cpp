@@ -41,7 +41,9 @@ std::vector<Vec3> testPressures(const Polygon& poly) {
 }
 
 // Bound of every entry of F c (the column scales weighted by |c_k|).
-double lawScale(const Vec3& columnScale, const Vec3& c) { return columnScale.dot(c.cwiseAbs()); }
+double lawScale(const Vec3& columnScale, const Vec3& c) {
+  return columnScale.dot(c.cwiseAbs());
+}
 
 // The law against the brute-force oracle's F times the pressure, everywhere
 // on the sphere, to the basis' contract (kContractTol of the scale).
@@ -104,8 +106,11 @@ TEST(ExactPolygonLaw, JacobianMatchesFiniteDifferences) {
         Vec3 wp = w, wm = w;
         wp[j] += h;
         wm[j] -= h;
-        const Vec3 fd = (exactPolygonLaw(np.poly, np.rho, wp, p, nullptr) - exactPolygonLaw(np.poly, np.rho, wm, p, nullptr)) / (2 * h);
-        EXPECT_LE((J.col(j) - fd).cwiseAbs().maxCoeff() / size, kFdTol) << np.name << " w = " << w.transpose() << " dw" << j;
+        const Vec3 fd = (exactPolygonLaw(np.poly, np.rho, wp, p, nullptr) -
+                         exactPolygonLaw(np.poly, np.rho, wm, p, nullptr)) /
+                        (2 * h);
+        EXPECT_LE((J.col(j) - fd).cwiseAbs().maxCoeff() / size, kFdTol)
+            << np.name << " w = " << w.transpose() << " dw" << j;
       }
       EXPECT_LE((J * w).cwiseAbs().maxCoeff() / size, kEulerTol) << np.name;
     }
@@ -149,7 +154,8 @@ TEST(ExactPolygonLaw, AgreesWithTheBasisCombined) {
         const Mat3 basisJ = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
         const double size = lawScale(scale, c);
         const double err = (q - basis.F * c).cwiseAbs().maxCoeff() / size;
-        const double errJ = (J - basisJ).cwiseAbs().maxCoeff() / std::max(basisJ.cwiseAbs().maxCoeff(), size);
+        const double errJ =
+            (J - basisJ).cwiseAbs().maxCoeff() / std::max(basisJ.cwiseAbs().maxCoeff(), size);
         worst = std::max(worst, err);
         worstJ = std::max(worstJ, errJ);
         EXPECT_LE(err, kSumTol) << np.name << " / " << label << " c = " << c.transpose();
@@ -165,7 +171,8 @@ TEST(ExactPolygonLaw, RejectsInvalidInput) {
   const Vec3 c(1.0, 0.0, 0.0);
   EXPECT_THROW(exactPolygonLaw(sq, 0.5, Vec3::Zero(), c, nullptr), Error);
   EXPECT_THROW(exactPolygonLaw(sq, 0.0, Vec3(0, 0, 1), c, nullptr), Error);
-  EXPECT_THROW(exactPolygonLaw({sq[3], sq[2], sq[1], sq[0]}, 0.5, Vec3(0, 0, 1), c, nullptr), Error);
+  EXPECT_THROW(exactPolygonLaw({sq[3], sq[2], sq[1], sq[0]}, 0.5, Vec3(0, 0, 1), c, nullptr),
+               Error);
   EXPECT_THROW(exactPolygonLaw(sq, 0.5, Vec3(0, 0, 1), Vec3(NAN, 0.0, 0.0), nullptr), Error);
 }
 

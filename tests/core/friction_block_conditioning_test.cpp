@@ -3,12 +3,12 @@
 // every answer is either inside the limit set with slip = b + K impulse, the
 // law at its own slip to what double resolves there, a stick with
 // b + K lambda = 0 to round-off, or the block solved in 50 digits.
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/friction_block.hpp>
 
-#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <gtest/gtest.h>
+#include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "error_matchers.hpp"
 #include "oracle.hpp"
@@ -35,11 +35,14 @@ BigMat toBig(const Mat3& m) {
     for (int j = 0; j < 3; ++j) out[i][j] = Big(m(i, j));
   return out;
 }
-BigVec toBig(const Vec3& v) { return {Big(v[0]), Big(v[1]), Big(v[2])}; }
+BigVec toBig(const Vec3& v) {
+  return {Big(v[0]), Big(v[1]), Big(v[2])};
+}
 BigMat times(const BigMat& a, const BigMat& b) {
   BigMat out;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) out[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
+    for (int j = 0; j < 3; ++j)
+      out[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j];
   return out;
 }
 BigVec times(const BigMat& a, const BigVec& v) {
@@ -48,7 +51,8 @@ BigVec times(const BigMat& a, const BigVec& v) {
   return out;
 }
 Big det(const BigMat& a) {
-  return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+  return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+         a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
          a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
 }
 // a^-1 v by Cramer's rule: with 50 digits, a condition number of 1e36
@@ -63,7 +67,9 @@ BigVec solve(const BigMat& a, const BigVec& v) {
   }
   return out;
 }
-Big norm(const BigVec& v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+Big norm(const BigVec& v) {
+  return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
 
 // The ellipsoidal block of friction_block.hpp in its first form, (rI + A) w = b with
 // A = L K Pi and |w| = 1, solved by bisection in r (no Newton, no
@@ -114,20 +120,28 @@ BigBlock solveEllipsoidalBig(const Mat3& Pi, const Mat3& K, const Vec3& b, doubl
 // K with entries 0.5 to 9.5e19: the impulse is inside |lambda| <= L |Pi|_F
 // and slip = b + K impulse to kSlipSlack of the products.
 TEST(FrictionBlockConditioning, EllipsoidalWithAnIllConditionedKStaysInTheSet) {
-  const PatchShape dodecagon = PatchShape::polygon(
-      {{0.93879128094518638, 0.7397127693021015}, {0.7601480116065954, 0.92699298829973165},
-       {0.51179829264545484, 0.99986078090869679}, {0.2602872306978985, 0.93879128094518638},
-       {0.073007011700268465, 0.7601480116065954}, {0.00013921909130315546, 0.51179829264545473},
-       {0.061208719054813621, 0.26028723069789855}, {0.23985198839340438, 0.073007011700268576},
-       {0.48820170735454504, 0.00013921909130315546}, {0.73971276930210139, 0.061208719054813621},
-       {0.92699298829973165, 0.23985198839340471}, {0.99986078090869679, 0.48820170735454499}});
+  const PatchShape dodecagon = PatchShape::polygon({{0.93879128094518638, 0.7397127693021015},
+                                                    {0.7601480116065954, 0.92699298829973165},
+                                                    {0.51179829264545484, 0.99986078090869679},
+                                                    {0.2602872306978985, 0.93879128094518638},
+                                                    {0.073007011700268465, 0.7601480116065954},
+                                                    {0.00013921909130315546, 0.51179829264545473},
+                                                    {0.061208719054813621, 0.26028723069789855},
+                                                    {0.23985198839340438, 0.073007011700268576},
+                                                    {0.48820170735454504, 0.00013921909130315546},
+                                                    {0.73971276930210139, 0.061208719054813621},
+                                                    {0.92699298829973165, 0.23985198839340471},
+                                                    {0.99986078090869679, 0.48820170735454499}});
   const FrictionPatch patch(
-      dodecagon, LinearPressure::fromLoads(dodecagon, {0.36071503384922143, -0.1370213875319439, 0.1908799795625202}),
+      dodecagon,
+      LinearPressure::fromLoads(dodecagon,
+                                {0.36071503384922143, -0.1370213875319439, 0.1908799795625202}),
       0.5, 0.5);
   FrictionBlockInput in;
   in.b = Vec3(0.5, 0.5, 0.5);
   in.L = 0.5;
-  in.K << 0.5, 0.5, 4860674048.0, 0.5, 0.75, 4860674048.0, 4860674048.0, 4860674048.0, 9.4504608803602825e+19;
+  in.K << 0.5, 0.5, 4860674048.0, 0.5, 0.75, 4860674048.0, 4860674048.0, 4860674048.0,
+      9.4504608803602825e+19;
   const FrictionBlockResult r = solveFrictionBlock(patch, Model::Ellipsoidal, in);
   // the ellipsoidal set: |lambda| <= L |Pi|_F, to round-off (1e-12)
   constexpr double kRoundOff = 1e-12;
@@ -143,24 +157,39 @@ TEST(FrictionBlockConditioning, EllipsoidalWithAnIllConditionedKStaysInTheSet) {
 // K with cond ~1e34 at unit diagonal: an Error naming the singular K (or
 // K's diagonal span), or the law at its own slip (unitQ) to kLawTol.
 TEST(FrictionBlockConditioning, NumericallySingularKIsRefusedOrTheLaw) {
-  const PatchShape shape = PatchShape::polygon(
-      {{2e-08, 1.00000001e-08}, {1.9766205535603823e-08, 1.2149704499772297e-08},
-       {1.9075754154720659e-08, 1.4198891106360189e-08}, {1.7960930596539016e-08, 1.6051742231546959e-08},
-       {1.6473862771602071e-08, 1.7621620616014996e-08}, {1.4684084318646699e-08, 1.8835120491301074e-08},
-       {1.2675283288937209e-08, 1.9635499951945065e-08}, {1.0541388986000835e-08, 1.9985334143925129e-08},
-       {8.382179935789701e-09, 1.9868265209237061e-08}, {6.2986183537031865e-09, 1.9289767161154098e-08},
-       {4.3881292636072782e-09, 1.8276889925450199e-08}, {2.7400450119987498e-09, 1.6876994515934688e-08},
-       {1.4314281867687222e-09, 1.51555384860845e-08}, {5.2346825624182251e-10, 1.3193015206594482e-08},
-       {5.8620417644502455e-11, 1.1081190084825624e-08}, {5.8620439268305649e-11, 8.9188097163467921e-09},
-       {5.2346832010212787e-10, 6.806984603874884e-09}, {1.4314282898794938e-09, 4.8444613425440653e-09},
-       {2.7400451495386354e-09, 3.1230053388662202e-09}, {4.3881294291450745e-09, 1.7231099623123909e-09},
-       {6.2986185394985276e-09, 7.102327648182723e-10}, {8.3821801331550051e-09, 1.3173475840654039e-10},
-       {1.0541389185707508e-08, 1.4665866902652304e-11}, {1.26752834816472e-08, 3.6450010156060337e-10},
-       {1.4684084495349107e-08, 1.1648796023806164e-09}, {1.6473862924034484e-08, 2.3783795134622653e-09},
-       {1.7960930717573863e-08, 3.9482579276716577e-09}, {1.9075754238698476e-08, 5.8011090751548926e-09},
-       {1.9766205578597912e-08, 7.8502956955518106e-09}});
+  const PatchShape shape = PatchShape::polygon({{2e-08, 1.00000001e-08},
+                                                {1.9766205535603823e-08, 1.2149704499772297e-08},
+                                                {1.9075754154720659e-08, 1.4198891106360189e-08},
+                                                {1.7960930596539016e-08, 1.6051742231546959e-08},
+                                                {1.6473862771602071e-08, 1.7621620616014996e-08},
+                                                {1.4684084318646699e-08, 1.8835120491301074e-08},
+                                                {1.2675283288937209e-08, 1.9635499951945065e-08},
+                                                {1.0541388986000835e-08, 1.9985334143925129e-08},
+                                                {8.382179935789701e-09, 1.9868265209237061e-08},
+                                                {6.2986183537031865e-09, 1.9289767161154098e-08},
+                                                {4.3881292636072782e-09, 1.8276889925450199e-08},
+                                                {2.7400450119987498e-09, 1.6876994515934688e-08},
+                                                {1.4314281867687222e-09, 1.51555384860845e-08},
+                                                {5.2346825624182251e-10, 1.3193015206594482e-08},
+                                                {5.8620417644502455e-11, 1.1081190084825624e-08},
+                                                {5.8620439268305649e-11, 8.9188097163467921e-09},
+                                                {5.2346832010212787e-10, 6.806984603874884e-09},
+                                                {1.4314282898794938e-09, 4.8444613425440653e-09},
+                                                {2.7400451495386354e-09, 3.1230053388662202e-09},
+                                                {4.3881294291450745e-09, 1.7231099623123909e-09},
+                                                {6.2986185394985276e-09, 7.102327648182723e-10},
+                                                {8.3821801331550051e-09, 1.3173475840654039e-10},
+                                                {1.0541389185707508e-08, 1.4665866902652304e-11},
+                                                {1.26752834816472e-08, 3.6450010156060337e-10},
+                                                {1.4684084495349107e-08, 1.1648796023806164e-09},
+                                                {1.6473862924034484e-08, 2.3783795134622653e-09},
+                                                {1.7960930717573863e-08, 3.9482579276716577e-09},
+                                                {1.9075754238698476e-08, 5.8011090751548926e-09},
+                                                {1.9766205578597912e-08, 7.8502956955518106e-09}});
   const FrictionPatch patch(
-      shape, LinearPressure::fromLoads(shape, {0.09269204466265292, -7.5064762499732558e-10, 1.0766479339077318e-09}),
+      shape,
+      LinearPressure::fromLoads(
+          shape, {0.09269204466265292, -7.5064762499732558e-10, 1.0766479339077318e-09}),
       1e-8, 1e-8);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 1e-8);
@@ -175,12 +204,14 @@ TEST(FrictionBlockConditioning, NumericallySingularKIsRefusedOrTheLaw) {
     const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
     ASSERT_FALSE(r.sticking);
     const double setSize = 1.0 + shape.maxDistanceFromOrigin() / patch.rho();
-    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * setSize);
+    EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(),
+              kLawTol * in.L * setSize);
   } catch (const Error& e) {
     // (fifth round: this K's diagonal spans 6e33, refused as out of range
     // before its condition is looked at)
     const std::string what = e.what();
-    EXPECT_TRUE(what.find("singular") != std::string::npos || what.find("diagonal of K spans") != std::string::npos)
+    EXPECT_TRUE(what.find("singular") != std::string::npos ||
+                what.find("diagonal of K spans") != std::string::npos)
         << what;
   }
 
@@ -190,22 +221,27 @@ TEST(FrictionBlockConditioning, NumericallySingularKIsRefusedOrTheLaw) {
   // L |Pi| off the law q = -Pi s^ (found by fuzzing). Now an Error, or the law.
   const PatchShape disk = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
   const FrictionPatch small(
-      disk, LinearPressure::fromLoads(disk, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
+      disk,
+      LinearPressure::fromLoads(
+          disk, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
       1e-8, 1e-8);
   FrictionBlockInput ell;
   ell.b = Vec3(1e-8, 1e-8, 0.5);
   ell.L = 0.5;
   ell.warmSlip = Vec3(14936440832.0, -795.125, -0.38824462890625);
-  ell.K << 3.2204460492503131e-16, 5.0000000000000001e-09, 2.2204460492503131e-24, 5.0000000000000001e-09,
-      12713013504.25, 1119806363271168.0, 2.2204460492503131e-24, 1119806363271168.0, 9.8636431938662957e+19;
+  ell.K << 3.2204460492503131e-16, 5.0000000000000001e-09, 2.2204460492503131e-24,
+      5.0000000000000001e-09, 12713013504.25, 1119806363271168.0, 2.2204460492503131e-24,
+      1119806363271168.0, 9.8636431938662957e+19;
   try {
     const FrictionBlockResult r = solveFrictionBlock(small, Model::Ellipsoidal, ell);
     ASSERT_FALSE(r.sticking);
-    EXPECT_LT((r.impulse - ell.L * small.unitQ(Model::Ellipsoidal, r.slip)).norm(), kLawTol * ell.L * small.Pi().norm());
+    EXPECT_LT((r.impulse - ell.L * small.unitQ(Model::Ellipsoidal, r.slip)).norm(),
+              kLawTol * ell.L * small.Pi().norm());
   } catch (const Error& e) {
     // (fifth round: this K's diagonal spans 3e35, refused as out of range)
     const std::string what = e.what();
-    EXPECT_TRUE(what.find("singular") != std::string::npos || what.find("diagonal of K spans") != std::string::npos)
+    EXPECT_TRUE(what.find("singular") != std::string::npos ||
+                what.find("diagonal of K spans") != std::string::npos)
         << what;
   }
 }
@@ -217,22 +253,25 @@ TEST(FrictionBlockConditioning, NumericallySingularKIsRefusedOrTheLaw) {
 TEST(FrictionBlockConditioning, ExactWithABadlyScaledKIsTheLawToItsResolution) {
   const PatchShape disk = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(
-      disk, LinearPressure::fromLoads(disk, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
+      disk,
+      LinearPressure::fromLoads(
+          disk, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
       0.5, 1e-8);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 0.5);
   in.L = 0.5;
   in.K = Vec3(9701425152.0, 14943780864.0, 2.2739476699754749e-129).asDiagonal();
   in.warmSlip = Vec3(0.0, -0.0, 0.5);
-  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"diagonal of K spans"}));
+  EXPECT_TRUE(
+      throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"diagonal of K spans"}));
   in.K(2, 2) = 2.2739476699754749e-19;
   const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
   ASSERT_FALSE(r.sticking);
   const double set = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
   // a few ulps per term of the 3x3 products, times |J| <= set
   constexpr double kResolutionUlps = 64.0;
-  const double resolution = kResolutionUlps * std::numeric_limits<double>::epsilon() * in.K.norm() * in.L * set /
-                            r.slip.norm();
+  const double resolution = kResolutionUlps * std::numeric_limits<double>::epsilon() * in.K.norm() *
+                            in.L * set / r.slip.norm();
   ASSERT_LT(resolution, 1e-2);  // the check below still means something
   EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), resolution * in.L * set);
 
@@ -246,9 +285,10 @@ TEST(FrictionBlockConditioning, ExactWithABadlyScaledKIsTheLawToItsResolution) {
   try {
     const FrictionBlockResult far = solveFrictionBlock(patch, Model::Exact, in);
     ASSERT_FALSE(far.sticking);
-    const double farResolution = kResolutionUlps * std::numeric_limits<double>::epsilon() * in.K.norm() * in.L *
-                                 set / far.slip.norm();
-    EXPECT_LT((far.impulse - in.L * patch.unitQ(Model::Exact, far.slip)).norm(), farResolution * in.L * set);
+    const double farResolution = kResolutionUlps * std::numeric_limits<double>::epsilon() *
+                                 in.K.norm() * in.L * set / far.slip.norm();
+    EXPECT_LT((far.impulse - in.L * patch.unitQ(Model::Exact, far.slip)).norm(),
+              farResolution * in.L * set);
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
   }
@@ -264,7 +304,8 @@ TEST(FrictionBlockConditioning, StickWithAnIllConditionedKStopsTheSlip) {
     SCOPED_TRACE(toString(model));
     const FrictionBlockResult r = solveFrictionBlock(patch, model, in);
     if (r.sticking) {
-      EXPECT_LT((in.b + in.K * r.impulse).norm(), kResidualTol * (in.b.norm() + in.K.norm() * r.impulse.norm()));
+      EXPECT_LT((in.b + in.K * r.impulse).norm(),
+                kResidualTol * (in.b.norm() + in.K.norm() * r.impulse.norm()));
     } else {
       // a slip is the law at its slip
       const Vec3 q = patch.unitQ(model, r.slip);
@@ -272,11 +313,14 @@ TEST(FrictionBlockConditioning, StickWithAnIllConditionedKStopsTheSlip) {
     }
     return r.sticking;
   };
-  const PatchShape sliver =
-      PatchShape::polygon({{7.500000000000001e-09, -0.24999999000000006}, {1.7500000000000001e-08, -0.24999998999999995},
-                           {1.2500000000000003e-08, 0.25000001000000005}, {2.5000000000000001e-09, 0.25000000999999994}});
+  const PatchShape sliver = PatchShape::polygon({{7.500000000000001e-09, -0.24999999000000006},
+                                                 {1.7500000000000001e-08, -0.24999998999999995},
+                                                 {1.2500000000000003e-08, 0.25000001000000005},
+                                                 {2.5000000000000001e-09, 0.25000000999999994}});
   const FrictionPatch thin(
-      sliver, LinearPressure::fromLoads(sliver, {7.566666666666056e-07, -7.566666647221408e-15, 8.8277777777770622e-15}),
+      sliver,
+      LinearPressure::fromLoads(
+          sliver, {7.566666666666056e-07, -7.566666647221408e-15, 8.8277777777770622e-15}),
       0.5, -1.0);
   FrictionBlockInput a;
   a.b = Vec3(1e-08, 1e-08, 1e-08);
@@ -288,19 +332,23 @@ TEST(FrictionBlockConditioning, StickWithAnIllConditionedKStopsTheSlip) {
 
   const PatchShape speck = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
   const FrictionPatch heavy(
-      speck, LinearPressure::fromLoads(speck, {2.2967985926923795e+81, -2.1002768830563735e+73, 2.8363210237402899e+73}),
+      speck,
+      LinearPressure::fromLoads(
+          speck, {2.2967985926923795e+81, -2.1002768830563735e+73, 2.8363210237402899e+73}),
       1.0, 1e-8);
   FrictionBlockInput e;
   e.b = Vec3(1e-08, 1e-08, 1e-08);
   e.L = 1e-8;
-  e.K << 2273843767050240.0, 2273843734555192.0, 2273843734555192.0, 2273843734555192.0, 3410765633716224.0,
-      3410765599997952.0, 2273843734555192.0, 3410765599997952.0, 3410765633716224.0;
+  e.K << 2273843767050240.0, 2273843734555192.0, 2273843734555192.0, 2273843734555192.0,
+      3410765633716224.0, 3410765599997952.0, 2273843734555192.0, 3410765599997952.0,
+      3410765633716224.0;
   e.warmSlip = Vec3(-33718272.0, -33718272.0, -311623680.0);
   EXPECT_TRUE(checkStick(heavy, Model::Exact, e));
 
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const FrictionPatch tipped(
-      disk, LinearPressure::fromLoads(disk, {1.0000000000000001e+300, 1e-08, 7.8861841068295186e+146}),
+      disk,
+      LinearPressure::fromLoads(disk, {1.0000000000000001e+300, 1e-08, 7.8861841068295186e+146}),
       0.00021254271268844604, 0.5);
   FrictionBlockInput z;
   z.b = Vec3(0.5, 0.5, 0.5);
@@ -316,24 +364,29 @@ TEST(FrictionBlockConditioning, StickWithAnIllConditionedKStopsTheSlip) {
 // refuses it as singular; the exact block refuses it or stops the slip to
 // kResidual.
 TEST(FrictionBlockConditioning, StickRefusesAKSingularToRoundOff) {
-  const PatchShape triangle =
-      PatchShape::polygon({{-74743808.000000015, 119242751.99999999}, {0.49999999000000001, -74743808.000000015},
-                           {0.0, 116387839.99999999}});
+  const PatchShape triangle = PatchShape::polygon({{-74743808.000000015, 119242751.99999999},
+                                                   {0.49999999000000001, -74743808.000000015},
+                                                   {0.0, 116387839.99999999}});
   const FrictionPatch patch(
-      triangle, LinearPressure::fromLoads(triangle, {8.2967671213372529e-09, -0.17867705275273596, -0.15503299011029428}),
+      triangle,
+      LinearPressure::fromLoads(
+          triangle, {8.2967671213372529e-09, -0.17867705275273596, -0.15503299011029428}),
       1e-8, 0.0);
   FrictionBlockInput in;
   in.b = Vec3(0.0, 0.5, 0.5);
   in.L = 1e-8;
-  in.K << 2.196804715965055e+20, -7770798429306880.0, 1.5980646969869599e+20, -7770798429306880.0, 274877906948.37549,
-      -5652864156303360.0, 1.5980646969869599e+20, -5652864156303360.0, 1.162511513743786e+20;
-  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"singular"}));
+  in.K << 2.196804715965055e+20, -7770798429306880.0, 1.5980646969869599e+20, -7770798429306880.0,
+      274877906948.37549, -5652864156303360.0, 1.5980646969869599e+20, -5652864156303360.0,
+      1.162511513743786e+20;
+  EXPECT_TRUE(
+      throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"singular"}));
   // the exact block: refused as well, or a stick that stops the slip
   constexpr double kResidual = 1e-10;
   try {
     const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, in);
     if (r.sticking) {
-      EXPECT_LE((in.b + in.K * r.impulse).norm(), kResidual * (in.b.norm() + in.K.norm() * r.impulse.norm()));
+      EXPECT_LE((in.b + in.K * r.impulse).norm(),
+                kResidual * (in.b.norm() + in.K.norm() * r.impulse.norm()));
     }
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
@@ -349,13 +402,16 @@ TEST(FrictionBlockConditioning, ExactStickRefusesCofactorsWithoutDigits) {
                                                {0.038782114750976461, 0.4999999896121789},
                                                {4.9999999000000001e-09, 0.49999999000000001}});
   const FrictionPatch patch(
-      quad, LinearPressure::fromLoads(quad, {851722772.11537802, -212930647.22235772, 8257900.7497947859}), 1e-8, 0.5);
+      quad,
+      LinearPressure::fromLoads(quad,
+                                {851722772.11537802, -212930647.22235772, 8257900.7497947859}),
+      1e-8, 0.5);
   FrictionBlockInput in;
   in.b = Vec3(-281018368.0, 0.5, 0.5);
   in.L = 1e-8;
   in.warmSlip = Vec3(2.2204460492503131e-16, 0.0, 0.0);
-  in.K << 2.2269023871737371e+20, 7461404672.0, 3.9979872811923538e+18, 7461404672.0, 0.25000000000000011,
-      133955584.0, 3.9979872811923538e+18, 133955584.0, 71776393939124224.0;
+  in.K << 2.2269023871737371e+20, 7461404672.0, 3.9979872811923538e+18, 7461404672.0,
+      0.25000000000000011, 133955584.0, 3.9979872811923538e+18, 133955584.0, 71776393939124224.0;
   EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Exact, in); }, {"singular"}));
 
   const PatchShape disk = PatchShape::disk(0.5);
@@ -368,7 +424,8 @@ TEST(FrictionBlockConditioning, ExactStickRefusesCofactorsWithoutDigits) {
   // -K^-1 b = -b / 9 is well inside L E (force 0.16 of L): a stick
   ASSERT_TRUE(r.sticking);
   constexpr double kResidual = 1e-12;  // a backward-stable solve: a few ulps
-  EXPECT_LT((inside.b + inside.K * r.impulse).norm(), kResidual * (inside.b.norm() + inside.K.norm() * r.impulse.norm()));
+  EXPECT_LT((inside.b + inside.K * r.impulse).norm(),
+            kResidual * (inside.b.norm() + inside.K.norm() * r.impulse.norm()));
 }
 
 // fuzz round 8, item 57
@@ -385,7 +442,7 @@ TEST(FrictionBlockConditioning, EllipsoidalWithANearSingularWideDiagonalKMatches
   std::vector<Case> cases(2);
   cases[0].loads = {1.4899643344710497e+236, -1.4991057232768605e+228, 1.8623432307385959e+228};
   cases[0].K << 1.8994705936215963e-07, 6459695.0000000065, 4.3582916259794539e-12,  //
-      6459695.0000000065, 2.196804715965055e+20, 2579234964.2162175,                  //
+      6459695.0000000065, 2.196804715965055e+20, 2579234964.2162175,                 //
       4.3582916259794539e-12, 2579234964.2162175, 2.6609808944266215e+19;
   cases[0].warm = Vec3(7113015296.0, 0.0, 1.5627709092286829e-312);
   cases[1].loads = {8.3943422731309656e+234, -8.4458441411370788e+226, 1.0492295786676125e+227};
@@ -412,7 +469,8 @@ TEST(FrictionBlockConditioning, EllipsoidalWithANearSingularWideDiagonalKMatches
     EXPECT_FALSE(r.sticking) << "case " << c;
     const double setSize = in.L * Pi.norm();
     EXPECT_LT((r.impulse - ref.impulse).norm(), kImpulse * setSize)
-        << "case " << c << ": impulse " << r.impulse.transpose() << ", 50 digits " << ref.impulse.transpose();
+        << "case " << c << ": impulse " << r.impulse.transpose() << ", 50 digits "
+        << ref.impulse.transpose();
     // the backward error of the returned impulse, in 50 digits
     const BigVec lambda = toBig(r.impulse);
     const BigVec w0 = solve(toBig(Pi), lambda);

@@ -2,9 +2,9 @@
 // by name (a bad K, a negative pressure, a lever max|r| / rho outside
 // [1e-5, 1e5], K's diagonal spanning more than 1e30), its documented
 // fallbacks, and the law at its slip everywhere inside the domain.
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/friction_block.hpp>
 
 #include <gtest/gtest.h>
 
@@ -46,7 +46,8 @@ TEST(FrictionBlock, RefusesBadInputAndFallsBackWithoutFriction) {
   EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"warm"}));
   in.warmSlip.setZero();
   in.L = kInf;
-  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"bound l"}));
+  EXPECT_TRUE(
+      throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"bound l"}));
   // documented fallbacks: no normal impulse, no friction (slip = b, sticking
   // only if b = 0, also for a denormal b whose |b|^2 underflows)
   in.L = 0.0;
@@ -103,7 +104,9 @@ TEST(FrictionBlock, RefusesAnAsymmetricK) {
 TEST(FrictionBlock, WithNegligibleFrictionRefusesAnIndefiniteK) {
   const PatchShape disk = PatchShape::disk(1.6624690033495426e-06, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(
-      disk, LinearPressure::fromLoads(disk, {0.0041942096751453693, 1.1958354410194534e-09, 1.2693800097189958e-09}),
+      disk,
+      LinearPressure::fromLoads(
+          disk, {0.0041942096751453693, 1.1958354410194534e-09, 1.2693800097189958e-09}),
       0.5, 1e-8);
   FrictionBlockInput in;
   in.b = Vec3(1e-08, 0.023433685302734375, 2.8527919536056827e+180);
@@ -124,8 +127,8 @@ TEST(FrictionBlock, RefusesANegativePressure) {
                                                  {7.500000000000001e-09, -0.24999998999999995},
                                                  {2.5000000000000001e-09, 0.25000001000000005},
                                                  {-7.500000000000001e-09, 0.25000000999999994}});
-  const FrictionPatch tipped(sliver, LinearPressure::fromLoads(sliver, {1e-8, 4.9406564584124654e-324, 1.0}), 1e-8,
-                             0.5);
+  const FrictionPatch tipped(
+      sliver, LinearPressure::fromLoads(sliver, {1e-8, 4.9406564584124654e-324, 1.0}), 1e-8, 0.5);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 1e-8);
   in.L = 0.5;
@@ -133,7 +136,8 @@ TEST(FrictionBlock, RefusesANegativePressure) {
   in.warmSlip = Vec3(1e-8, 4.9406564584124654e-324, 0.0);
   for (Model model : {Model::Exact, Model::Ellipsoidal}) {
     SCOPED_TRACE(toString(model));
-    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(tipped, model, in); }, {"pressure is negative"}));
+    EXPECT_TRUE(
+        throwsNaming([&] { solveFrictionBlock(tipped, model, in); }, {"pressure is negative"}));
   }
   // the edge, on a unit disk at O: p = p0 + cx x has its minimum p0 - cx
   // (R = 1) by construction, mean p0 = Pz / A
@@ -149,8 +153,9 @@ TEST(FrictionBlock, RefusesANegativePressure) {
   for (Model model : {Model::Exact, Model::Ellipsoidal}) {
     SCOPED_TRACE(toString(model));
     EXPECT_NO_THROW(solveFrictionBlock(withMinimum(kJustInside), model, ordinary));
-    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(withMinimum(kJustOutside), model, ordinary); },
-                             {"pressure is negative"}));
+    EXPECT_TRUE(
+        throwsNaming([&] { solveFrictionBlock(withMinimum(kJustOutside), model, ordinary); },
+                     {"pressure is negative"}));
   }
   // nearestAdmissibleLoads' projections, of loads tipping far out, on a disk
   // and on a polygon (deterministic angles)
@@ -159,13 +164,15 @@ TEST(FrictionBlock, RefusesANegativePressure) {
     for (int i = 0; i < 24; ++i) {
       // centre of pressure 0.3 to 1.2 times max|r| from O: mostly outside
       // the kern (a quarter of the radius on the disk)
-      const double angle = 2.0 * kPi * i / 24.0, reach = 0.3 * (1 + i % 4) * shape.maxDistanceFromOrigin();
+      const double angle = 2.0 * kPi * i / 24.0,
+                   reach = 0.3 * (1 + i % 4) * shape.maxDistanceFromOrigin();
       const PatchLoads raw{1.0, -reach * std::sin(angle), reach * std::cos(angle)};
       const PatchLoads loads = nearestAdmissibleLoads(shape, raw, shape.defaultRho());
       ASSERT_GT(loads.Pz, 0.0);
       const FrictionPatch patch(shape, LinearPressure::fromLoads(shape, loads), 0.5, 0.0);
       for (Model model : {Model::Exact, Model::Ellipsoidal}) {
-        EXPECT_NO_THROW(solveFrictionBlock(patch, model, ordinary)) << "loads " << i << " " << toString(model);
+        EXPECT_NO_THROW(solveFrictionBlock(patch, model, ordinary))
+            << "loads " << i << " " << toString(model);
       }
     }
   }
@@ -176,7 +183,8 @@ TEST(FrictionBlock, RefusesANegativePressure) {
 // both laws refuse it, naming the pressure.
 TEST(FrictionBlock, BothLawsRefuseAnAlmostAllNegativePressure) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
-  const LinearPressure pressure = LinearPressure::fromLoads(disk, {0.5, -14630256640.0, 5.9567624915341203e+228});
+  const LinearPressure pressure =
+      LinearPressure::fromLoads(disk, {0.5, -14630256640.0, 5.9567624915341203e+228});
   const FrictionPatch patch(disk, pressure, 2.2204460492503131e-16, 0.0);
   ASSERT_LT(minPressure(disk, pressure), 0.0);
   FrictionBlockInput in;
@@ -185,7 +193,8 @@ TEST(FrictionBlock, BothLawsRefuseAnAlmostAllNegativePressure) {
   in.K = Vec3(0.5, 220.71875, 1e-8).asDiagonal();
   for (Model model : {Model::Exact, Model::Ellipsoidal}) {
     SCOPED_TRACE(toString(model));
-    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"pressure is negative"}));
+    EXPECT_TRUE(
+        throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"pressure is negative"}));
   }
 }
 
@@ -195,7 +204,9 @@ TEST(FrictionBlock, BothLawsRefuseAnAlmostAllNegativePressure) {
 TEST(FrictionBlock, RefusesALeverOutsideItsDomain) {
   const PatchShape triangle = PatchShape::polygon({{0.0, 1e-8}, {1e-8, 1e-8}, {1e-8, 0.5}});
   const FrictionPatch longLever(
-      triangle, LinearPressure::fromLoads(triangle, {1.5039998458623872e-07, -1.8799999201279856e-08, 1.1279998843967906e-15}),
+      triangle,
+      LinearPressure::fromLoads(
+          triangle, {1.5039998458623872e-07, -1.8799999201279856e-08, 1.1279998843967906e-15}),
       0.5, 1e-8);
   FrictionBlockInput in;
   in.b = Vec3(2.2250738585072014e-308, 1e-08, 27.607421875);
@@ -204,14 +215,16 @@ TEST(FrictionBlock, RefusesALeverOutsideItsDomain) {
   // first now; any K will do here: the lever alone is refused)
   in.K = Mat3::Identity();
   const PatchShape speck = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
-  const FrictionPatch shortLever(speck, LinearPressure::fromLoads(speck, {0.082551611533770858, -6.680727410960975e-10,
-                                                                          9.5894732401865139e-10}),
-                                 0.5, 0.5);
+  const FrictionPatch shortLever(
+      speck,
+      LinearPressure::fromLoads(
+          speck, {0.082551611533770858, -6.680727410960975e-10, 9.5894732401865139e-10}),
+      0.5, 0.5);
   FrictionBlockInput kink;
   kink.b = Vec3(1e-08, 0.5, 0.5);
   kink.L = 1e-8;
-  kink.K << 7633478.7669410771, 7633578.4965439122, 3284467.8871689122, 7633578.4965439122, 22900435.296875,
-      18551324.1875, 3284467.8871689122, 18551324.1875, 16680083.59375;
+  kink.K << 7633478.7669410771, 7633578.4965439122, 3284467.8871689122, 7633578.4965439122,
+      22900435.296875, 18551324.1875, 3284467.8871689122, 18551324.1875, 16680083.59375;
   for (Model model : {Model::Exact, Model::Ellipsoidal}) {
     SCOPED_TRACE(toString(model));
     EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(longLever, model, in); }, {"lever"}));
@@ -223,9 +236,11 @@ TEST(FrictionBlock, RefusesALeverOutsideItsDomain) {
   ordinary.L = 0.5;
   constexpr double kInside = 0.99;
   for (double lever : {1e5 * kInside, 1e-5 / kInside}) {
-    const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.5, disk.maxDistanceFromOrigin() / lever);
+    const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.5,
+                              disk.maxDistanceFromOrigin() / lever);
     for (Model model : {Model::Exact, Model::Ellipsoidal}) {
-      EXPECT_NO_THROW(solveFrictionBlock(patch, model, ordinary)) << "lever " << lever << " " << toString(model);
+      EXPECT_NO_THROW(solveFrictionBlock(patch, model, ordinary))
+          << "lever " << lever << " " << toString(model);
     }
   }
 }
@@ -262,10 +277,11 @@ TEST(FrictionBlock, EllipsoidalRefusesALongLever) {
 // set, is refused, naming the lever.
 TEST(FrictionBlock, ExactRefusesALongLeverWithOOnTheRim) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(0.5, 1e-8));
-  const FrictionPatch patch(disk,
-                            LinearPressure::fromLoads(disk, {0.34742866443796361, -9.2650840233638689e-10,
-                                                             0.13028574916423646}),
-                            1e-8, 1e-8);
+  const FrictionPatch patch(
+      disk,
+      LinearPressure::fromLoads(
+          disk, {0.34742866443796361, -9.2650840233638689e-10, 0.13028574916423646}),
+      1e-8, 1e-8);
   ASSERT_GE(minPressure(disk, patch.pressure()), 0.0);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 1e-8);
@@ -280,7 +296,9 @@ TEST(FrictionBlock, ExactRefusesALongLeverWithOOnTheRim) {
 TEST(FrictionBlock, ExactRefusesALongLeverWithASlipInTheForcePlane) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1e-8, 1e-8));
   const FrictionPatch patch(
-      disk, LinearPressure::fromLoads(disk, {2.271553102614555e-08, 2.0077880525071972e-09, 2.0077884542030355e-09}),
+      disk,
+      LinearPressure::fromLoads(
+          disk, {2.271553102614555e-08, 2.0077880525071972e-09, 2.0077884542030355e-09}),
       0.5, 1e-8);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 1e-8);
@@ -309,15 +327,17 @@ TEST(FrictionBlock, ExactRefusesALongLeverWithAStiffSpin) {
 TEST(FrictionBlock, EllipsoidalRefusesAHugePiOutsideTheDomain) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(1.0, 0.0));
   const double tiny = std::numeric_limits<double>::min();
-  const FrictionPatch patch(disk, LinearPressure::fromLoads(disk, {1e-08, 4.4207816532197203e+262, tiny}),
+  const FrictionPatch patch(disk,
+                            LinearPressure::fromLoads(disk, {1e-08, 4.4207816532197203e+262, tiny}),
                             14821621760.0, 1e-8);
   FrictionBlockInput in;
   in.b = Vec3(tiny, tiny, tiny);
   in.L = tiny;
   in.K << 36917776.0, 4.508515560323756e-225, -9.3386817376370605e-309, 4.508515560323756e-225,
-      1.5246092141020473e+20, 123.47506688, -9.3386817376370605e-309, 123.47506688, 2.0000000000000002e-16;
+      1.5246092141020473e+20, 123.47506688, -9.3386817376370605e-309, 123.47506688,
+      2.0000000000000002e-16;
   EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); },
-                          {"lever", "pressure", "diagonal of K spans"}));
+                           {"lever", "pressure", "diagonal of K spans"}));
 }
 
 // fuzz round 5 (the block's domain)
@@ -329,11 +349,13 @@ TEST(FrictionBlock, RefusesAKDiagonalSpanningMoreThan1e30) {
   FrictionBlockInput in;
   in.b = Vec3(-8.8212188532448897e-10, 1.790965336840594e-11, -66485.869428073769);
   in.L = 1.7318663946363179e-05;
-  in.K << 1.6397902928135056e-14, 2.3559521313631101e-18, 22.498146681802975, 2.3559521313631101e-18,
-      9.9999999999999998e-20, 0.087759323871331368, 22.498146681802975, 0.087759323871331368, 1.0000000000000002e+19;
+  in.K << 1.6397902928135056e-14, 2.3559521313631101e-18, 22.498146681802975,
+      2.3559521313631101e-18, 9.9999999999999998e-20, 0.087759323871331368, 22.498146681802975,
+      0.087759323871331368, 1.0000000000000002e+19;
   for (Model model : {Model::Exact, Model::Ellipsoidal}) {
     SCOPED_TRACE(toString(model));
-    EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"diagonal of K spans"}));
+    EXPECT_TRUE(
+        throwsNaming([&] { solveFrictionBlock(patch, model, in); }, {"diagonal of K spans"}));
   }
   // just inside: K = diag(1, 1, 0.99e30)^(1/2) C diag(...)^(1/2) with C's
   // off-diagonals 0.3 and 0.2
@@ -349,12 +371,14 @@ TEST(FrictionBlock, RefusesAKDiagonalSpanningMoreThan1e30) {
   for (Model model : {Model::Exact, Model::Ellipsoidal}) {
     SCOPED_TRACE(toString(model));
     const FrictionBlockResult r = solveFrictionBlock(patch, model, inside);
-    const double set = model == Model::Exact ? 1.0 + disk.maxDistanceFromOrigin() / patch.rho() : patch.Pi().norm();
+    const double set = model == Model::Exact ? 1.0 + disk.maxDistanceFromOrigin() / patch.rho()
+                                             : patch.Pi().norm();
     // (a slip long enough for its direction to be resolved, as the fuzz
     // target checks: |s| > 1e-2 of the slip scale |b| + L |K| set)
     ASSERT_FALSE(r.sticking);
     ASSERT_GT(r.slip.norm(), 1e-2 * (inside.b.norm() + inside.L * inside.K.norm() * set));
-    EXPECT_LT((r.impulse - inside.L * patch.unitQ(model, r.slip)).norm(), kLawSlack * inside.L * set);
+    EXPECT_LT((r.impulse - inside.L * patch.unitQ(model, r.slip)).norm(),
+              kLawSlack * inside.L * set);
   }
 }
 
@@ -366,7 +390,8 @@ TEST(FrictionBlock, IsTheLawAtItsSlipAcrossTheLeverDomain) {
   constexpr double kLawSlack = 1e-6;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  const std::vector<PatchShape> shapes = {PatchShape::disk(0.5), PatchShape::disk(0.5, Vec2(0.3, -0.2)),
+  const std::vector<PatchShape> shapes = {PatchShape::disk(0.5),
+                                          PatchShape::disk(0.5, Vec2(0.3, -0.2)),
                                           PatchShape::rectangle(1.0, 0.2)};
   int checked = 0;
   // (the domain's edges 1% inside: rho = max|r| / 1e5 rounds to a lever
@@ -374,8 +399,8 @@ TEST(FrictionBlock, IsTheLawAtItsSlipAcrossTheLeverDomain) {
   for (double lever : {1.01e-5, 1e-3, 1.0, 1e3, 0.99e5}) {
     for (int k = 0; k < 60; ++k) {
       const PatchShape& shape = shapes[k % 3];
-      const PatchLoads loads =
-          nearestAdmissibleLoads(shape, {1.0, 0.3 * uniform(rng), 0.3 * uniform(rng)}, shape.defaultRho());
+      const PatchLoads loads = nearestAdmissibleLoads(
+          shape, {1.0, 0.3 * uniform(rng), 0.3 * uniform(rng)}, shape.defaultRho());
       const FrictionPatch patch(shape, LinearPressure::fromLoads(shape, loads), 0.5,
                                 shape.maxDistanceFromOrigin() / lever);
       Mat3 A;

@@ -5,12 +5,12 @@
 // of L times the limit set's size, and slip = b + K impulse to kSlip. The
 // assert preset runs these with Eigen's assertions live (fuzz round 11,
 // item 68).
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/friction_block.hpp>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "error_matchers.hpp"
 #include "oracle.hpp"
@@ -37,13 +37,14 @@ void expectSlipIsBPlusKImpulse(const FrictionBlockInput& input, const FrictionBl
 // Eq. (16) at the returned slip, so q = Q / Pz.
 Vec3 diskLawByQuadrature(const FrictionPatch& patch, const LinearPressure& p, const Vec3& slip) {
   const PatchShape& disk = patch.shape();
-  return patchspin::testing::bruteForceQDisk(disk.centre(), disk.radius(), patchspin::testing::linearField(p), 1.0,
-                                             patch.rho(), slip, 1e-12) /
+  return patchspin::testing::bruteForceQDisk(disk.centre(), disk.radius(),
+                                             patchspin::testing::linearField(p), 1.0, patch.rho(),
+                                             slip, 1e-12) /
          patch.Pz();
 }
 
-void expectImpulseIsTheLaw(const FrictionBlockInput& input, const FrictionBlockResult& r, const Vec3& q,
-                           double setSize) {
+void expectImpulseIsTheLaw(const FrictionBlockInput& input, const FrictionBlockResult& r,
+                           const Vec3& q, double setSize) {
   EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L * setSize)
       << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
 }
@@ -55,8 +56,8 @@ TEST(ExactBlock, TinyDiskFarFromOSpinningAboutItsRimIsTheLaw) {
   const Vec2 centre(-3.7438506778344681e-05, -8.2157417227233455e-05);
   const double radius = 1e-8, rho = 0.5;
   const PatchShape shape = PatchShape::disk(radius, centre);
-  const LinearPressure p =
-      LinearPressure::fromLoads(shape, PatchLoads{1371.8459892853916, 0.11270929465102736, -0.051357058932178852});
+  const LinearPressure p = LinearPressure::fromLoads(
+      shape, PatchLoads{1371.8459892853916, 0.11270929465102736, -0.051357058932178852});
   const FrictionPatch patch(shape, p, 1073217536.0, rho);
   FrictionBlockInput input;
   input.b = Vec3(0.5, 0.5, 0.5);
@@ -70,11 +71,14 @@ TEST(ExactBlock, TinyDiskFarFromOSpinningAboutItsRimIsTheLaw) {
   // its centre: the hard case, where the law turns fastest)
   const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
   EXPECT_LT((icr - centre).norm(), 2.0 * radius);
-  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(), kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
+  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(),
+            kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
   // oracle: Q = -mu ∫ p k dA with mu = 1, so q = Q / Pz
-  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho, r.slip, 1e-12) / patch.Pz();
-  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L) << "q " << q.transpose() << ", impulse "
-                                                               << r.impulse.transpose();
+  const Vec3 q = patchspin::testing::bruteForceQDisk(
+                     centre, radius, patchspin::testing::linearField(p), 1.0, rho, r.slip, 1e-12) /
+                 patch.Pz();
+  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L)
+      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
 }
 
 // fuzz round 9, item 64
@@ -85,7 +89,8 @@ TEST(ExactBlock, TinyDiskFarFromOSpinningAboutAPointInsideIsTheLaw) {
   const double radius = 1e-8, rho = 0.5;
   const PatchShape shape = PatchShape::disk(radius, centre);
   const LinearPressure p = LinearPressure::fromLoads(
-      shape, PatchLoads{1.3513656002999971e+158, 1.1102462453994961e+154, -5.0589732790361525e+153});
+      shape,
+      PatchLoads{1.3513656002999971e+158, 1.1102462453994961e+154, -5.0589732790361525e+153});
   const FrictionPatch patch(shape, p, 1073217536.0, rho);
   FrictionBlockInput input;
   input.b = Vec3(-0.0, 0.5, 0.5);
@@ -99,14 +104,16 @@ TEST(ExactBlock, TinyDiskFarFromOSpinningAboutAPointInsideIsTheLaw) {
   // with the slip's direction about g)
   const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
   EXPECT_LT((icr - centre).norm(), radius);
-  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(), kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
+  EXPECT_LT((r.slip - input.b - input.K * r.impulse).norm(),
+            kSlip * (input.b.norm() + input.K.norm() * r.impulse.norm()));
   // oracle: Q = -mu ∫ p k dA with mu = 1 by brute-force quadrature of
   // Eq. (16) at the returned slip, so q = Q / Pz; kLaw is the fuzz target's
   // tolerance (relative to L times the set's size, ~1 here: lever 1.8e-4)
-  const Vec3 q = patchspin::testing::bruteForceQDisk(centre, radius, patchspin::testing::linearField(p), 1.0, rho,
-                                                     r.slip, 1e-12) / patch.Pz();
-  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L) << "q " << q.transpose() << ", impulse "
-                                                               << r.impulse.transpose();
+  const Vec3 q = patchspin::testing::bruteForceQDisk(
+                     centre, radius, patchspin::testing::linearField(p), 1.0, rho, r.slip, 1e-12) /
+                 patch.Pz();
+  EXPECT_LT((r.impulse - input.L * q).norm(), kLaw * input.L)
+      << "q " << q.transpose() << ", impulse " << r.impulse.transpose();
 }
 
 // fuzz round 11, item 66
@@ -116,8 +123,8 @@ TEST(ExactBlock, TinyDiskWithAHugeMuIsTheLaw) {
   const Vec2 centre(-5.0173184718005359e-08, 0.00010531768202781677);
   const double radius = 1e-8, rho = 0.5, mu = 1.0000000000000001e+300;
   const PatchShape shape = PatchShape::disk(radius, centre);
-  const LinearPressure p =
-      LinearPressure::fromLoads(shape, PatchLoads{57673047.943524897, -6073.8475422882257, -2.8935592936814216});
+  const LinearPressure p = LinearPressure::fromLoads(
+      shape, PatchLoads{57673047.943524897, -6073.8475422882257, -2.8935592936814216});
   const FrictionPatch patch(shape, p, mu, rho);
   // (the recentred patch with the same mu is out of range: what sent the
   // block back to O)
@@ -147,9 +154,10 @@ TEST(ExactBlock, TinyDiskWithAHugeMuIsTheLaw) {
 // it, where the law turns across ~1e-11 rad: the law at its slip, also for a
 // tolerance below what double resolves.
 TEST(ExactBlock, FarPolygonSpinningAboutAPointInsideIsTheLaw) {
-  const PatchShape shape = PatchShape::polygon(
-      {Vec2(-0.018852195551757815, -2093.2499999998117), Vec2(-2.0949095026328575e-05, -2093.7499999995339),
-       Vec2(0.49997904250000003, -2094.7500000049999), Vec2(0.49997905250000002, -2093.7500000049999)});
+  const PatchShape shape = PatchShape::polygon({Vec2(-0.018852195551757815, -2093.2499999998117),
+                                                Vec2(-2.0949095026328575e-05, -2093.7499999995339),
+                                                Vec2(0.49997904250000003, -2094.7500000049999),
+                                                Vec2(0.49997905250000002, -2093.7500000049999)});
   const double rho = 0.5;
   const LinearPressure p = LinearPressure::fromLoads(
       shape, PatchLoads{0.00011939347811641755, 0.25002100756621692, 3.6343011768632856e-05});
@@ -173,8 +181,8 @@ TEST(ExactBlock, FarPolygonSpinningAboutAPointInsideIsTheLaw) {
     const Vec2 icr = rho * Vec2(-r.slip.y(), r.slip.x()) / r.slip.z();
     EXPECT_TRUE(shape.contains(icr)) << icr.transpose();
     expectSlipIsBPlusKImpulse(input, r);
-    const Vec3 q = patchspin::testing::bruteForceQ(shape, patchspin::testing::linearField(p), 1.0, rho, r.slip,
-                                                   1e-13) /
+    const Vec3 q = patchspin::testing::bruteForceQ(shape, patchspin::testing::linearField(p), 1.0,
+                                                   rho, r.slip, 1e-13) /
                    patch.Pz();
     // the set's size (1 + max|r| / rho): the fuzz target's without its factor
     // A max|p| / Pz (2.6 here: min p is -2.8e-12 of the mean, so the target
@@ -232,13 +240,14 @@ TEST(ExactBlock, VerifiedBlockIsTheLawAtItsSlip) {
 // by the exact block, naming it; the ellipsoidal block solves it, and a
 // 1 m x 1 mm face under a tipped admissible pressure is solved.
 TEST(ExactBlock, RefusesALawWithoutDigits) {
-  const PatchShape sliver =
-      PatchShape::polygon({{-5.00585889346894e-09, -5.4910742118954658e-09},
-                           {-3.1943728212127098e-09, -5.4910742300103267e-09},
-                           {0.49999999680574098, 1.3205255290824883e-09},
-                           {4.8521548660111215e-10, 6.3205254922877428e-09}});
+  const PatchShape sliver = PatchShape::polygon({{-5.00585889346894e-09, -5.4910742118954658e-09},
+                                                 {-3.1943728212127098e-09, -5.4910742300103267e-09},
+                                                 {0.49999999680574098, 1.3205255290824883e-09},
+                                                 {4.8521548660111215e-10, 6.3205254922877428e-09}});
   const FrictionPatch noisy(
-      sliver, LinearPressure::fromLoads(sliver, {0.32000003110670083, 2.6728782502318121e-10, 0.040000002870676614}),
+      sliver,
+      LinearPressure::fromLoads(
+          sliver, {0.32000003110670083, 2.6728782502318121e-10, 0.040000002870676614}),
       1e-8, 0.5);
   // the law is noise: some direction's unit torque exceeded ten times its
   // bound max|r| / rho (measured here before the sixth round; since then the

@@ -7,8 +7,8 @@
 #include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <cmath>
 #include <string>
@@ -22,7 +22,8 @@ namespace {
 bool llTAccepts(const Mat3& K) {
   const Mat3 A = 0.5 * (K + K.transpose());
   const Eigen::LLT<Mat3> llt(A);
-  return llt.info() == Eigen::Success && A.diagonal().minCoeff() > 0.0 && llt.matrixLLT().allFinite();
+  return llt.info() == Eigen::Success && A.diagonal().minCoeff() > 0.0 &&
+         llt.matrixLLT().allFinite();
 }
 
 // Whether the ellipsoidal block refuses K as not positive definite.
@@ -62,10 +63,11 @@ TEST(StepFastPaths, EllipsoidalPositiveDefinitenessShortcutDecidesAsTheFactorisa
           const Mat3 K = s.asDiagonal() * C * s.asDiagonal();
           const bool llt = llTAccepts(K);
           EXPECT_EQ(blockRefusesAsIndefinite(patch, K), !llt)
-              << "c = (" << c01 << ", " << c02 << ", " << c12 << "), diagonal " << dg[0] << " " << dg[1]
-              << " " << dg[2];
+              << "c = (" << c01 << ", " << c02 << ", " << c12 << "), diagonal " << dg[0] << " "
+              << dg[1] << " " << dg[2];
           (llt ? accepted : refused) += 1;
-          if (std::abs(c01) <= 0.44 && std::abs(c02) <= 0.44 && std::abs(c12) <= 0.44) ++shortcutRegion;
+          if (std::abs(c01) <= 0.44 && std::abs(c02) <= 0.44 && std::abs(c12) <= 0.44)
+            ++shortcutRegion;
         }
   }
   // both decisions and the shortcut's region are exercised

@@ -7,8 +7,8 @@
 #include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cctype>

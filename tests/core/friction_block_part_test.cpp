@@ -2,13 +2,13 @@
 // work-saving rules (quick stick, reuse, deferred refresh) return what a
 // plain block solve with the refreshed law returns; a refresh sets the law's
 // pressure to the normal block's loads; a refused input keeps the impulse.
-#include <patchspin/parts/friction_block_part.hpp>
 #include <patchspin/friction_block.hpp>
+#include <patchspin/parts/friction_block_part.hpp>
 
 #include "patch_test_bodies.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <random>
 
@@ -27,7 +27,8 @@ struct PatchBlock {
   StickCertificates certs;
   explicit PatchBlock(std::mt19937& rng, Model model) {
     const PatchBody a = testing::randomBody(rng), ground;
-    EXPECT_TRUE(makePatchBlocks(patchEffectiveMass(a, ground, testing::randomRotation(rng), 0.03), k));
+    EXPECT_TRUE(
+        makePatchBlocks(patchEffectiveMass(a, ground, testing::randomRotation(rng), 0.03), k));
     fb.model = model;
     fb.mu = 0.5;
     fb.rho = law.rho();
@@ -37,7 +38,8 @@ struct PatchBlock {
 };
 
 // The reference: the law refreshed with the loads, then one block solve.
-FrictionBlockResult reference(const PatchBlock& s, Model model, const Vec3& slip, const Vec3& lamN) {
+FrictionBlockResult reference(const PatchBlock& s, Model model, const Vec3& slip,
+                              const Vec3& lamN) {
   FrictionPatch law = s.law;
   const PatchLoads raw = toLoads(lamN);
   const PatchLoads loads = nearestAdmissibleLoads(law.shape(), raw, law.rho());
@@ -65,8 +67,9 @@ TEST(FrictionBlockPart, WorkSavingRulesReturnThePlainSolve) {
       // two visits with the same input: the second is reused or quick
       Vec3 lamF = Vec3::Zero();
       for (int visit = 0; visit < 2; ++visit) {
-        lamF = solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, slip + s.k.Ks * lamF, lamF, lamN, 0,
-                                     settings, counters, refreshed);
+        lamF =
+            solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, slip + s.k.Ks * lamF,
+                                  lamF, lamN, 0, settings, counters, refreshed);
         EXPECT_EQ(refreshed, visit == 0);
         EXPECT_EQ(s.fb.sticking, expected.sticking) << "trial " << trial << " visit " << visit;
         EXPECT_LT((lamF - expected.impulse).norm(), kBlockTol * (1.0 + expected.impulse.norm()));
@@ -88,12 +91,12 @@ TEST(FrictionBlockPart, RefreshSetsTheLawsPressureFromTheLoads) {
   const Vec3 lamN(0.1, 0.0003, -0.0004);  // centre of pressure (4, 3) mm
   FrictionPartCounters counters;
   bool refreshed = false;
-  solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, Vec3(0.1, 0.0, 0.0), Vec3::Zero(), lamN, 0,
-                        FrictionPartSettings(), counters, refreshed);
+  solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, Vec3(0.1, 0.0, 0.0),
+                        Vec3::Zero(), lamN, 0, FrictionPartSettings(), counters, refreshed);
   ASSERT_TRUE(refreshed);
   const PatchLoads l = toLoads(lamN);
-  const FrictionPatch expected(s.shape, LinearPressure::fromLoads(s.shape, {l.Pz / 0.01, l.Tx / 0.01, l.Ty / 0.01}),
-                               0.5);
+  const FrictionPatch expected(
+      s.shape, LinearPressure::fromLoads(s.shape, {l.Pz / 0.01, l.Tx / 0.01, l.Ty / 0.01}), 0.5);
   EXPECT_LT((s.law.Pi() - expected.Pi()).norm(), 1e-12);
   EXPECT_EQ(s.fb.law.pressureCop, Vec2(l.Ty / l.Pz, -l.Tx / l.Pz));
   // the quick test after the refresh uses the new law's Pi^-1
@@ -108,8 +111,9 @@ TEST(FrictionBlockPart, RefusedInputKeepsTheImpulse) {
   FrictionPartCounters counters;
   bool refreshed = false;
   const Vec3 before(0.01, -0.02, 0.0);
-  const Vec3 lamF = solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, Vec3(NAN, 0.0, 0.0), before,
-                                          Vec3(0.1, 0.0, 0.0), 0, FrictionPartSettings(), counters, refreshed);
+  const Vec3 lamF =
+      solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, Vec3(NAN, 0.0, 0.0), before,
+                            Vec3(0.1, 0.0, 0.0), 0, FrictionPartSettings(), counters, refreshed);
   EXPECT_EQ(lamF, before);
   EXPECT_TRUE(s.fb.failed);
   EXPECT_EQ(counters.blockErrors, 1);
@@ -120,9 +124,9 @@ TEST(FrictionBlockPart, NoNormalImpulseNoFriction) {
   PatchBlock s(rng, Model::Ellipsoidal);
   FrictionPartCounters counters;
   bool refreshed = true;
-  const Vec3 lamF = solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true, Vec3(0.1, 0.0, 0.0),
-                                          Vec3(0.3, 0.0, 0.0), Vec3::Zero(), 0, FrictionPartSettings(), counters,
-                                          refreshed);
+  const Vec3 lamF = solveFrictionVelocity(s.fb, s.law, s.certs, s.outline, s.k, true,
+                                          Vec3(0.1, 0.0, 0.0), Vec3(0.3, 0.0, 0.0), Vec3::Zero(), 0,
+                                          FrictionPartSettings(), counters, refreshed);
   EXPECT_EQ(lamF, Vec3::Zero());
   EXPECT_FALSE(refreshed);
 }

@@ -2,9 +2,9 @@
 // block is homogeneous (K -> a K, b -> c b, L -> (c / a) L scale s by c and
 // lambda by c / a), so every case is checked against the law itself at the
 // returned slip, or against b + K lambda = 0 for a stick.
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/friction_block.hpp>
 
 #include <gtest/gtest.h>
 
@@ -92,14 +92,15 @@ TEST(FrictionBlockScale, FarFromUnitScaleIsTheLaw) {
   FrictionBlockInput overflowing;
   overflowing.b = Vec3(0.0, 0.0, 0.00027956068515777588);
   overflowing.L = 2.2204460492503131e-16;
-  overflowing.K << 6.0026327207929446e+17, 2.432376922470289e+58, 7.7476659200000002, 2.432376922470289e+58,
-      1.2000001427493119e+148, 1.0954451801661788e+66, 7.7476659200000002, 1.0954451801661788e+66,
-      1.2241048138797834e+148;
+  overflowing.K << 6.0026327207929446e+17, 2.432376922470289e+58, 7.7476659200000002,
+      2.432376922470289e+58, 1.2000001427493119e+148, 1.0954451801661788e+66, 7.7476659200000002,
+      1.0954451801661788e+66, 1.2241048138797834e+148;
   try {
     const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, overflowing);
     const Vec3 residual = overflowing.b + overflowing.K * r.impulse - r.slip;
-    EXPECT_LT(residual.stableNorm(), kLawTol * (overflowing.b.norm() +
-                                                internal::stableMatrixNorm(overflowing.K) * r.impulse.stableNorm()));
+    EXPECT_LT(residual.stableNorm(),
+              kLawTol * (overflowing.b.norm() +
+                         internal::stableMatrixNorm(overflowing.K) * r.impulse.stableNorm()));
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
   }
@@ -119,7 +120,8 @@ TEST(FrictionBlockScale, FarFromUnitScaleIsTheLaw) {
     SCOPED_TRACE(toString(model));
     const FrictionBlockResult r = solveFrictionBlock(tilted, model, far);
     ASSERT_FALSE(r.sticking);
-    EXPECT_LT((r.impulse / far.L - tilted.unitQ(model, r.slip)).norm(), kLawTol * tilted.Pi().norm());
+    EXPECT_LT((r.impulse / far.L - tilted.unitQ(model, r.slip)).norm(),
+              kLawTol * tilted.Pi().norm());
   }
 }
 
@@ -136,9 +138,9 @@ TEST(FrictionBlockScale, HugeFreeSlipIsTheLawAtItsSlip) {
   FrictionBlockInput in;
   in.b = Vec3(184.71875, 1.106409418319547e+74, 0.5);
   in.L = 0.5;
-  in.K << 0.50000268673971981, -4.2896462844848639e-12, 2.0000000000000002e-16, -4.2896462844848639e-12,
-      0.50000146447053262, 1.2101631028747559e-11, 2.0000000000000002e-16, 1.2101631028747559e-11,
-      0.50000000000000022;
+  in.K << 0.50000268673971981, -4.2896462844848639e-12, 2.0000000000000002e-16,
+      -4.2896462844848639e-12, 0.50000146447053262, 1.2101631028747559e-11, 2.0000000000000002e-16,
+      1.2101631028747559e-11, 0.50000000000000022;
   in.warmSlip = Vec3(0.5, 1e-8, 1e-8);
   // the law's round-off at an ordinary disk, with room for the solver's 1e-14
   constexpr double kLawTol = 1e-12;
@@ -163,7 +165,8 @@ TEST(FrictionBlockScale, EllipsoidalWithATinyLDoesNotStick) {
   // left p negative on part of the speck, outside the block's domain now,
   // and the bug was in the scale of L)
   const double Pz = 1.106355352524917e+74;
-  const FrictionPatch patch(speck, LinearPressure::fromLoads(speck, {Pz, -Pz * 1e-8, Pz * 1e-8}), 1e-8, 1e-8);
+  const FrictionPatch patch(speck, LinearPressure::fromLoads(speck, {Pz, -Pz * 1e-8, Pz * 1e-8}),
+                            1e-8, 1e-8);
   ASSERT_GE(minPressure(speck, patch.pressure()), 0.0);
   FrictionBlockInput in;
   in.b = Vec3(1e-08, 0.5, 1.130272745509552e+74);
@@ -176,7 +179,8 @@ TEST(FrictionBlockScale, EllipsoidalWithATinyLDoesNotStick) {
   // round-off of a few 3x3 products (1e-12)
   constexpr double kTol = 1e-12;
   EXPECT_LE(r.impulse.norm(), in.L * patch.Pi().norm() * (1.0 + kTol));
-  EXPECT_LT((r.impulse / in.L - patch.unitQ(Model::Ellipsoidal, r.slip)).norm(), kTol * patch.Pi().norm());
+  EXPECT_LT((r.impulse / in.L - patch.unitQ(Model::Ellipsoidal, r.slip)).norm(),
+            kTol * patch.Pi().norm());
 }
 
 // fuzz round 2, item 18
@@ -188,7 +192,9 @@ TEST(FrictionBlockScale, ExactWithAFreeSlipOf1e230IsTheLawAtItsSlip) {
   // the block's domain now; the longest lever inside it, 1e5, instead)
   const double kRhoAtMaxLever = disk.maxDistanceFromOrigin() / 1e5;
   const FrictionPatch patch(
-      disk, LinearPressure::fromLoads(disk, {9.860043733131926e+299, -3.0247296913024801e+297, 1.2321343576385495e+299}),
+      disk,
+      LinearPressure::fromLoads(
+          disk, {9.860043733131926e+299, -3.0247296913024801e+297, 1.2321343576385495e+299}),
       0.5, kRhoAtMaxLever);
   FrictionBlockInput in;
   in.b = Vec3(1e-08, 8.0428159874152501e+230, 0.5);
@@ -201,7 +207,8 @@ TEST(FrictionBlockScale, ExactWithAFreeSlipOf1e230IsTheLawAtItsSlip) {
   // round-off of q: 1e-12 of L times the set's size (1 + max|r| / rho)
   constexpr double kLawTol = 1e-12;
   const double setSize = 1.0 + disk.maxDistanceFromOrigin() / patch.rho();
-  EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(), kLawTol * in.L * setSize);
+  EXPECT_LT((r.impulse - in.L * patch.unitQ(Model::Exact, r.slip)).norm(),
+            kLawTol * in.L * setSize);
 }
 
 }  // namespace

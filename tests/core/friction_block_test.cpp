@@ -4,8 +4,8 @@
 // maximum-dissipation law, and the energy balance.
 #include <patchspin/friction_block.hpp>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <cmath>
 #include <random>
@@ -138,7 +138,9 @@ void checkExactProjection(const FrictionPatch& patch, std::uint32_t seed) {
   EXPECT_GT(sticks, 5);
 }
 
-TEST(FrictionBlockTest, ExactIsKProjectionOntoLimitSetDisk) { checkExactProjection(tiltedDisk(), 11); }
+TEST(FrictionBlockTest, ExactIsKProjectionOntoLimitSetDisk) {
+  checkExactProjection(tiltedDisk(), 11);
+}
 TEST(FrictionBlockTest, ExactIsKProjectionOntoLimitSetRectangle) {
   checkExactProjection(tiltedRectangle(), 12);
 }
@@ -213,7 +215,8 @@ TEST(FrictionBlockTest, ExactLimitSetContainsTheTranslationBicone) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const PatchShape disk = PatchShape::disk(0.05);
   const FrictionPatch patches[] = {
-      tiltedRectangle(), FrictionPatch(disk, LinearPressure::fromLoads(disk, {10.0, -0.05, 0.08}), 0.5)};
+      tiltedRectangle(),
+      FrictionPatch(disk, LinearPressure::fromLoads(disk, {10.0, -0.05, 0.08}), 0.5)};
   for (const FrictionPatch& patch : patches) {
     for (int k = 0; k < 16; ++k) {  // translations: the ellipse itself
       const double a = 2.0 * M_PI * k / 16;
@@ -230,15 +233,18 @@ TEST(FrictionBlockTest, ExactLimitSetContainsTheTranslationBicone) {
     for (int trial = 0; trial < 200; ++trial) {
       const double t = std::abs(u(rng)), phi = M_PI * u(rng);
       const double sign = u(rng) < 0 ? -1.0 : 1.0;
-      const Vec3 z((1.0 - t) * std::cos(phi), (1.0 - t) * std::sin(phi), sign * t);  // on the boundary
+      const Vec3 z((1.0 - t) * std::cos(phi), (1.0 - t) * std::sin(phi),
+                   sign * t);  // on the boundary
       const Vec3 lambda = patch.Pi() * z;
-      for (size_t i = 0; i < ws.size(); ++i) worst = std::max(worst, ws[i].dot(qs[i]) - ws[i].dot(lambda));
+      for (size_t i = 0; i < ws.size(); ++i)
+        worst = std::max(worst, ws[i].dot(qs[i]) - ws[i].dot(lambda));
     }
     EXPECT_LE(worst, kSupportTol);
     // and the bicone is not all of E: beyond its vertex Pi e3 the point is out
     const Vec3 beyond = 1.05 * patch.Pi().col(2);
     double gap = -1e300;
-    for (size_t i = 0; i < ws.size(); ++i) gap = std::max(gap, ws[i].dot(qs[i]) - ws[i].dot(beyond));
+    for (size_t i = 0; i < ws.size(); ++i)
+      gap = std::max(gap, ws[i].dot(qs[i]) - ws[i].dot(beyond));
     EXPECT_GT(gap, 0.0);
   }
 }

@@ -5,8 +5,8 @@
 #include <patchspin/geometry.hpp>
 #include <patchspin/pressure.hpp>
 
-#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <gtest/gtest.h>
+#include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "error_matchers.hpp"
 #include "oracle.hpp"
@@ -119,7 +119,8 @@ std::array<std::array<double, 3>, 3> entryScales(const PatchShape& shape) {
   return s;
 }
 
-constexpr MomentTable::Row kRowsWithR[3] = {MomentTable::kR, MomentTable::kXOverR, MomentTable::kYOverR};
+constexpr MomentTable::Row kRowsWithR[3] = {MomentTable::kR, MomentTable::kXOverR,
+                                            MomentTable::kYOverR};
 
 // Largest error of the nine entries with r against the 50-digit closed
 // form, in units of eps times the entry's scale.
@@ -218,8 +219,11 @@ TEST(Shape, RefusesMomentsOutOfRangeAndPatchesTooFarFromO) {
   EXPECT_TRUE(throwsNaming([] { PatchShape::regularPolygon(23, 1e-8, Vec2(0.5, 0.5)); },
                            {"distance from o"}));
   // huge coordinates that the polygon checks see as degenerate
-  EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {1e300, 0}, {0, 1e300}}); },
-                           {"area", "out of range"}));
+  EXPECT_TRUE(throwsNaming(
+      [] {
+        PatchShape::polygon({{0, 0}, {1e300, 0}, {0, 1e300}});
+      },
+      {"area", "out of range"}));
   // 1e4 diameters is still fine, and finite
   const PatchShape far = PatchShape::disk(1.0, Vec2(0.9e4 * 2.0, 0.0));
   EXPECT_TRUE(far.momentTable().m.allFinite());
@@ -241,11 +245,18 @@ TEST(MomentTable, LongSliverPassingNearOMatchesBruteForceQuadrature) {
   constexpr double kOracleTol = 1e-10;
   constexpr double kTableTol = 1e-6;
   auto absIntegral = [&](const std::function<double(const Vec2&)>& f) {
-    return testing::bruteForceIntegral(sliver, [&](const Vec2& p) { return std::abs(f(p)); }, kOracleTol);
+    return testing::bruteForceIntegral(
+        sliver, [&](const Vec2& p) { return std::abs(f(p)); }, kOracleTol);
   };
-  const std::function<double(const Vec2&)> xyOverR = [](const Vec2& p) { return p.x() * p.y() / p.norm(); };
-  const std::function<double(const Vec2&)> yyOverR = [](const Vec2& p) { return p.y() * p.y() / p.norm(); };
-  const std::function<double(const Vec2&)> xxOverR = [](const Vec2& p) { return p.x() * p.x() / p.norm(); };
+  const std::function<double(const Vec2&)> xyOverR = [](const Vec2& p) {
+    return p.x() * p.y() / p.norm();
+  };
+  const std::function<double(const Vec2&)> yyOverR = [](const Vec2& p) {
+    return p.y() * p.y() / p.norm();
+  };
+  const std::function<double(const Vec2&)> xxOverR = [](const Vec2& p) {
+    return p.x() * p.x() / p.norm();
+  };
   EXPECT_NEAR(m(MomentTable::kXOverR, 2), testing::bruteForceIntegral(sliver, xyOverR, kOracleTol),
               kTableTol * absIntegral(xyOverR));
   EXPECT_NEAR(m(MomentTable::kYOverR, 2), testing::bruteForceIntegral(sliver, yyOverR, kOracleTol),
@@ -292,7 +303,8 @@ TEST(MomentTable, PolygonRowsWithRFarFromOMatch50Digits) {
       const double far = shape.maxDistanceFromOrigin() / shape.diameter();
       ASSERT_GT(far, 4.0);  // the quadrature's regime (geometry.cpp, kFarRowsOffset)
       const double worst = worstRowError(shape);
-      EXPECT_LE(worst, kRowTolerance) << "offset " << far << ", " << n << " vertices, aspect " << aspect;
+      EXPECT_LE(worst, kRowTolerance)
+          << "offset " << far << ", " << n << " vertices, aspect " << aspect;
       worstOverall = std::max(worstOverall, worst);
       ++checked;
     }
@@ -300,8 +312,8 @@ TEST(MomentTable, PolygonRowsWithRFarFromOMatch50Digits) {
   EXPECT_GE(checked, 150);
   const double heptagon = worstRowError(farHeptagon());
   EXPECT_LE(heptagon, kRowTolerance) << "the second round's far heptagon";
-  std::printf("[ info ] %d polygons, worst entry with r %.2f eps of its scale; heptagon %.2f\n", checked,
-              worstOverall, heptagon);
+  std::printf("[ info ] %d polygons, worst entry with r %.2f eps of its scale; heptagon %.2f\n",
+              checked, worstOverall, heptagon);
 }
 
 // fuzz round 10, item 65 (the fuzz input)
@@ -322,18 +334,21 @@ TEST(PiMoments, FarSliverWithACancellingPressureMatches50Digits) {
   ASSERT_GT(Pz, 0);
   const auto scale = entryScales(shape);
   for (int f = 1; f < 3; ++f) {
-    const Big exact = (ref.withR[f][0] * c[0] + ref.withR[f][1] * c[1] + ref.withR[f][2] * c[2]) / Pz;
+    const Big exact =
+        (ref.withR[f][0] * c[0] + ref.withR[f][1] * c[1] + ref.withR[f][2] * c[2]) / Pz;
     const double got = f == 1 ? pm.pi_x0 : pm.pi_y0;
     // |Δ (∫ f p)| <= kRowTolerance eps sum_k |c_k| scale_k, plus Pz's own
     // rounding (relative: the polynomial rows, 4 eps max(1, D^2 / A))
     const double D = shape.diameter(), A = shape.area();
     double terms = 0.0;
     for (int k = 0; k < 3; ++k) terms += std::abs(static_cast<double>(c[k])) * scale[f][k];
-    const double tolerance = kRowTolerance * kEps * terms / static_cast<double>(Pz) +
-                             4.0 * kEps * std::max(1.0, D * D / A) * std::abs(static_cast<double>(exact));
+    const double tolerance =
+        kRowTolerance * kEps * terms / static_cast<double>(Pz) +
+        4.0 * kEps * std::max(1.0, D * D / A) * std::abs(static_cast<double>(exact));
     EXPECT_NEAR(got, static_cast<double>(exact), tolerance) << (f == 1 ? "pi_x0" : "pi_y0");
-    std::printf("[ info ] %s %.17g, 50 digits %.17g, off %.2g (tolerance %.2g)\n", f == 1 ? "pi_x0" : "pi_y0", got,
-                static_cast<double>(exact), std::abs(got - static_cast<double>(exact)), tolerance);
+    std::printf("[ info ] %s %.17g, 50 digits %.17g, off %.2g (tolerance %.2g)\n",
+                f == 1 ? "pi_x0" : "pi_y0", got, static_cast<double>(exact),
+                std::abs(got - static_cast<double>(exact)), tolerance);
   }
   // and so within the target's bound, ∫|p| / Pz as pi_fuzz computes it (its message)
   EXPECT_LE(std::hypot(pm.pi_x0, pm.pi_y0), 9.4583940991483004);

@@ -38,13 +38,13 @@ constexpr double kOracleRelTol = 1e-13;
 // Test shapes: O inside, on the boundary, and outside.
 std::vector<PatchShape> testShapes() {
   return {
-      PatchShape::disk(0.7),                                    // centred at O
-      PatchShape::disk(0.5, Vec2(0.2, -0.1)),                   // O inside, off-centre
-      PatchShape::disk(0.3, Vec2(0.9, 0.4)),                    // O outside
-      PatchShape::disk(0.4, Vec2(0.4, 0.0)),                    // O on the rim
-      PatchShape::rectangle(1.0, 0.4),                          // centred at O
-      PatchShape::rectangle(0.8, 0.3, Vec2(0.1, 0.05), 0.6),    // O inside, rotated
-      PatchShape::rectangle(0.5, 0.2, Vec2(1.2, -0.7), -0.3),   // O outside
+      PatchShape::disk(0.7),                                   // centred at O
+      PatchShape::disk(0.5, Vec2(0.2, -0.1)),                  // O inside, off-centre
+      PatchShape::disk(0.3, Vec2(0.9, 0.4)),                   // O outside
+      PatchShape::disk(0.4, Vec2(0.4, 0.0)),                   // O on the rim
+      PatchShape::rectangle(1.0, 0.4),                         // centred at O
+      PatchShape::rectangle(0.8, 0.3, Vec2(0.1, 0.05), 0.6),   // O inside, rotated
+      PatchShape::rectangle(0.5, 0.2, Vec2(1.2, -0.7), -0.3),  // O outside
       PatchShape::polygon({{-0.2, -0.3}, {0.6, -0.1}, {0.4, 0.5}, {-0.3, 0.2}}),
       PatchShape::polygon({{0.0, 0.0}, {0.5, 0.1}, {0.2, 0.6}}),  // O at a vertex
       PatchShape::regularPolygon(7, 0.45, Vec2(-0.3, 0.6), 0.2),  // O outside
@@ -56,8 +56,8 @@ std::vector<PatchShape> testShapes() {
 ::testing::AssertionResult nearRel(double a, double b, double tol, double scale) {
   const double bound = tol * (std::abs(b) + scale);
   if (std::abs(a - b) <= bound) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << a << " vs " << b << " differ by " << std::abs(a - b)
-                                       << " > " << bound;
+  return ::testing::AssertionFailure()
+         << a << " vs " << b << " differ by " << std::abs(a - b) << " > " << bound;
 }
 
 TEST(AreaMoments, MatchBruteForce) {
@@ -108,7 +108,8 @@ TEST(AreaMoments, LoadMatrixLayout) {
 TEST(Rho, MatchesBruteForce) {
   for (const PatchShape& shape : testShapes()) {
     SCOPED_TRACE(shape.describe());
-    const double ref = bruteForceIntegral(shape, [](const Vec2& p) { return p.norm(); }, kOracleRelTol) /
+    const double ref = bruteForceIntegral(
+                           shape, [](const Vec2& p) { return p.norm(); }, kOracleRelTol) /
                        bruteForceAreaMoments(shape, kOracleRelTol).area;
     EXPECT_TRUE(nearRel(shape.defaultRho(), ref, kMomentRelTol, 0.0));
   }
@@ -132,14 +133,16 @@ TEST(Rho, CentredRectangleClosedForm) {
   const double a = 1.3, b = 0.45;
   const double a2 = a / 2, b2 = b / 2, d = std::hypot(a2, b2);
   const double quarter =
-      a2 * b2 * d / 3 + (a2 * a2 * a2 * std::asinh(b2 / a2) + b2 * b2 * b2 * std::asinh(a2 / b2)) / 6;
+      a2 * b2 * d / 3 +
+      (a2 * a2 * a2 * std::asinh(b2 / a2) + b2 * b2 * b2 * std::asinh(a2 / b2)) / 6;
   const double rho = 4.0 * quarter / (a * b);
   const PatchShape shape = PatchShape::rectangle(a, b);
   // the core sums edge integrals with asinh differences: a few more ulps
   constexpr double kRectangleRhoTol = 1e-13;
   EXPECT_TRUE(nearRel(shape.defaultRho(), rho, kRectangleRhoTol, 0.0));
-  const double oracle =
-      bruteForceIntegral(shape, [](const Vec2& p) { return p.norm(); }, kOracleRelTol) / (a * b);
+  const double oracle = bruteForceIntegral(
+                            shape, [](const Vec2& p) { return p.norm(); }, kOracleRelTol) /
+                        (a * b);
   EXPECT_TRUE(nearRel(oracle, rho, kMomentRelTol, 0.0));
 }
 
@@ -184,8 +187,8 @@ TEST(Shape, RectangleAndRegularPolygonVertices) {
   const PatchShape hex = PatchShape::regularPolygon(6, 0.5, Vec2(0.2, -0.3), 0.1);
   ASSERT_EQ(hex.vertices().size(), 6u);
   for (int i = 0; i < 6; ++i) {
-    const Vec2 expected = Vec2(0.2, -0.3) + 0.5 * Vec2(std::cos(0.1 + i * kPi / 3),
-                                                       std::sin(0.1 + i * kPi / 3));
+    const Vec2 expected =
+        Vec2(0.2, -0.3) + 0.5 * Vec2(std::cos(0.1 + i * kPi / 3), std::sin(0.1 + i * kPi / 3));
     EXPECT_LT((hex.vertices()[i] - expected).norm(), kRoundOff) << "vertex " << i;
   }
   // A = (n/2) R^2 sin(2 pi / n)
@@ -230,12 +233,13 @@ TEST(Shape, InFrameTransformsMoments) {
         Eigen::Rotation2Dd(-angle) * (shape.areaMoments().first - shape.area() * n);
     const double l = moved.maxDistanceFromOrigin();
     EXPECT_TRUE(nearRel(moved.area(), shape.area(), kMomentRelTol, 0.0));
-    EXPECT_TRUE(nearRel(moved.areaMoments().first.x(), expectedFirst.x(), kMomentRelTol,
-                        moved.area() * l));
-    EXPECT_TRUE(nearRel(moved.areaMoments().first.y(), expectedFirst.y(), kMomentRelTol,
-                        moved.area() * l));
-    const double rhoRef =
-        bruteForceIntegral(moved, [](const Vec2& p) { return p.norm(); }, kOracleRelTol) / moved.area();
+    EXPECT_TRUE(
+        nearRel(moved.areaMoments().first.x(), expectedFirst.x(), kMomentRelTol, moved.area() * l));
+    EXPECT_TRUE(
+        nearRel(moved.areaMoments().first.y(), expectedFirst.y(), kMomentRelTol, moved.area() * l));
+    const double rhoRef = bruteForceIntegral(
+                              moved, [](const Vec2& p) { return p.norm(); }, kOracleRelTol) /
+                          moved.area();
     EXPECT_TRUE(nearRel(moved.defaultRho(), rhoRef, kMomentRelTol, 0.0));
   }
 }
@@ -269,25 +273,46 @@ TEST(ShapeErrors, InvalidPolygons) {
   const double inf = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({}); }, {"3", "vert"}));
   EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {1, 0}}); }, {"3", "vert"}));
-  EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {0, 1}, {1, 1}, {1, 0}}); },
-                           {"clockwise"}));
+  EXPECT_TRUE(throwsNaming(
+      [] {
+        PatchShape::polygon({{0, 0}, {0, 1}, {1, 1}, {1, 0}});
+      },
+      {"clockwise"}));
   // an arrow head: convex hull minus a notch
   EXPECT_TRUE(throwsNaming(
-      [] { PatchShape::polygon({{0, 0}, {2, 0}, {2, 2}, {1, 0.5}, {0, 2}}); }, {"convex"}));
+      [] {
+        PatchShape::polygon({{0, 0}, {2, 0}, {2, 2}, {1, 0.5}, {0, 2}});
+      },
+      {"convex"}));
   // a self-intersecting pentagram (turns left everywhere, winds twice)
   std::vector<Vec2> star;
-  for (int i = 0; i < 5; ++i) star.emplace_back(std::cos(i * 4 * kPi / 5), std::sin(i * 4 * kPi / 5));
+  for (int i = 0; i < 5; ++i)
+    star.emplace_back(std::cos(i * 4 * kPi / 5), std::sin(i * 4 * kPi / 5));
   EXPECT_TRUE(throwsNaming([&] { PatchShape::polygon(star); }, {"convex", "intersect"}));
-  EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {1, 1}, {2, 2}}); },
-                           {"area", "collinear", "degenerate"}));
-  EXPECT_TRUE(throwsNaming([] { PatchShape::polygon({{0, 0}, {1, 0}, {1, 0}, {0, 1}}); },
-                           {"repeat", "duplicate", "area"}));
-  EXPECT_TRUE(throwsNaming([&] { PatchShape::polygon({{0, 0}, {1, nan}, {0, 1}}); },
-                           {"finite", "nan"}));
-  EXPECT_TRUE(throwsNaming([&] { PatchShape::polygon({{0, 0}, {inf, 0}, {0, 1}}); },
-                           {"finite", "inf"}));
-  EXPECT_TRUE(throwsNaming([] { PatchShape::rectangle(0.0, 1.0); }, {"lx", "length", "side", "positive", "> 0"}));
-  EXPECT_TRUE(throwsNaming([] { PatchShape::rectangle(1.0, -2.0); }, {"ly", "length", "side", "positive", "> 0"}));
+  EXPECT_TRUE(throwsNaming(
+      [] {
+        PatchShape::polygon({{0, 0}, {1, 1}, {2, 2}});
+      },
+      {"area", "collinear", "degenerate"}));
+  EXPECT_TRUE(throwsNaming(
+      [] {
+        PatchShape::polygon({{0, 0}, {1, 0}, {1, 0}, {0, 1}});
+      },
+      {"repeat", "duplicate", "area"}));
+  EXPECT_TRUE(throwsNaming(
+      [&] {
+        PatchShape::polygon({{0, 0}, {1, nan}, {0, 1}});
+      },
+      {"finite", "nan"}));
+  EXPECT_TRUE(throwsNaming(
+      [&] {
+        PatchShape::polygon({{0, 0}, {inf, 0}, {0, 1}});
+      },
+      {"finite", "inf"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::rectangle(0.0, 1.0); },
+                           {"lx", "length", "side", "positive", "> 0"}));
+  EXPECT_TRUE(throwsNaming([] { PatchShape::rectangle(1.0, -2.0); },
+                           {"ly", "length", "side", "positive", "> 0"}));
   EXPECT_TRUE(throwsNaming([] { PatchShape::regularPolygon(2, 1.0); }, {"3", "n"}));
 }
 
@@ -298,7 +323,8 @@ TEST(ShapeErrors, InvalidDisks) {
   EXPECT_TRUE(throwsNaming([] { PatchShape::disk(-1.0); }, {"radius"}));
   EXPECT_TRUE(throwsNaming([&] { PatchShape::disk(nan); }, {"radius"}));
   EXPECT_TRUE(throwsNaming([&] { PatchShape::disk(inf); }, {"radius"}));
-  EXPECT_TRUE(throwsNaming([&] { PatchShape::disk(1.0, Vec2(nan, 0.0)); }, {"centre", "center", "finite", "nan"}));
+  EXPECT_TRUE(throwsNaming([&] { PatchShape::disk(1.0, Vec2(nan, 0.0)); },
+                           {"centre", "center", "finite", "nan"}));
 }
 
 TEST(ShapeErrors, WrongKindAccessors) {

@@ -2,9 +2,9 @@
 // bad parameters and slip directions are refused by name, a tiny mu scales
 // the law, extreme inputs give an Error or a finite answer, and the exact
 // polygon law far from O keeps its normalisation.
+#include <patchspin/friction_block.hpp>
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
-#include <patchspin/friction_block.hpp>
 
 #include <gtest/gtest.h>
 
@@ -21,8 +21,8 @@
 namespace patchspin {
 namespace {
 
-using testing::LongLoads;
 using testing::loadsAboutVertexMean;
+using testing::LongLoads;
 using testing::throwsNaming;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -34,7 +34,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // terms about O over Pz.
 double lawModel(const PatchShape& shape, const LinearPressure& p, double Pz) {
   const double terms =
-      shape.area() * (std::abs(p.p0) + (std::abs(p.cx) + std::abs(p.cy)) * shape.maxDistanceFromOrigin()) / Pz;
+      shape.area() *
+      (std::abs(p.p0) + (std::abs(p.cx) + std::abs(p.cy)) * shape.maxDistanceFromOrigin()) / Pz;
   return kEps * std::max(1.0, shape.diameter() / shape.area() * shape.diameter()) * terms;
 }
 
@@ -161,13 +162,15 @@ TEST(FrictionPatch, TinyMuScalesTheLawWithoutEarlyUnderflow) {
 TEST(DoubleRange, ExtremeInputsGiveAnErrorOrAFiniteAnswer) {
   // an SPD K whose products overflow: Error, not a NaN impulse
   const PatchShape small = PatchShape::disk(1e-8, Vec2(1e-8, 1e-8));
-  const FrictionPatch patch(small, LinearPressure::fromLoads(small, {1.3e7, -0.12, 0.16}), 1e-8, 1e-8);
+  const FrictionPatch patch(small, LinearPressure::fromLoads(small, {1.3e7, -0.12, 0.16}), 1e-8,
+                            1e-8);
   FrictionBlockInput in;
   in.b = Vec3(1e-8, 1e-8, 0.5);
   in.L = 0.5;
   in.K = Vec3(1e300, 1e-8, 1e-8).asDiagonal();
   in.warmSlip = Vec3(0.5, 0.5, 0.5);
-  EXPECT_TRUE(throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"out of range"}));
+  EXPECT_TRUE(
+      throwsNaming([&] { solveFrictionBlock(patch, Model::Ellipsoidal, in); }, {"out of range"}));
 
   // torques 1e300 times Pz rho: the projection used to return inadmissible
   // loads (min pressure -7e300); now an Error, or admissible loads
@@ -182,14 +185,15 @@ TEST(DoubleRange, ExtremeInputsGiveAnErrorOrAFiniteAnswer) {
   // torques 1e154 times Pz rho on a 2e-8 m pentagon: the projection returned
   // Pz = -4.9e138 (round-off of the scaled torque) and the admissibility
   // check skipped it for Pz <= 0; now an Error, or admissible loads
-  const PatchShape pentagon = PatchShape::polygon({{2e-08, 2.2204460492503131e-16},
-                                                   {1.3090169943749475e-08, 9.5105653849961402e-09},
-                                                   {1.9098300562505273e-09, 5.8778527449693373e-09},
-                                                   {1.9098300562505239e-09, -5.8778523008801258e-09},
-                                                   {1.3090169943749473e-08, -9.510564940906932e-09}});
+  const PatchShape pentagon =
+      PatchShape::polygon({{2e-08, 2.2204460492503131e-16},
+                           {1.3090169943749475e-08, 9.5105653849961402e-09},
+                           {1.9098300562505273e-09, 5.8778527449693373e-09},
+                           {1.9098300562505239e-09, -5.8778523008801258e-09},
+                           {1.3090169943749473e-08, -9.510564940906932e-09}});
   try {
-    const PatchLoads near =
-        nearestAdmissibleLoads(pentagon, {0.5, 3.7921287488073376e+146, 0.5}, 1.1015169678871499e-08);
+    const PatchLoads near = nearestAdmissibleLoads(pentagon, {0.5, 3.7921287488073376e+146, 0.5},
+                                                   1.1015169678871499e-08);
     EXPECT_GE(near.Pz, 0.0);
     EXPECT_TRUE(isAdmissible(pentagon, near, 1e-6));
   } catch (const Error& e) {
@@ -207,7 +211,8 @@ TEST(DoubleRange, ExtremeInputsGiveAnErrorOrAFiniteAnswer) {
   const double rhoSliver = sliver.defaultRho();
   const PatchLoads nearSliver = nearestAdmissibleLoads(sliver, skewed, rhoSliver);
   auto distance = [&](const PatchLoads& l) {
-    return Vec3(l.Pz - skewed.Pz, (l.Tx - skewed.Tx) / rhoSliver, (l.Ty - skewed.Ty) / rhoSliver).norm();
+    return Vec3(l.Pz - skewed.Pz, (l.Tx - skewed.Tx) / rhoSliver, (l.Ty - skewed.Ty) / rhoSliver)
+        .norm();
   };
   const PatchLoads uniformLoads = loadsOf(sliver, LinearPressure::uniform(sliver, skewed.Pz));
   // round-off of the distances themselves: a few ulps of |y| ~ 1e-3
@@ -219,8 +224,10 @@ TEST(DoubleRange, ExtremeInputsGiveAnErrorOrAFiniteAnswer) {
   // up-front range check but whose sum overflowed: Tz/rho was inf, now an
   // Error (or a finite Q)
   const PatchShape huge = PatchShape::disk(3536977920.0, Vec2(1e-08, 11597774848.0));
-  const FrictionPatch steep(huge, LinearPressure{2.5967856829092717e-312, 2.0722615146145237e-315, 3.0266876757588627e+267},
-                            0.088134765625, 0.051469802856445312);
+  const FrictionPatch steep(
+      huge,
+      LinearPressure{2.5967856829092717e-312, 2.0722615146145237e-315, 3.0266876757588627e+267},
+      0.088134765625, 0.051469802856445312);
   const double big = std::numeric_limits<double>::max();
   try {
     EXPECT_TRUE(steep.exactQ(Vec3(big, big, big)).allFinite());
@@ -255,16 +262,21 @@ TEST(ExactModel, PolygonFarFromOKeepsPzAndItsBlockIsTheLaw) {
     double rho;
   };
   const std::vector<Case> cases = {
-      {"23-gon 900 diameters from O", far23gon(),
-       {0.044933735669085033, 0.023031487191871106, 0.04464514278227618}, 0.0},
-      {"37-gon 2,800 diameters from O", far37gon(),
-       {104871.91672465707, -104874.82550656002, 52431.654679402403}, 0.5},
+      {"23-gon 900 diameters from O",
+       far23gon(),
+       {0.044933735669085033, 0.023031487191871106, 0.04464514278227618},
+       0.0},
+      {"37-gon 2,800 diameters from O",
+       far37gon(),
+       {104871.91672465707, -104874.82550656002, 52431.654679402403},
+       0.5},
       {"1.2e-8 m quadrilateral 8,800 diameters from O",
        {{5.7509619923003298e-06, -0.00010628063654460903},
         {5.7627784805965424e-06, -0.00010628032686178125},
         {5.7627784807117414e-06, -0.00010626880698244775},
         {5.7558854282998356e-06, -0.00010626880698237882}},
-       {382.34459070385174, 0.040633901886729266, 0.0022021178888884077}, 0.5}};
+       {382.34459070385174, 0.040633901886729266, 0.0022021178888884077},
+       0.5}};
   constexpr double kPz = 8.0, kLaw = 1e-6;
   for (const Case& c : cases) {
     const PatchShape shape = PatchShape::polygon(c.vertices);
@@ -289,10 +301,13 @@ TEST(ExactModel, PolygonFarFromOKeepsPzAndItsBlockIsTheLaw) {
     FrictionBlockResult r;
     ASSERT_NO_THROW(r = solveFrictionBlock(patch, Model::Exact, in)) << c.name;
     ASSERT_FALSE(r.sticking) << c.name;
-    const Vec3 Q = patchspin::testing::bruteForceQ(shape, patchspin::testing::linearField(p), 1.0, rho, r.slip, 1e-12);
-    const double pz = patchspin::testing::bruteForceIntegral(shape, patchspin::testing::linearField(p), 1e-13);
+    const Vec3 Q = patchspin::testing::bruteForceQ(shape, patchspin::testing::linearField(p), 1.0,
+                                                   rho, r.slip, 1e-12);
+    const double pz =
+        patchspin::testing::bruteForceIntegral(shape, patchspin::testing::linearField(p), 1e-13);
     EXPECT_LT((r.impulse - in.L * (Q / pz)).norm(), kLaw * in.L)
-        << c.name << ": impulse " << r.impulse.transpose() << ", L q " << (in.L * Q / pz).transpose();
+        << c.name << ": impulse " << r.impulse.transpose() << ", L q "
+        << (in.L * Q / pz).transpose();
   }
 }
 

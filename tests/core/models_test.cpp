@@ -67,9 +67,9 @@ Case hertzCase(const std::string& name, const PatchShape& disk, double Pz, doubl
 
 std::vector<Case> testCases() {
   std::vector<Case> cases;
-  cases.push_back(linearCase("quad, O inside",
-                             PatchShape::polygon({{-0.2, -0.3}, {0.6, -0.1}, {0.4, 0.5}, {-0.3, 0.2}}),
-                             LinearPressure{2.0, 0.8, -0.6}, 0.4));
+  cases.push_back(linearCase(
+      "quad, O inside", PatchShape::polygon({{-0.2, -0.3}, {0.6, -0.1}, {0.4, 0.5}, {-0.3, 0.2}}),
+      LinearPressure{2.0, 0.8, -0.6}, 0.4));
   cases.push_back(linearCase("rotated rectangle, O outside",
                              PatchShape::rectangle(0.5, 0.2, Vec2(0.6, -0.4), -0.3),
                              LinearPressure{1.0, 0.5, 0.7}, 0.7));
@@ -80,7 +80,8 @@ std::vector<Case> testCases() {
                              LinearPressure{3.0, 1.5, -2.0}, 0.5));
   cases.push_back(linearCase("disk, O outside", PatchShape::disk(0.3, Vec2(0.9, 0.4)),
                              LinearPressure{1.0, -0.6, 0.4}, 0.8));
-  cases.push_back(hertzCase("Hertz disk off-centre", PatchShape::disk(0.4, Vec2(-0.1, 0.15)), 5.0, 0.6));
+  cases.push_back(
+      hertzCase("Hertz disk off-centre", PatchShape::disk(0.4, Vec2(-0.1, 0.15)), 5.0, 0.6));
   return cases;
 }
 
@@ -89,7 +90,8 @@ std::vector<Vec3> gridDirections() {
   std::vector<Vec3> ws;
   for (double theta : {-1.4, -0.8, -0.3, 0.0, 0.2, 0.6, 1.0, kPi / 2})
     for (double phi : {0.3, 1.9, 3.6, 5.2})
-      ws.emplace_back(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta));
+      ws.emplace_back(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi),
+                      std::sin(theta));
   return ws;
 }
 
@@ -105,13 +107,16 @@ Vec3 randomUnit(std::mt19937& rng) {
 }
 
 ::testing::AssertionResult nearVec(const Vec3& a, const Vec3& b, double tol) {
-  if ((a - b).allFinite() && (a - b).cwiseAbs().maxCoeff() <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "(" << a.transpose() << ") vs (" << b.transpose()
-                                       << "), max diff " << (a - b).cwiseAbs().maxCoeff()
-                                       << " > " << tol;
+  if ((a - b).allFinite() && (a - b).cwiseAbs().maxCoeff() <= tol)
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "(" << a.transpose() << ") vs (" << b.transpose() << "), max diff "
+         << (a - b).cwiseAbs().maxCoeff() << " > " << tol;
 }
 
-double scaleOf(const FrictionPatch& p) { return p.mu() * p.Pz(); }
+double scaleOf(const FrictionPatch& p) {
+  return p.mu() * p.Pz();
+}
 
 // ---- exact law against the oracle --------------------------------------------------
 
@@ -210,7 +215,8 @@ TEST(ExactModel, DependsOnDirectionOnly) {
       for (Model model : {Model::Ellipsoidal, Model::Exact}) {
         Vec3 qs = Vec3::Constant(std::nan(""));
         EXPECT_NO_THROW(qs = c.patch.Q(model, s * w)) << "scale " << s;
-        EXPECT_TRUE(nearVec(qs, c.patch.Q(model, w), kExactTol * scaleOf(c.patch))) << "scale " << s;
+        EXPECT_TRUE(nearVec(qs, c.patch.Q(model, w), kExactTol * scaleOf(c.patch)))
+            << "scale " << s;
       }
     }
     EXPECT_TRUE(nearVec(c.patch.exactQ(w), q, 0.0));
@@ -243,9 +249,9 @@ TEST(ExactModel, FrameInvariance) {
   std::mt19937 rng(11);
   for (const Case& c : testCases()) {
     SCOPED_TRACE(c.name);
-    for (const auto& [d, alpha] : {std::pair<Vec2, double>{Vec2(0.1, -0.2), 0.0},
-                                   std::pair<Vec2, double>{Vec2::Zero(), 1.1},
-                                   std::pair<Vec2, double>{Vec2(-0.3, 0.25), -2.3}}) {
+    for (const auto& [d, alpha] :
+         {std::pair<Vec2, double>{Vec2(0.1, -0.2), 0.0}, std::pair<Vec2, double>{Vec2::Zero(), 1.1},
+          std::pair<Vec2, double>{Vec2(-0.3, 0.25), -2.3}}) {
       const FrictionPatch moved = transformedPatch(c.patch, d, alpha);
       const Mat3 M = frameMap(d, alpha, c.patch.rho());
       const Mat3 MinvT = M.inverse().transpose();
@@ -271,7 +277,8 @@ TEST(EllipsoidalModel, RotationCovariance) {
     const FrictionPatch rotated = transformedPatch(c.patch, Vec2::Zero(), alpha);
     const Mat3 B = frameMap(Vec2::Zero(), alpha, c.patch.rho());
     EXPECT_TRUE(rotated.Pi().isApprox(B * c.patch.Pi() * B.transpose(), kMomentTol))
-        << rotated.Pi() << "\nvs\n" << B * c.patch.Pi() * B.transpose();
+        << rotated.Pi() << "\nvs\n"
+        << B * c.patch.Pi() * B.transpose();
     for (int k = 0; k < 6; ++k) {
       const Vec3 w = randomUnit(rng);
       EXPECT_TRUE(nearVec(rotated.ellipsoidalQ(B * w), B * c.patch.ellipsoidalQ(w),
@@ -289,21 +296,22 @@ TEST(Models, MirrorSymmetry) {
   for (const Case& c : testCases()) {
     SCOPED_TRACE(c.name);
     const FrictionPatch& p = c.patch;
-    PatchShape mirrored = p.shape().isDisk()
-                              ? PatchShape::disk(p.shape().radius(),
-                                                 Vec2(p.shape().centre().x(), -p.shape().centre().y()))
-                              : [&] {
-                                  std::vector<Vec2> v;
-                                  for (auto it = p.shape().vertices().rbegin();
-                                       it != p.shape().vertices().rend(); ++it)
-                                    v.emplace_back(it->x(), -it->y());
-                                  return PatchShape::polygon(v);
-                                }();
+    PatchShape mirrored =
+        p.shape().isDisk() ? PatchShape::disk(p.shape().radius(),
+                                              Vec2(p.shape().centre().x(), -p.shape().centre().y()))
+                           : [&] {
+                               std::vector<Vec2> v;
+                               for (auto it = p.shape().vertices().rbegin();
+                                    it != p.shape().vertices().rend(); ++it)
+                                 v.emplace_back(it->x(), -it->y());
+                               return PatchShape::polygon(v);
+                             }();
     const FrictionPatch m =
-        p.isHertz() ? FrictionPatch(mirrored, HertzPressure{p.Pz()}, p.mu(), p.rho())
-                    : FrictionPatch(mirrored,
-                                    LinearPressure{p.pressure().p0, p.pressure().cx, -p.pressure().cy},
-                                    p.mu(), p.rho());
+        p.isHertz()
+            ? FrictionPatch(mirrored, HertzPressure{p.Pz()}, p.mu(), p.rho())
+            : FrictionPatch(mirrored,
+                            LinearPressure{p.pressure().p0, p.pressure().cx, -p.pressure().cy},
+                            p.mu(), p.rho());
     for (int k = 0; k < 8; ++k) {
       const Vec3 w = randomUnit(rng);
       EXPECT_TRUE(nearVec(m.exactQ(S * w), S * p.exactQ(w), 2 * kExactTol * scaleOf(p)));
@@ -407,8 +415,10 @@ TEST(EllipsoidalModel, ExactAtFittingMotions) {
     for (int i = 0; i < 3; ++i) {
       for (double s : {1.0, -1.0}) {
         const Vec3 w = s * Vec3::Unit(i);
-        EXPECT_TRUE(nearVec(p.ellipsoidalQ(w), p.exactQ(w), kExactTol * scaleOf(p))) << "w = " << w.transpose();
-        EXPECT_TRUE(nearVec(p.ellipsoidalQ(w), bruteForceQ(p.shape(), c.pressure, p.mu(), p.rho(), w),
+        EXPECT_TRUE(nearVec(p.ellipsoidalQ(w), p.exactQ(w), kExactTol * scaleOf(p)))
+            << "w = " << w.transpose();
+        EXPECT_TRUE(nearVec(p.ellipsoidalQ(w),
+                            bruteForceQ(p.shape(), c.pressure, p.mu(), p.rho(), w),
                             kExactTol * scaleOf(p)))
             << "w = " << w.transpose();
       }
@@ -460,7 +470,8 @@ TEST(Models, MovedReferencePoint) {
   EXPECT_TRUE((reduced - expected).cwiseAbs().maxCoeff() < 4 * h / L + kRoundOff) << reduced;
   EXPECT_NEAR(reduced(2, 2), 15.0 / 16.0, 4 * h / L + kRoundOff);
   EXPECT_NEAR(reduced(1, 2), 0.25, 4 * h / L + kRoundOff);
-  EXPECT_TRUE((atO.Pi() - Mat3::Identity()).cwiseAbs().maxCoeff() < 4 * h / L + kRoundOff) << atO.Pi();
+  EXPECT_TRUE((atO.Pi() - Mat3::Identity()).cwiseAbs().maxCoeff() < 4 * h / L + kRoundOff)
+      << atO.Pi();
 }
 
 // A 1e-4 sliver (the thin strip of Sect. 4.5.4 made real) against the oracle,
@@ -532,12 +543,15 @@ TEST(ExactModel, JacobianMatchesFiniteDifferences) {
         fd.col(i) = (p.exactQ(w + e) - p.exactQ(w - e)) / (2 * h);
       }
       EXPECT_LT((J - fd).cwiseAbs().maxCoeff(), kFiniteDifferenceTol * scaleOf(p))
-          << "w = " << w.transpose() << "\nJ =\n" << J << "\nFD =\n" << fd;
+          << "w = " << w.transpose() << "\nJ =\n"
+          << J << "\nFD =\n"
+          << fd;
       // Q is the gradient of the dissipation potential D(w) = -mu ∫ p |A w| dA
       // (v = A w, A = [[1, 0, -y/rho], [0, 1, x/rho]], grad |A w| = A^T v^ = k),
       // so J = Hess D is symmetric.
       EXPECT_LT((J - J.transpose()).cwiseAbs().maxCoeff(), kFiniteDifferenceTol * scaleOf(p))
-          << "J not symmetric:\n" << J;
+          << "J not symmetric:\n"
+          << J;
       // degree-0 homogeneous: J w = 0; and J(s w) = J(w) / s
       EXPECT_TRUE(nearVec(J * w, Vec3::Zero(), kExactTol * scaleOf(p)));
       Mat3 J2;

@@ -7,8 +7,8 @@
 
 #include "patch_test_bodies.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <cmath>
 #include <optional>
@@ -50,7 +50,8 @@ std::optional<Vec3> allCornersActive(const Mat3& W, const Vec3& c, const Mat34& 
     for (int j = 0, k = 0; j < 4; ++j)
       if (j != drop) Gs.col(k++) = G.col(j);
     const Vec3 ps = Gs.fullPivLu().solve(target);
-    if ((Gs * ps - target).norm() <= kSolveTol * (1.0 + target.norm()) && ps.minCoeff() >= -kSolveTol * target[0])
+    if ((Gs * ps - target).norm() <= kSolveTol * (1.0 + target.norm()) &&
+        ps.minCoeff() >= -kSolveTol * target[0])
       return target;
   }
   return std::nullopt;
@@ -104,7 +105,8 @@ TEST(NormalBlock, AgreesWithTheCornerContactLcp) {
     const Mat3 W = k.Winv.inverse();
     // approaching at 0.1 m/s, tilting at up to 0.5 rad/s
     const Vec3 c(-0.1, 0.5 * u(rng), 0.5 * u(rng));
-    const NormalImpulse n = solveNormalVelocity(k.Winv, Vec3::Zero(), c, Vec3::Zero(), outline, rect);
+    const NormalImpulse n =
+        solveNormalVelocity(k.Winv, Vec3::Zero(), c, Vec3::Zero(), outline, rect);
     const std::optional<Vec3> lcp = allCornersActive(W, c, G);
     EXPECT_EQ(n.interior, lcp.has_value()) << "trial " << trial;
     if (n.interior && lcp) {
@@ -132,8 +134,8 @@ TEST(NormalBlock, AgreesWithTheCornerContactLcp) {
 
 TEST(NormalBlock, SeparatingBodiesGetNoImpulse) {
   const PatchShape disk = PatchShape::disk(0.05);
-  const NormalImpulse n = solveNormalVelocity(Mat3::Identity(), Vec3::Zero(), Vec3(0.1, 0.0, 0.0), Vec3::Zero(),
-                                              summarizeOutline(disk), disk);
+  const NormalImpulse n = solveNormalVelocity(Mat3::Identity(), Vec3::Zero(), Vec3(0.1, 0.0, 0.0),
+                                              Vec3::Zero(), summarizeOutline(disk), disk);
   EXPECT_EQ(n.lamN, Vec3::Zero());
   EXPECT_FALSE(n.interior);
   EXPECT_FALSE(n.tipping);
@@ -143,7 +145,8 @@ TEST(NormalBlock, SeparatingBodiesGetNoImpulse) {
 TEST(NormalBlock, NearestPointOnThePatchIsTheClosestBoundaryPoint) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-0.2, 0.2);
-  const PatchShape shapes[] = {PatchShape::disk(0.05, Vec2(0.01, 0.0)), PatchShape::rectangle(0.1, 0.04),
+  const PatchShape shapes[] = {PatchShape::disk(0.05, Vec2(0.01, 0.0)),
+                               PatchShape::rectangle(0.1, 0.04),
                                PatchShape::regularPolygon(7, 0.06)};
   for (const PatchShape& shape : shapes)
     for (int trial = 0; trial < 100; ++trial) {
@@ -160,7 +163,8 @@ TEST(NormalBlock, NearestPointOnThePatchIsTheClosestBoundaryPoint) {
           const double t = s / 20000.0;
           Vec2 b;
           if (shape.isDisk()) {
-            b = shape.centre() + shape.radius() * Vec2(std::cos(2 * M_PI * t), std::sin(2 * M_PI * t));
+            b = shape.centre() +
+                shape.radius() * Vec2(std::cos(2 * M_PI * t), std::sin(2 * M_PI * t));
           } else {
             const auto& v = shape.vertices();
             b = v[std::size_t(e)] + t * (v[std::size_t((e + 1) % n)] - v[std::size_t(e)]);
@@ -183,11 +187,13 @@ TEST(NormalBlock, InnerRadiusIsTheDistanceToTheNearestEdge) {
 TEST(NormalBlock, PositionSolvePushesOnlyApart) {
   const Mat3 Winv = Mat3::Identity() * 2.0;
   // approaching the target: a push
-  const Vec3 push = solveNormalPosition(Winv, Vec3::Zero(), Vec3(0.0, 0.1, 0.0), Vec3(0.05, 0.0, 0.0));
+  const Vec3 push =
+      solveNormalPosition(Winv, Vec3::Zero(), Vec3(0.0, 0.1, 0.0), Vec3(0.05, 0.0, 0.0));
   EXPECT_NEAR(push[0], 0.1, 1e-15);
   EXPECT_NEAR(push[1], -0.2, 1e-15);
   // already moving apart faster than the target: nothing, not a pull
-  EXPECT_EQ(solveNormalPosition(Winv, Vec3::Zero(), Vec3(0.1, 0.1, 0.0), Vec3(0.05, 0.0, 0.0)), Vec3::Zero());
+  EXPECT_EQ(solveNormalPosition(Winv, Vec3::Zero(), Vec3(0.1, 0.1, 0.0), Vec3(0.05, 0.0, 0.0)),
+            Vec3::Zero());
 }
 
 // A gap closes in one step at most, and no deeper than the low side's sink

@@ -5,8 +5,8 @@
 
 #include "patch_test_bodies.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 namespace patchspin::parts {
 namespace {
@@ -26,7 +26,8 @@ TEST(PatchBlocks, FrictionBlockIsTheSchurComplementOfTheNormalBlock) {
     EXPECT_LT((k.Ks - KsDense).norm(), kInverseTol * KsDense.norm());
     EXPECT_LT((k.KsInv * k.Ks - Mat3::Identity()).norm(), kInverseTol);
     EXPECT_LT((k.Winv * K6.topLeftCorner<3, 3>() - Mat3::Identity()).norm(), kInverseTol);
-    EXPECT_LT((K6.topLeftCorner<3, 3>() * k.G - K6.topRightCorner<3, 3>()).norm(), kInverseTol * K6.norm());
+    EXPECT_LT((K6.topLeftCorner<3, 3>() * k.G - K6.topRightCorner<3, 3>()).norm(),
+              kInverseTol * K6.norm());
     EXPECT_EQ(k.Kff, Mat3(K6.bottomRightCorner<3, 3>()));
   }
 }

@@ -5,8 +5,8 @@
 
 #include "patch_test_bodies.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <random>
 
@@ -22,9 +22,13 @@ using Mat66 = Eigen::Matrix<double, 6, 6>;
 using testing::inverseMass;
 using testing::randomRotation;
 
-PatchBody randomBody(std::mt19937& rng, bool isotropic) { return testing::randomBody(rng, !isotropic); }
+PatchBody randomBody(std::mt19937& rng, bool isotropic) {
+  return testing::randomBody(rng, !isotropic);
+}
 
-double relativeError(const Mat66& a, const Mat66& b) { return (a - b).norm() / b.norm(); }
+double relativeError(const Mat66& a, const Mat66& b) {
+  return (a - b).norm() / b.norm();
+}
 
 TEST(PatchBody, EffectiveMassIsTheDenseProductOfItsRows) {
   std::mt19937 rng(7);
@@ -34,7 +38,8 @@ TEST(PatchBody, EffectiveMassIsTheDenseProductOfItsRows) {
     const double rho = 0.02 + 0.001 * trial;
     const Mat66 Ja = patchBodyRows(a, F, rho), Jb = patchBodyRows(b, F, rho);
     const Mat66 dense = Ja * inverseMass(a) * Ja.transpose() + Jb * inverseMass(b) * Jb.transpose();
-    EXPECT_LT(relativeError(patchEffectiveMass(a, F, rho), Ja * inverseMass(a) * Ja.transpose()), kDenseTol);
+    EXPECT_LT(relativeError(patchEffectiveMass(a, F, rho), Ja * inverseMass(a) * Ja.transpose()),
+              kDenseTol);
     EXPECT_LT(relativeError(patchEffectiveMass(a, b, F, rho), dense), kDenseTol);
   }
 }
@@ -85,12 +90,16 @@ TEST(PatchBody, ImpulseChangesVelocitiesByTheInverseMassTimesTheRows) {
     Vec6 lam;
     for (int i = 0; i < 6; ++i) lam[i] = u(rng);
     Eigen::Matrix<double, 6, 1> dq[2];
-    applyPatchImpulse(a, b, F, rho, lam, [&](int side, const Vec3& dv, const Vec3& dw) { dq[side] << dv, dw; });
-    const Eigen::Matrix<double, 6, 1> ea = inverseMass(a) * patchBodyRows(a, F, rho).transpose() * lam;
-    const Eigen::Matrix<double, 6, 1> eb = -inverseMass(b) * patchBodyRows(b, F, rho).transpose() * lam;
+    applyPatchImpulse(a, b, F, rho, lam,
+                      [&](int side, const Vec3& dv, const Vec3& dw) { dq[side] << dv, dw; });
+    const Eigen::Matrix<double, 6, 1> ea =
+        inverseMass(a) * patchBodyRows(a, F, rho).transpose() * lam;
+    const Eigen::Matrix<double, 6, 1> eb =
+        -inverseMass(b) * patchBodyRows(b, F, rho).transpose() * lam;
     EXPECT_LT((dq[0] - ea).norm(), kDenseTol * ea.norm());
     EXPECT_LT((dq[1] - eb).norm(), kDenseTol * eb.norm());
-    const Vec6 dc = patchVelocity(a, dq[0].head<3>(), dq[0].tail<3>(), b, dq[1].head<3>(), dq[1].tail<3>(), F, rho);
+    const Vec6 dc = patchVelocity(a, dq[0].head<3>(), dq[0].tail<3>(), b, dq[1].head<3>(),
+                                  dq[1].tail<3>(), F, rho);
     const Vec6 expected = patchEffectiveMass(a, b, F, rho) * lam;
     EXPECT_LT((dc - expected).norm(), kDenseTol * expected.norm());
   }

@@ -32,10 +32,12 @@ long double referenceMin(const PatchShape& disk, const LinearPressure& p) {
 
 void expectMinPressure(const PatchShape& disk, const LinearPressure& p) {
   const long double ref = referenceMin(disk, p);
-  const long double pc = static_cast<long double>(p.p0) + static_cast<long double>(p.cx) * disk.centre().x() +
+  const long double pc = static_cast<long double>(p.p0) +
+                         static_cast<long double>(p.cx) * disk.centre().x() +
                          static_cast<long double>(p.cy) * disk.centre().y();
-  const long double size = std::fabs(pc) + disk.radius() * std::hypot(static_cast<long double>(p.cx),
-                                                                      static_cast<long double>(p.cy));
+  const long double size =
+      std::fabs(pc) +
+      disk.radius() * std::hypot(static_cast<long double>(p.cx), static_cast<long double>(p.cy));
   const double got = minPressure(disk, p);
   EXPECT_LE(std::fabs(static_cast<long double>(got) - ref), kMinPressureRelTol * size)
       << "p0 " << p.p0 << " cx " << p.cx << " cy " << p.cy << ": got " << got << ", expected "
@@ -70,9 +72,11 @@ TEST(PressureGradientRange, MinPressureOnTheFastPathMatchesLongDouble) {
   std::mt19937_64 rng(20261123);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), decade(-6.0, 6.0);
   for (int k = 0; k < 2000; ++k) {
-    const PatchShape disk = PatchShape::disk(std::pow(10.0, decade(rng) / 3.0), Vec2(unit(rng), unit(rng)));
+    const PatchShape disk =
+        PatchShape::disk(std::pow(10.0, decade(rng) / 3.0), Vec2(unit(rng), unit(rng)));
     const double scale = std::pow(10.0, decade(rng));
-    expectMinPressure(disk, LinearPressure{scale * (2.0 + unit(rng)), scale * unit(rng), scale * unit(rng)});
+    expectMinPressure(
+        disk, LinearPressure{scale * (2.0 + unit(rng)), scale * unit(rng), scale * unit(rng)});
   }
 }
 

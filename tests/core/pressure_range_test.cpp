@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "error_matchers.hpp"
-#include "oracle.hpp"
 #include "fuzz_inputs.hpp"
+#include "oracle.hpp"
 #include "vertex_mean_loads.hpp"
 
 #include <algorithm>
@@ -22,8 +22,8 @@
 namespace patchspin {
 namespace {
 
-using testing::LongLoads;
 using testing::loadsAboutVertexMean;
+using testing::LongLoads;
 using testing::refusedAsNotFinite;
 using testing::throwsNaming;
 
@@ -40,11 +40,17 @@ constexpr double kMax = std::numeric_limits<double>::max();
 TEST(Pressure, RefusesLoadsAndPressuresOutOfRange) {
   const PatchShape square = PatchShape::rectangle(1e-3, 1e-3);
   // loads whose pressure overflows (found by fuzzing: p = -inf)
-  EXPECT_TRUE(throwsNaming([&] { LinearPressure::fromLoads(square, {1e308, 1e308, 0.0}); },
-                           {"out of range"}));
+  EXPECT_TRUE(throwsNaming(
+      [&] {
+        LinearPressure::fromLoads(square, {1e308, 1e308, 0.0});
+      },
+      {"out of range"}));
   // a pressure that is not finite on the patch (minPressure gave inf)
-  EXPECT_TRUE(throwsNaming([&] { minPressure(square, LinearPressure{-kMax, -kMax, 0.0}); },
-                           {"out of range"}));
+  EXPECT_TRUE(throwsNaming(
+      [&] {
+        minPressure(square, LinearPressure{-kMax, -kMax, 0.0});
+      },
+      {"out of range"}));
   // rho for the projection metric: positive, and within 1e12 of Eq. (11)
   const PatchLoads loads{1.0, 0.01, 0.0};
   EXPECT_TRUE(throwsNaming([&] { nearestAdmissibleLoads(square, loads, 0.0); }, {"rho"}));
@@ -58,8 +64,16 @@ TEST(Pressure, RefusesLoadsAndPressuresOutOfRange) {
   EXPECT_TRUE(throwsNaming([&] { ellipsoidalPi(pm, 0.0); }, {"rho"}));
   EXPECT_TRUE(throwsNaming([&] { ellipsoidalPi(pm, -1.0); }, {"rho"}));
   EXPECT_TRUE(throwsNaming([&] { ellipsoidalPi(pm, kNan); }, {"rho"}));
-  EXPECT_TRUE(throwsNaming([&] { piMoments(square, LinearPressure{kInf, 0.0, 0.0}); }, {"pressure"}));
-  EXPECT_TRUE(throwsNaming([&] { piMoments(square, LinearPressure{1.0, kNan, 0.0}); }, {"pressure"}));
+  EXPECT_TRUE(throwsNaming(
+      [&] {
+        piMoments(square, LinearPressure{kInf, 0.0, 0.0});
+      },
+      {"pressure"}));
+  EXPECT_TRUE(throwsNaming(
+      [&] {
+        piMoments(square, LinearPressure{1.0, kNan, 0.0});
+      },
+      {"pressure"}));
 }
 
 // fuzz round 9, item 63 (ilogb(NaN) = INT_MIN negated: UB, trapped by the asan preset)
@@ -74,7 +88,7 @@ TEST(MinPressure, RefusesNonFiniteCoefficients) {
   const PatchShape square = PatchShape::rectangle(2.0, 2.0);
   const PatchShape disk = PatchShape::disk(0.5, Vec2(3.0, -1.0));
   const std::vector<LinearPressure> pressures = {
-      {kNan, kNan, kNan}, {kNan, 0.0, 0.0}, {1.0, kNan, 0.0}, {1.0, 0.0, kNan},
+      {kNan, kNan, kNan}, {kNan, 0.0, 0.0},  {1.0, kNan, 0.0}, {1.0, 0.0, kNan},
       {kInf, 0.0, 0.0},   {1.0, -kInf, 0.0}, {kNan, kInf, 1.0}};
   for (const PatchShape& shape : {quad, square, disk}) {
     for (const LinearPressure& p : pressures) {
@@ -86,7 +100,8 @@ TEST(MinPressure, RefusesNonFiniteCoefficients) {
   // eighth round's rescaled sum (not refused): p = DBL_MAX (-1 + x + y) on
   // the triangle (-1, 1), (1, -1), (1, 1) is -DBL_MAX, -DBL_MAX, +DBL_MAX at
   // its vertices (exact), though p0 + cx x overflows to -inf at (-1, 1)
-  const PatchShape triangle = PatchShape::polygon({Vec2(-1.0, 1.0), Vec2(1.0, -1.0), Vec2(1.0, 1.0)});
+  const PatchShape triangle =
+      PatchShape::polygon({Vec2(-1.0, 1.0), Vec2(1.0, -1.0), Vec2(1.0, 1.0)});
   const LinearPressure big{-kMax, kMax, kMax};
   EXPECT_EQ(big.at(Vec2(-1.0, 1.0)), -kInf);  // the plain sum overflows
   EXPECT_EQ(minPressure(triangle, big), -kMax);
@@ -96,13 +111,16 @@ TEST(MinPressure, RefusesNonFiniteCoefficients) {
 // minPressure where cx x and cy y overflow with opposite signs but their sum
 // does not: the lowest vertex, against long double, to kUlps eps of the terms.
 TEST(MinPressure, WithOverflowingVertexProductsIsTheLowestVertex) {
-  const PatchShape triangle = PatchShape::polygon(
-      {{0.0, 0.0}, {428990.26137603901, 604750.50188696722}, {428989.27616420639, 604750.330503618}});
+  const PatchShape triangle = PatchShape::polygon({{0.0, 0.0},
+                                                   {428990.26137603901, 604750.50188696722},
+                                                   {428989.27616420639, 604750.330503618}});
   const LinearPressure p{-5.1874508961404106e+297, -5.22801961128216e+303, 3.708582688189708e+303};
   long double lowest = std::numeric_limits<long double>::infinity(), terms = 0.0L;
   for (const Vec2& v : triangle.vertices()) {
-    const long double x = static_cast<long double>(p.cx) * v.x(), y = static_cast<long double>(p.cy) * v.y();
-    if (p.p0 + x + y < lowest) lowest = p.p0 + x + y, terms = std::abs(p.p0) + std::abs(x) + std::abs(y);
+    const long double x = static_cast<long double>(p.cx) * v.x(),
+                      y = static_cast<long double>(p.cy) * v.y();
+    if (p.p0 + x + y < lowest)
+      lowest = p.p0 + x + y, terms = std::abs(p.p0) + std::abs(x) + std::abs(y);
   }
   ASSERT_LT(std::abs(lowest), static_cast<long double>(std::numeric_limits<double>::max()));
   constexpr double kUlps = 8.0;
@@ -126,7 +144,8 @@ TEST(Loads, FromLoadsAndNearestAdmissibleKeepTheirDigitsFarFromO) {
   for (int trial = 0; trial < 500; ++trial) {
     const double offset = std::pow(10.0, 3.9 * U(rng)) + 1.0;  // (below the 1e4 limit)
     const int n = 3 + static_cast<int>(U(rng) * 20);
-    const double aspect = std::pow(10.0, -4.0 * U(rng)), size = std::pow(10.0, -6.0 + 12.0 * U(rng));
+    const double aspect = std::pow(10.0, -4.0 * U(rng)),
+                 size = std::pow(10.0, -6.0 + 12.0 * U(rng));
     const double angle = 2.0 * kPi * U(rng), direction = 2.0 * kPi * U(rng);
     std::vector<Vec2> v;
     const Vec2 centre = offset * 2.0 * size * Vec2(std::cos(direction), std::sin(direction));
@@ -145,7 +164,8 @@ TEST(Loads, FromLoadsAndNearestAdmissibleKeepTheirDigitsFarFromO) {
     const double th = 2.0 * kPi * U(rng), tilt = U(rng);
     const Vec2 nrm(std::cos(th), std::sin(th));
     double halfWidth = 0.0;
-    for (const Vec2& a : shape.vertices()) halfWidth = std::max(halfWidth, std::abs(nrm.dot(a - g)));
+    for (const Vec2& a : shape.vertices())
+      halfWidth = std::max(halfWidth, std::abs(nrm.dot(a - g)));
     const LinearPressure p{1.0 - tilt * nrm.dot(g) / halfWidth, tilt * nrm.x() / halfWidth,
                            tilt * nrm.y() / halfWidth};
     const LongLoads l = loadsAboutVertexMean(shape.vertices(), p);
@@ -161,14 +181,16 @@ TEST(Loads, FromLoadsAndNearestAdmissibleKeepTheirDigitsFarFromO) {
     }
     // loads outside: the torques about g pushed 3 times past the patch
     const double reach = 3.0 * shape.diameter() * loads.Pz;
-    const PatchLoads outside{loads.Pz, loads.Tx + reach * std::cos(th), loads.Ty + reach * std::sin(th)};
+    const PatchLoads outside{loads.Pz, loads.Tx + reach * std::cos(th),
+                             loads.Ty + reach * std::sin(th)};
     try {
       const PatchLoads near = nearestAdmissibleLoads(shape, outside, shape.defaultRho());
       EXPECT_TRUE(isAdmissible(shape, near, 1e-6)) << "trial " << trial;
       ++checked;
     } catch (const Error& e) {
       ++refused;
-      EXPECT_NE(std::string(e.what()).find("no admissible projection"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("no admissible projection"), std::string::npos)
+          << e.what();
     }
   }
   EXPECT_LT(worst, kPressure);
@@ -185,11 +207,14 @@ TEST(NearestAdmissible, OnAnOffCentreDiskIsTheNearestBoundaryRay) {
     PatchLoads loads;
     double rho;
   };
-  const std::vector<Case> cases = {
-      {0.5, {0.5000005187294978, -0.0015335067838567222},
-       {6.008148193359375e-05, 1e-300, -6.2008168049345967e-49}, 116391936.0},
-      {5368184832.0, {2154373347.0781322, -642361449.92492497}, {3.770163170556893e+146, 0.5, 0.5},
-       4044283405.5980945}};
+  const std::vector<Case> cases = {{0.5,
+                                    {0.5000005187294978, -0.0015335067838567222},
+                                    {6.008148193359375e-05, 1e-300, -6.2008168049345967e-49},
+                                    116391936.0},
+                                   {5368184832.0,
+                                    {2154373347.0781322, -642361449.92492497},
+                                    {3.770163170556893e+146, 0.5, 0.5},
+                                    4044283405.5980945}};
   constexpr double kScan = 1e-6;
   for (const Case& c : cases) {
     const PatchShape disk = PatchShape::disk(c.R, c.centre);
@@ -202,7 +227,8 @@ TEST(NearestAdmissible, OnAnOffCentreDiskIsTheNearestBoundaryRay) {
     for (int i = 0; i < kRays; ++i) {
       const double th = 2.0 * kPi * i / kRays;
       const Vec2 n(std::cos(th), std::sin(th));
-      const Vec3 u = scaled(loadsOf(disk, LinearPressure{1.0 + n.dot(c.centre) / c.R, -n.x() / c.R, -n.y() / c.R}));
+      const Vec3 u = scaled(
+          loadsOf(disk, LinearPressure{1.0 + n.dot(c.centre) / c.R, -n.x() / c.R, -n.y() / c.R}));
       const double t = std::max(0.0, u.dot(y) / u.squaredNorm());
       nearest = std::min(nearest, (t * u - y).norm());
     }

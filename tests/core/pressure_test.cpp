@@ -59,8 +59,10 @@ std::vector<PatchShape> testShapes() {
 PatchLoads bruteForceLoads(const PatchShape& shape, const testing::ScalarField& p) {
   PatchLoads l;
   l.Pz = bruteForceIntegral(shape, p, kOracleRelTol);
-  l.Tx = -bruteForceIntegral(shape, [&](const Vec2& q) { return q.y() * p(q); }, kOracleRelTol);
-  l.Ty = bruteForceIntegral(shape, [&](const Vec2& q) { return q.x() * p(q); }, kOracleRelTol);
+  l.Tx = -bruteForceIntegral(
+      shape, [&](const Vec2& q) { return q.y() * p(q); }, kOracleRelTol);
+  l.Ty = bruteForceIntegral(
+      shape, [&](const Vec2& q) { return q.x() * p(q); }, kOracleRelTol);
   return l;
 }
 
@@ -80,7 +82,9 @@ LinearPressure randomPressure(const PatchShape& shape, std::mt19937& rng) {
   return LinearPressure{1.0 + 0.3 * u(rng), u(rng) / l, u(rng) / l};
 }
 
-Vec3 scaled(const PatchLoads& l, double rho) { return Vec3(l.Pz, l.Tx / rho, l.Ty / rho); }
+Vec3 scaled(const PatchLoads& l, double rho) {
+  return Vec3(l.Pz, l.Tx / rho, l.Ty / rho);
+}
 
 // ---- Eq. (94) ----------------------------------------------------------------
 
@@ -112,7 +116,8 @@ TEST(Loads, FromLoadsRecoversPressure) {
     ASSERT_LT(cond, kMaxCondition);
 
     const LinearPressure p = randomPressure(shape, rng);
-    const LinearPressure got = LinearPressure::fromLoads(shape, bruteForceLoads(shape, linearField(p)));
+    const LinearPressure got =
+        LinearPressure::fromLoads(shape, bruteForceLoads(shape, linearField(p)));
     const double pScale = std::abs(p.p0) + l * std::hypot(p.cx, p.cy);
     EXPECT_NEAR(got.p0, p.p0, kForwardRelTol * pScale);
     EXPECT_NEAR(got.cx, p.cx, kForwardRelTol * pScale / l);
@@ -158,9 +163,11 @@ TEST(Admissible, MinPressure) {
       double sampled = std::numeric_limits<double>::infinity();
       for (int i = 0; i < kRimSamples; ++i) {
         const double a = 2 * kPi * i / kRimSamples;
-        sampled = std::min(sampled, p.at(shape.centre() + shape.radius() * Vec2(std::cos(a), std::sin(a))));
+        sampled = std::min(sampled,
+                           p.at(shape.centre() + shape.radius() * Vec2(std::cos(a), std::sin(a))));
       }
-      const double gap = std::hypot(p.cx, p.cy) * shape.radius() * (1 - std::cos(kPi / kRimSamples));
+      const double gap =
+          std::hypot(p.cx, p.cy) * shape.radius() * (1 - std::cos(kPi / kRimSamples));
       EXPECT_GE(sampled, got - kRoundOff);
       EXPECT_LE(sampled, got + gap + kRoundOff);
     }
@@ -282,8 +289,8 @@ TEST(NearestAdmissible, IsTheProjection) {
 // for Pz < 0 with a large torque the nearest cone point is not 0.
 TEST(NearestAdmissible, NonPositiveNormalForceMapsToZero) {
   const PatchShape shape = PatchShape::rectangle(1.0, 0.5);
-  for (const PatchLoads& x : {PatchLoads{0.0, 0.1, 0.0}, PatchLoads{-2.0, 0.0, 0.0},
-                              PatchLoads{-1.0, 0.3, -0.2}}) {
+  for (const PatchLoads& x :
+       {PatchLoads{0.0, 0.1, 0.0}, PatchLoads{-2.0, 0.0, 0.0}, PatchLoads{-1.0, 0.3, -0.2}}) {
     const PatchLoads r = nearestAdmissibleLoads(shape, x, shape.defaultRho());
     EXPECT_EQ(r.Pz, 0.0);
     EXPECT_EQ(r.Tx, 0.0);
@@ -333,15 +340,13 @@ TEST(PiMoments, EllipsoidalPiLayout) {
 }
 
 TEST(PiMoments, HertzMatchesBruteForce) {
-  for (const PatchShape& disk : {PatchShape::disk(0.7), PatchShape::disk(0.5, Vec2(0.2, -0.1)),
-                                 PatchShape::disk(0.3, Vec2(0.9, 0.4)),
-                                 PatchShape::disk(0.4, Vec2(-0.4, 0.0))}) {
+  for (const PatchShape& disk :
+       {PatchShape::disk(0.7), PatchShape::disk(0.5, Vec2(0.2, -0.1)),
+        PatchShape::disk(0.3, Vec2(0.9, 0.4)), PatchShape::disk(0.4, Vec2(-0.4, 0.0))}) {
     SCOPED_TRACE(disk.describe());
     const double Pz = 4.0;
-    const PiMoments ref =
-        bruteForcePiMoments(disk, hertzField(disk.centre(), disk.radius(), Pz));
-    expectPiMomentsNear(piMomentsHertz(disk, HertzPressure{Pz}), ref,
-                        disk.maxDistanceFromOrigin());
+    const PiMoments ref = bruteForcePiMoments(disk, hertzField(disk.centre(), disk.radius(), Pz));
+    expectPiMomentsNear(piMomentsHertz(disk, HertzPressure{Pz}), ref, disk.maxDistanceFromOrigin());
   }
 }
 

@@ -6,8 +6,8 @@
 
 #include "patch_test_bodies.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 namespace patchspin::parts {
 namespace {
@@ -64,7 +64,8 @@ TEST(StackHold, FoldsTheSupportByTheDenseSchurComplement) {
     const StackHold& held = holds[std::size_t(links[0].hold)];
     ASSERT_TRUE(held.all.valid);
     const Mat12 K = denseK(s, lowerAsB);
-    const Mat6 Kpp = K.topLeftCorner<6, 6>(), Kps = K.topRightCorner<6, 6>(), Kss = K.bottomRightCorner<6, 6>();
+    const Mat6 Kpp = K.topLeftCorner<6, 6>(), Kps = K.topRightCorner<6, 6>(),
+               Kss = K.bottomRightCorner<6, 6>();
     const Mat6 schur = Kpp - Kps * Kss.inverse() * Kps.transpose();
     PatchBlocks expected;
     ASSERT_TRUE(makePatchBlocks(schur, expected));

@@ -2,13 +2,13 @@
 // a certificate never sticks a block that the full block solver
 // (solveFrictionBlock) says slips, and it does certify many sticks near the
 // limit set's boundary (not a vacuous test).
-#include <patchspin/parts/stick_certificates.hpp>
 #include <patchspin/friction_block.hpp>
+#include <patchspin/parts/stick_certificates.hpp>
 
 #include "patch_test_bodies.hpp"
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include <random>
 
@@ -34,8 +34,9 @@ void checkPatch(const FrictionPatch& law, unsigned seed) {
     const Mat3 K = randomSpd(rng);
     const Vec3 dir = Vec3(n(rng), n(rng), n(rng)).normalized();
     const Vec3 boundary = law.unitQ(Model::Exact, -dir);  // a point of E's boundary
-    const Vec3 lambda0 = scale(rng) * boundary.norm() * Vec3(n(rng), n(rng), n(rng)).normalized() * 0.2 +
-                         scale(rng) * boundary;
+    const Vec3 lambda0 =
+        scale(rng) * boundary.norm() * Vec3(n(rng), n(rng), n(rng)).normalized() * 0.2 +
+        scale(rng) * boundary;
     FrictionBlockInput in;
     in.K = K;
     in.b = -K * lambda0;

@@ -31,7 +31,8 @@ constexpr int kFrames = 3;
 // about 1.6 cm and turn about 0.6 rad between frames.
 const char* kCoinFlags = "--radius 0.05 --height 0.005 --mass 0.03 --mu 0.3 --v0 0.5 --omega0 20";
 const char* kSimulateFlags =
-    "--shape cylinder:0.05,0.005 --mass 0.03 --mu 0.3 --v0 0.5,0 --omega0 20 --dt 0.004166666666666667";
+    "--shape cylinder:0.05,0.005 --mass 0.03 --mu 0.3 --v0 0.5,0 --omega0 20 --dt "
+    "0.004166666666666667";
 // Simulated time [s]: the patch coins stop after about 0.32 s, stock Bullet's
 // after about 0.52 s.
 constexpr double kTMax = 1.0;
@@ -52,13 +53,16 @@ constexpr int kChangeThreshold = 8;
 constexpr double kAgreementTol = 1e-12;
 
 std::string tempDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("patchspin_coin_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       ("patchspin_coin_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   return dir.string();
 }
 
 // <build>/demos/coin next to <build>/tools/patchspin; empty without the tool.
-std::string demoPath() { return buildPath("demos/coin"); }
+std::string demoPath() {
+  return buildPath("demos/coin");
+}
 
 class CoinDemo : public ::testing::Test {
  protected:
@@ -69,14 +73,15 @@ class CoinDemo : public ::testing::Test {
     for (int run = 0; run < 2; ++run) {
       dirs_[run] = tempDir("run" + std::to_string(run));
       std::ostringstream args;
-      args << "--out " << dirs_[run] << " --frames " << kFrames << " --size " << kWidth << "x" << kHeight
-           << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << kCoinFlags;
+      args << "--out " << dirs_[run] << " --frames " << kFrames << " --size " << kWidth << "x"
+           << kHeight << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << kCoinFlags;
       runs_[run] = testing::runTool(demo, args.str());
     }
   }
   void SetUp() override {
     if (demoPath().empty() || !fs::exists(demoPath()))
-      GTEST_SKIP() << "demos/coin not built (needs PATCHSPIN_BUILD_BULLET and the renderer): " << demoPath();
+      GTEST_SKIP() << "demos/coin not built (needs PATCHSPIN_BUILD_BULLET and the renderer): "
+                   << demoPath();
     ASSERT_EQ(runs_[0].exitCode, 0) << runs_[0].err;
     ASSERT_EQ(runs_[1].exitCode, 0) << runs_[1].err;
   }
@@ -91,7 +96,8 @@ class CoinDemo : public ::testing::Test {
 TEST_F(CoinDemo, FramesAreValidPngsOfTheRequestedSizeNotBlankAndChanging) {
   Image previous;
   for (int i = 0; i < kFrames; ++i) {
-    const std::string path = (fs::path(dirs_[0]) / ("frame_0000" + std::to_string(i) + ".png")).string();
+    const std::string path =
+        (fs::path(dirs_[0]) / ("frame_0000" + std::to_string(i) + ".png")).string();
     ASSERT_TRUE(fs::exists(path)) << path;
     const Image frame = readPng(path);  // throws on an invalid PNG
     EXPECT_EQ(frame.width, kWidth);
@@ -148,12 +154,14 @@ TEST_F(CoinDemo, SummaryIsFiniteForEveryModel) {
 TEST_F(CoinDemo, SummaryAgreesWithPatchspinSimulate) {
   const nlohmann::json s = summary(0);
   const std::string precision = s["precision"].get<std::string>();
-  auto near = [](double a, double b) { return std::abs(a - b) <= kAgreementTol * std::max(1.0, std::abs(b)); };
+  auto near = [](double a, double b) {
+    return std::abs(a - b) <= kAgreementTol * std::max(1.0, std::abs(b));
+  };
   for (const char* model : {"exact", "ellipsoidal", "stock"}) {
     SCOPED_TRACE(model);
     std::ostringstream args;
-    args << "simulate --engine bullet --model " << model << " " << kSimulateFlags << " --t-max " << kTMax
-         << " --precision " << precision << " --json";
+    args << "simulate --engine bullet --model " << model << " " << kSimulateFlags << " --t-max "
+         << kTMax << " --precision " << precision << " --json";
     const auto run = testing::runTool(toolPath(), args.str());
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const nlohmann::json ref = nlohmann::json::parse(run.out);
@@ -161,7 +169,8 @@ TEST_F(CoinDemo, SummaryAgreesWithPatchspinSimulate) {
     EXPECT_EQ(m["stopped"].get<bool>(), ref["stopped"].get<bool>());
     EXPECT_PRED2(near, m["t_stop"].get<double>(), ref["t_stop"].get<double>());
     EXPECT_PRED2(near, m["eps_stop"].get<double>(), ref["eps_stop"].get<double>());
-    for (int i = 0; i < 3; ++i) EXPECT_PRED2(near, m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>());
+    for (int i = 0; i < 3; ++i)
+      EXPECT_PRED2(near, m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>());
     for (int i = 0; i < 2; ++i)
       EXPECT_PRED2(near, m["displacement"][i].get<double>(), ref["displacement"][i].get<double>());
     EXPECT_PRED2(near, m["rotation"].get<double>(), ref["rotation"].get<double>());

@@ -61,6 +61,8 @@ inline std::string g17(double v) {
 }
 
 // |a - b| within tol, relative to |b| (absolute below 1).
-inline bool near(double a, double b, double tol) { return std::abs(a - b) <= tol * std::max(1.0, std::abs(b)); }
+inline bool near(double a, double b, double tol) {
+  return std::abs(a - b) <= tol * std::max(1.0, std::abs(b));
+}
 
 }  // namespace patchspin::render::demo_test

@@ -53,11 +53,12 @@ constexpr double kG = 9.81;
 // skip or failure).
 nlohmann::json runDemo(const std::string& name, const std::string& flags) {
   const std::string demo = buildPath("demos/" + name);
-  const fs::path dir = fs::path(::testing::TempDir()) / ("patchspin_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::path(::testing::TempDir()) / ("patchspin_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   std::ostringstream args;
-  args << "--out " << dir.string() << " --frames " << kFrames << " --size " << kWidth << "x" << kHeight
-       << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << flags;
+  args << "--out " << dir.string() << " --frames " << kFrames << " --size " << kWidth << "x"
+       << kHeight << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << flags;
   const auto run = testing::runTool(demo, args.str());
   EXPECT_EQ(run.exitCode, 0) << run.err;
   if (run.exitCode != 0) return nullptr;
@@ -76,7 +77,8 @@ nlohmann::json runDemo(const std::string& name, const std::string& flags) {
     previous = frame;
   }
   EXPECT_FALSE(fs::exists(dir / ("frame_0000" + std::to_string(kFrames) + ".png")));
-  EXPECT_NE(run.err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"), std::string::npos)
+  EXPECT_NE(run.err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
+            std::string::npos)
       << run.err;
   const nlohmann::json s = nlohmann::json::parse(fileBytes((dir / "summary.json").string()));
   // every body: finite stopping data (t_stop null only if it never stopped)
@@ -106,15 +108,16 @@ void expectAgreesWithSimulate(const nlohmann::json& s, const std::string& key) {
   const nlohmann::json& m = s["bodies"][key];
   const nlohmann::json& p = m["parameters"];
   std::ostringstream args;
-  args << "simulate --engine bullet --model " << m["model"].get<std::string>() << " --shape cylinder:"
-       << g17(p["R"].get<double>()) << "," << g17(p["H"].get<double>()) << " --mass " << g17(p["mass"].get<double>())
-       << " --mu " << g17(p["mu"].get<double>()) << " --g " << g17(p["g"].get<double>()) << " --force "
-       << g17(p["force"][0].get<double>()) << "," << g17(p["force"][1].get<double>()) << " --torque "
+  args << "simulate --engine bullet --model " << m["model"].get<std::string>()
+       << " --shape cylinder:" << g17(p["R"].get<double>()) << "," << g17(p["H"].get<double>())
+       << " --mass " << g17(p["mass"].get<double>()) << " --mu " << g17(p["mu"].get<double>())
+       << " --g " << g17(p["g"].get<double>()) << " --force " << g17(p["force"][0].get<double>())
+       << "," << g17(p["force"][1].get<double>()) << " --torque "
        << g17(p["torque"][0].get<double>()) << "," << g17(p["torque"][1].get<double>()) << ","
        << g17(p["torque"][2].get<double>()) << " --v0 " << g17(p["v0"][0].get<double>()) << ","
-       << g17(p["v0"][1].get<double>()) << " --omega0 " << g17(p["omega0"].get<double>()) << " --dt "
-       << g17(s["dt"].get<double>()) << " --t-max " << g17(s["t_max"].get<double>()) << " --precision "
-       << s["precision"].get<std::string>() << " --json";
+       << g17(p["v0"][1].get<double>()) << " --omega0 " << g17(p["omega0"].get<double>())
+       << " --dt " << g17(s["dt"].get<double>()) << " --t-max " << g17(s["t_max"].get<double>())
+       << " --precision " << s["precision"].get<std::string>() << " --json";
   const auto run = testing::runTool(toolPath(), args.str());
   ASSERT_EQ(run.exitCode, 0) << run.err << "\n" << args.str();
   const nlohmann::json ref = nlohmann::json::parse(run.out);
@@ -123,16 +126,19 @@ void expectAgreesWithSimulate(const nlohmann::json& s, const std::string& key) {
     EXPECT_TRUE(near(m["t_stop"].get<double>(), ref["t_stop"].get<double>(), kAgreementTol));
   }
   for (int i = 0; i < 3; ++i) {
-    EXPECT_TRUE(near(m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>(), kAgreementTol)) << i;
+    EXPECT_TRUE(near(m["w_stop"][i].get<double>(), ref["w_stop"][i].get<double>(), kAgreementTol))
+        << i;
   }
   for (int i = 0; i < 2; ++i) {
-    EXPECT_TRUE(near(m["displacement"][i].get<double>(), ref["displacement"][i].get<double>(), kAgreementTol)) << i;
+    EXPECT_TRUE(near(m["displacement"][i].get<double>(), ref["displacement"][i].get<double>(),
+                     kAgreementTol))
+        << i;
   }
   EXPECT_TRUE(near(m["rotation"].get<double>(), ref["rotation"].get<double>(), kAgreementTol));
 }
 
-#define SKIP_WITHOUT(name)                                                                          \
-  if (buildPath("demos/" name).empty() || !fs::exists(buildPath("demos/" name)))                    \
+#define SKIP_WITHOUT(name)                                                                       \
+  if (buildPath("demos/" name).empty() || !fs::exists(buildPath("demos/" name)))                 \
     GTEST_SKIP() << "demos/" name " not built (needs the Bullet integration and the renderer): " \
                  << buildPath("demos/" name);
 
@@ -140,12 +146,15 @@ void expectAgreesWithSimulate(const nlohmann::json& s, const std::string& key) {
 TEST(SceneDemos, PushedDisk) {
   SKIP_WITHOUT("pushed_disk")
   const double m = 0.03, mu = 0.3;
-  const nlohmann::json s = runDemo("pushed_disk", "--model exact --mass 0.03 --mu 0.3 --v0 0.5 --omega0 20");
+  const nlohmann::json s =
+      runDemo("pushed_disk", "--model exact --mass 0.03 --mu 0.3 --v0 0.5 --omega0 20");
   ASSERT_FALSE(s.is_null());
   const double factor[3] = {1.2, 0.5, 0.05};
   for (int i = 0; i < 3; ++i) {
     const nlohmann::json& b = s["bodies"]["case" + std::to_string(i + 1)];
-    EXPECT_TRUE(near(b["parameters"]["force"][0].get<double>(), factor[i] * mu * m * kG, kParameterTol)) << i;
+    EXPECT_TRUE(
+        near(b["parameters"]["force"][0].get<double>(), factor[i] * mu * m * kG, kParameterTol))
+        << i;
     EXPECT_EQ(b["parameters"]["force"][1].get<double>(), 0.0);
   }
   // Case 1: |F| > mu m g, the disk cannot stick (Sect. 6.1)
@@ -157,11 +166,13 @@ TEST(SceneDemos, PushedDisk) {
 TEST(SceneDemos, ThickDisk) {
   SKIP_WITHOUT("thick_disk")
   const double R = 0.05, mu = 0.3, ratio = 0.2;
-  const nlohmann::json s = runDemo("thick_disk", "--radius 0.05 --mu 0.3 --mu-h-over-r 0.2 --force 0.1");
+  const nlohmann::json s =
+      runDemo("thick_disk", "--radius 0.05 --mu 0.3 --mu-h-over-r 0.2 --force 0.1");
   ASSERT_FALSE(s.is_null());
   for (const char* model : {"ellipsoidal", "exact"}) {
     ASSERT_TRUE(s["bodies"].contains(model)) << model;
-    EXPECT_TRUE(near(s["bodies"][model]["parameters"]["H"].get<double>(), 2.0 * ratio * R / mu, kParameterTol));
+    EXPECT_TRUE(near(s["bodies"][model]["parameters"]["H"].get<double>(), 2.0 * ratio * R / mu,
+                     kParameterTol));
   }
   expectAgreesWithSimulate(s, "exact");
 }
@@ -170,7 +181,8 @@ TEST(SceneDemos, ThickDisk) {
 TEST(SceneDemos, DiskTorque) {
   SKIP_WITHOUT("disk_torque")
   const double R = 0.05, m = 0.03, zeta = 0.15;
-  const nlohmann::json s = runDemo("disk_torque", "--radius 0.05 --mass 0.03 --zeta 0.15 --force 0.1");
+  const nlohmann::json s =
+      runDemo("disk_torque", "--radius 0.05 --mass 0.03 --zeta 0.15 --force 0.1");
   ASSERT_FALSE(s.is_null());
   const nlohmann::json& b = s["bodies"]["ellipsoidal"];
   EXPECT_TRUE(near(b["parameters"]["torque"][0].get<double>(), zeta * m * kG * R, kParameterTol));

@@ -63,7 +63,8 @@ Witnesses addWitnesses(Scene& scene) {
 using Trajectory = std::vector<double>;
 
 void record(Trajectory& t, const btRigidBody* b) {
-  const btVector3 p = b->getWorldTransform().getOrigin(), v = b->getLinearVelocity(), w = b->getAngularVelocity();
+  const btVector3 p = b->getWorldTransform().getOrigin(), v = b->getLinearVelocity(),
+                  w = b->getAngularVelocity();
   for (const btVector3& x : {p, v, w})
     for (int i = 0; i < 3; ++i) t.push_back(double(x[i]));
 }
@@ -141,17 +142,21 @@ TEST(BadInput, InvalidOptionsThrowAndLeaveTheBodyAsItWas) {
   btRigidBody* coin = scene.addCylinder(0.05, 0.01, 1.0, bt(0, 0, 0.005), 0.3);
   PatchFrictionSolver& solver = scene.solver();
   EXPECT_THROW(solver.enablePatchFriction(nullptr, {Model::Exact}), Error);
-  const std::vector<PatchOptions> bad = {
-      PatchOptions(Model::Exact, -0.1),       PatchOptions(Model::Exact, kNaN),
-      PatchOptions(Model::Exact, kInf),       PatchOptions(Model::Exact, 0.3, kNaN),
-      PatchOptions(Model::Exact, 0.3, 0.0),   PatchOptions(Model::Exact, 0.3, -0.01),
-      PatchOptions(Model::Exact, 0.3, kInf),  PatchOptions(Model::Exact, 0.3, std::nullopt, 0.0),
-      PatchOptions(Model::Exact, 0.3, std::nullopt, -0.1), PatchOptions(Model::Exact, 0.3, std::nullopt, kNaN)};
+  const std::vector<PatchOptions> bad = {PatchOptions(Model::Exact, -0.1),
+                                         PatchOptions(Model::Exact, kNaN),
+                                         PatchOptions(Model::Exact, kInf),
+                                         PatchOptions(Model::Exact, 0.3, kNaN),
+                                         PatchOptions(Model::Exact, 0.3, 0.0),
+                                         PatchOptions(Model::Exact, 0.3, -0.01),
+                                         PatchOptions(Model::Exact, 0.3, kInf),
+                                         PatchOptions(Model::Exact, 0.3, std::nullopt, 0.0),
+                                         PatchOptions(Model::Exact, 0.3, std::nullopt, -0.1),
+                                         PatchOptions(Model::Exact, 0.3, std::nullopt, kNaN)};
   for (const PatchOptions& o : bad) {
     try {
       solver.enablePatchFriction(coin, o);
-      ADD_FAILURE() << "accepted mu " << o.mu.value_or(-1) << " rho " << o.rho.value_or(-1) << " tol "
-                    << o.flatnessTolerance;
+      ADD_FAILURE() << "accepted mu " << o.mu.value_or(-1) << " rho " << o.rho.value_or(-1)
+                    << " tol " << o.flatnessTolerance;
     } catch (const Error& e) {
       std::printf("[bad options] %s\n", e.what());
       EXPECT_FALSE(std::string(e.what()).empty());
@@ -174,8 +179,11 @@ TEST(BadInput, RejectedOptionsMidRunLeaveTheWorldUnaffected) {
   Hooks h;
   h.before = [](Scene& scene, int k) {
     if (k != 60) return;
-    for (btCollisionObject* o : {scene.world().getCollisionObjectArray()[1], scene.world().getCollisionObjectArray()[2]})
-      EXPECT_THROW(scene.solver().enablePatchFriction(btRigidBody::upcast(o), PatchOptions(Model::Exact, -0.5)), Error);
+    for (btCollisionObject* o :
+         {scene.world().getCollisionObjectArray()[1], scene.world().getCollisionObjectArray()[2]})
+      EXPECT_THROW(scene.solver().enablePatchFriction(btRigidBody::upcast(o),
+                                                      PatchOptions(Model::Exact, -0.5)),
+                   Error);
   };
   expectWitnessesUnaffected(run(h), "rejected options mid-run");
 }
@@ -226,7 +234,8 @@ TEST(BadInput, StaticTableOptedInKeepsThePatchOfTheBoxOnIt) {
   const Trajectory t = boxRun(true, &patched);
   ASSERT_TRUE(patchedRef);
   const double diff = largestDifference(t, ref);
-  std::printf("[static table] box keeps its patch: %d, largest trajectory difference %.3e\n", int(patched), diff);
+  std::printf("[static table] box keeps its patch: %d, largest trajectory difference %.3e\n",
+              int(patched), diff);
   // (found by this test: convertContacts took the manifold's body0 as the
   // patch body whenever it was opted in, static or not; fixed in def45c1)
   EXPECT_TRUE(patched) << "opting the table in took the patch away from the box on it";
@@ -249,9 +258,13 @@ TEST(BadInput, NegativeMassBodyIsRejectedOrLeftToBullet) {
       std::printf("[negative mass] Error: %s\n", e.what());
     }
   };
-  h.before = [&](Scene& scene, int) { hadPatch = hadPatch || scene.solver().findPatchReport(bad) != nullptr; };
+  h.before = [&](Scene& scene, int) {
+    hadPatch = hadPatch || scene.solver().findPatchReport(bad) != nullptr;
+  };
   const RunResult r = run(h);
-  std::printf("[negative mass] %s\n", threw ? "rejected with Error" : hadPatch ? "given a patch (!)" : "accepted, left to stock Bullet");
+  std::printf("[negative mass] %s\n", threw      ? "rejected with Error"
+                                      : hadPatch ? "given a patch (!)"
+                                                 : "accepted, left to stock Bullet");
   EXPECT_TRUE(threw || !hadPatch) << "a negative-mass body must not get a patch";
   expectWitnessesUnaffected(r, "negative mass");
 }
@@ -275,8 +288,14 @@ TEST(BadInput, DegenerateShapesDoNotDisturbTheWorld) {
          t.setOrigin(kFar + bt(0, 0, 0.01));
          return scene.addBody(std::move(shape), 1.0, bt(1e-4, 1e-4, 0), t, 0.5);
        }},
-      {"zero-height box", [](Scene& scene) { return addFarBox(scene, bt(0.05, 0.05, 0), 1.0, bt(8e-4, 8e-4, 1.7e-3)); }},
-      {"zero-width box", [](Scene& scene) { return addFarBox(scene, bt(0, 0.05, 0.05), 1.0, bt(1.7e-3, 8e-4, 8e-4)); }},
+      {"zero-height box",
+       [](Scene& scene) {
+         return addFarBox(scene, bt(0.05, 0.05, 0), 1.0, bt(8e-4, 8e-4, 1.7e-3));
+       }},
+      {"zero-width box",
+       [](Scene& scene) {
+         return addFarBox(scene, bt(0, 0.05, 0.05), 1.0, bt(1.7e-3, 8e-4, 8e-4));
+       }},
   };
   for (const Case& c : cases) {
     bool badFinite = true;
@@ -297,8 +316,8 @@ TEST(BadInput, DegenerateShapesDoNotDisturbTheWorld) {
       }
     };
     const RunResult r = run(h);
-    std::printf("[degenerate] %s: finite %d, patch %s (area %.3e)\n", c.name, int(badFinite), lastShape ? "yes" : "no",
-                area);
+    std::printf("[degenerate] %s: finite %d, patch %s (area %.3e)\n", c.name, int(badFinite),
+                lastShape ? "yes" : "no", area);
     expectWitnessesUnaffected(r, c.name);
     if (std::string(c.name) == "zero-height box") {
       EXPECT_TRUE(badFinite);
@@ -426,7 +445,8 @@ TEST(BadInput, OptedInTwiceTheSecondOptionsWin) {
     Trajectory t;
     const PatchReport* rep = nullptr;
     for (int k = 0; k < 120; ++k) {
-      if (twice && k == 60) scene.solver().enablePatchFriction(coin, {Model::Exact, 0.4});  // again, same options
+      if (twice && k == 60)
+        scene.solver().enablePatchFriction(coin, {Model::Exact, 0.4});  // again, same options
       scene.step(kDt);
       record(t, coin);
       rep = scene.solver().findPatchReport(coin);
@@ -449,7 +469,8 @@ TEST(BadInput, DisablingABodyNeverEnabledIsANoOp) {
     if (k == 100) {
       EXPECT_NO_THROW(scene.solver().disablePatchFriction(stranger));
       // the sphere witness is stock: disabling it changes nothing either
-      scene.solver().disablePatchFriction(btRigidBody::upcast(scene.world().getCollisionObjectArray()[3]));
+      scene.solver().disablePatchFriction(
+          btRigidBody::upcast(scene.world().getCollisionObjectArray()[3]));
     }
   };
   const RunResult r = run(h);
@@ -466,7 +487,8 @@ TEST(BadInput, RemovingAndDeletingAnOptedInBodyBetweenSteps) {
   std::unique_ptr<btRigidBody> body;
   h.setup = [&](Scene& scene) {
     shape = std::make_unique<btBoxShape>(bt(0.05, 0.05, 0.05));
-    btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, shape.get(), bt(1.7e-3, 1.7e-3, 1.7e-3));
+    btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, shape.get(),
+                                                  bt(1.7e-3, 1.7e-3, 1.7e-3));
     info.m_startWorldTransform.setIdentity();
     info.m_startWorldTransform.setOrigin(kFar + bt(0, 0, 0.05));
     body = std::make_unique<btRigidBody>(info);
@@ -576,10 +598,12 @@ bool newBodyInheritsOptions(bool disableBeforeDelete) {
 }
 
 TEST(BadInput, DeletingAnOptedInBodyFollowsTheDocumentedContract) {
-  const bool withDisable = newBodyInheritsOptions(true), withoutDisable = newBodyInheritsOptions(false);
-  std::printf("[address reuse] new body at a deleted opted-in body's address inherits its options: "
-              "after disablePatchFriction %d, without %d (documented)\n",
-              int(withDisable), int(withoutDisable));
+  const bool withDisable = newBodyInheritsOptions(true),
+             withoutDisable = newBodyInheritsOptions(false);
+  std::printf(
+      "[address reuse] new body at a deleted opted-in body's address inherits its options: "
+      "after disablePatchFriction %d, without %d (documented)\n",
+      int(withDisable), int(withoutDisable));
   EXPECT_FALSE(withDisable);
   EXPECT_TRUE(withoutDisable) << "the documented caveat changed: update patch_friction_solver.hpp";
 }
@@ -609,7 +633,8 @@ TEST(BadInput, SphereOptedInFallsBackToStockBullet) {
     Scene scene(kG, 10);
     scene.addGroundPlane(1.0);
     btRigidBody* coin = scene.addCylinder(0.05, 0.01, 1.0, bt(0, 1, 0.005), 0.3);
-    scene.solver().enablePatchFriction(coin, {Model::Exact});  // the solver is not in its no-opt-in shortcut
+    scene.solver().enablePatchFriction(
+        coin, {Model::Exact});  // the solver is not in its no-opt-in shortcut
     btRigidBody* s = scene.addSphere(0.05, 1.0, bt(0, 0, 0.05), 0.5);
     s->setLinearVelocity(bt(0.5, 0, 0));
     s->setAngularVelocity(bt(0, 3, 5));

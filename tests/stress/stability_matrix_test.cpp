@@ -101,7 +101,7 @@ struct Tracked {
   btRigidBody* body;
   btRigidBody* support;  // nullptr: the ground z = 0
   btVector3 start;
-  double halfSize;       // s / 2: lever for the rest test
+  double halfSize;  // s / 2: lever for the rest test
 };
 
 // Kinetic energy of the friction DOFs (see the head comment) [J].
@@ -110,7 +110,8 @@ double frictionEnergy(const std::vector<btRigidBody*>& bodies) {
   for (const btRigidBody* b : bodies) {
     const btVector3 v = b->getLinearVelocity(), w = b->getAngularVelocity();
     const double jzz = double(b->getInvInertiaTensorWorld().inverse()[2][2]);
-    e += 0.5 * (double(v.x()) * double(v.x()) + double(v.y()) * double(v.y())) / double(b->getInvMass()) +
+    e += 0.5 * (double(v.x()) * double(v.x()) + double(v.y()) * double(v.y())) /
+             double(b->getInvMass()) +
          0.5 * jzz * double(w.z()) * double(w.z());
   }
   return e;
@@ -135,7 +136,8 @@ Result runCell(const Cell& c) {
   if (c.massRatio > 0.0) {
     const btVector3 half = bt(s / 2, s / 2, s / 4);
     btRigidBody* lower = scene.addBox(half, 1.0 * scale, bt(0, 0, s / 4), c.mu, margin);
-    btRigidBody* upper = scene.addBox(half, c.massRatio * scale, bt(0, 0, 3 * s / 4 - kStackOverlap * s), kStackGrip, margin);
+    btRigidBody* upper = scene.addBox(half, c.massRatio * scale,
+                                      bt(0, 0, 3 * s / 4 - kStackOverlap * s), kStackGrip, margin);
     for (btRigidBody* b : {lower, upper}) {
       optIn(scene, b, c.model);
       launch(b);
@@ -145,8 +147,10 @@ Result runCell(const Cell& c) {
     items.push_back({upper, lower, upper->getWorldTransform().getOrigin(), s / 2});
     tBound = tSlide + tSpinBlock;
   } else {
-    btRigidBody* coin = scene.addCylinder(s / 2, 0.1 * s, 1.0 * scale, bt(-s, 0, 0.05 * s), c.mu, margin);
-    btRigidBody* block = scene.addBox(bt(s / 2, s / 2, s / 4), 1.0 * scale, bt(s, 2 * s, s / 4), c.mu, margin);
+    btRigidBody* coin =
+        scene.addCylinder(s / 2, 0.1 * s, 1.0 * scale, bt(-s, 0, 0.05 * s), c.mu, margin);
+    btRigidBody* block =
+        scene.addBox(bt(s / 2, s / 2, s / 4), 1.0 * scale, bt(s, 2 * s, s / 4), c.mu, margin);
     for (btRigidBody* b : {coin, block}) {
       optIn(scene, b, c.model);
       launch(b);
@@ -202,7 +206,8 @@ Result runCell(const Cell& c) {
   r.penetration = r.finite && r.maxPenetration <= r.penetrationBound;
   r.bounded = r.bounded && r.finite;
   r.restTime = lastMoving;
-  r.rest = r.finite && lastMoving <= r.restBound && lastMoving < tEnd - c.dt / 2 && lastMoving >= r.restLow;
+  r.rest = r.finite && lastMoving <= r.restBound && lastMoving < tEnd - c.dt / 2 &&
+           lastMoving >= r.restLow;
   return r;
 }
 
@@ -217,8 +222,9 @@ Cell with(const char* factor, Set set) {
 }
 
 std::string describe(const Cell& c) {
-  return std::string(toString(c.model)) + " " + c.factor + " dt=1/" + fmt("%.0f", 1.0 / c.dt) + " mu=" + fmt("%g", c.mu) +
-         " ratio=" + fmt("%g", c.massRatio) + " omega0=" + fmt("%g", c.omega0) + " size=" + fmt("%g", c.size) +
+  return std::string(toString(c.model)) + " " + c.factor + " dt=1/" + fmt("%.0f", 1.0 / c.dt) +
+         " mu=" + fmt("%g", c.mu) + " ratio=" + fmt("%g", c.massRatio) +
+         " omega0=" + fmt("%g", c.omega0) + " size=" + fmt("%g", c.size) +
          " iters=" + std::to_string(c.iterations);
 }
 
@@ -226,10 +232,11 @@ std::string describe(const Cell& c) {
 // `knownDefect`: energy / penetration / rest / bounded failures are collected
 // as the known defect instead of failing (finiteness is always asserted);
 // the test is then skipped with the list, and passes once they are fixed.
-void runGroup(const std::string& title, const std::vector<Cell>& shapes, const char* knownDefect = nullptr) {
-  Table table(title, {"model", "factor", "dt [s]", "mu", "m2/m1", "omega0", "size [m]", "iters", "finite", "energy",
-                      "bounded", "penetr.", "rest", "max pen. [m] (bound)", "max dE/E0", "max dKE/E0 (total)",
-                      "t_rest [s] (window)"});
+void runGroup(const std::string& title, const std::vector<Cell>& shapes,
+              const char* knownDefect = nullptr) {
+  Table table(title, {"model", "factor", "dt [s]", "mu", "m2/m1", "omega0", "size [m]", "iters",
+                      "finite", "energy", "bounded", "penetr.", "rest", "max pen. [m] (bound)",
+                      "max dE/E0", "max dKE/E0 (total)", "t_rest [s] (window)"});
   std::string defects;
   for (const Cell& base : shapes)
     for (Friction m : {Friction::Ellipsoidal, Friction::Exact, Friction::Stock}) {
@@ -237,27 +244,29 @@ void runGroup(const std::string& title, const std::vector<Cell>& shapes, const c
       c.model = m;
       const Result r = runCell(c);
       table.add({toString(c.model), c.factor, "1/" + fmt("%.0f", 1.0 / c.dt), fmt("%g", c.mu),
-                 c.massRatio > 0 ? fmt("%g", c.massRatio) : "-", fmt("%g", c.omega0), fmt("%g", c.size),
-                 std::to_string(c.iterations), passFail(r.finite), passFail(r.energy), passFail(r.bounded),
-                 passFail(r.penetration), passFail(r.rest),
+                 c.massRatio > 0 ? fmt("%g", c.massRatio) : "-", fmt("%g", c.omega0),
+                 fmt("%g", c.size), std::to_string(c.iterations), passFail(r.finite),
+                 passFail(r.energy), passFail(r.bounded), passFail(r.penetration), passFail(r.rest),
                  fmt("%.2e", r.maxPenetration) + " (" + fmt("%.1e", r.penetrationBound) + ")",
                  fmt("%.1e", r.energyRise), fmt("%.1e", r.totalRise),
-                 fmt("%.3f", r.restTime) + " (" + fmt("%.2f", r.restLow) + ".." + fmt("%.2f", r.restBound) + ")"});
+                 fmt("%.3f", r.restTime) + " (" + fmt("%.2f", r.restLow) + ".." +
+                     fmt("%.2f", r.restBound) + ")"});
       if (c.model == Friction::Stock) continue;  // the reference point: printed, not asserted
       const std::string where = describe(c);
       EXPECT_TRUE(r.finite) << where;
       const bool soft = r.energy && r.penetration && r.rest && r.bounded;
       if (knownDefect && r.finite && !soft) {
-        defects += "\n  " + where + ": energy rise " + fmt("%.1e", r.energyRise) + " E0, penetration " +
-                   fmt("%.2e", r.maxPenetration) + " m, rest " + fmt("%.3f", r.restTime) + " s" +
-                   (r.bounded ? "" : ", left the scene");
+        defects += "\n  " + where + ": energy rise " + fmt("%.1e", r.energyRise) +
+                   " E0, penetration " + fmt("%.2e", r.maxPenetration) + " m, rest " +
+                   fmt("%.3f", r.restTime) + " s" + (r.bounded ? "" : ", left the scene");
         continue;
       }
       EXPECT_TRUE(r.bounded) << where;
       EXPECT_TRUE(r.energy) << where << ": energy rise " << r.energyRise << " E0";
-      EXPECT_TRUE(r.penetration) << where << ": penetration " << r.maxPenetration << " m > " << r.penetrationBound;
-      EXPECT_TRUE(r.rest) << where << ": rest at " << r.restTime << " s, window " << r.restLow << ".."
-                          << r.restBound;
+      EXPECT_TRUE(r.penetration) << where << ": penetration " << r.maxPenetration << " m > "
+                                 << r.penetrationBound;
+      EXPECT_TRUE(r.rest) << where << ": rest at " << r.restTime << " s, window " << r.restLow
+                          << ".." << r.restBound;
     }
   table.emit();
   if (!defects.empty()) GTEST_SKIP() << "known defect: " << knownDefect << defects;
@@ -267,18 +276,22 @@ std::string title(const char* what) {
   return std::string("Stability matrix: ") + what + (stressFull() ? "" : " (fast subset)");
 }
 
-TEST(StabilityMatrix, Base) { runGroup(title("base scene"), {Cell()}); }
+TEST(StabilityMatrix, Base) {
+  runGroup(title("base scene"), {Cell()});
+}
 
 TEST(StabilityMatrix, TimeStep) {
   std::vector<Cell> cells;
-  for (double hz : stressFull() ? std::vector<double>{30, 60, 120, 500, 1000} : std::vector<double>{30, 1000})
+  for (double hz :
+       stressFull() ? std::vector<double>{30, 60, 120, 500, 1000} : std::vector<double>{30, 1000})
     cells.push_back(with("dt", [&](Cell& c) { c.dt = 1.0 / hz; }));
   runGroup(title("time step"), cells);
 }
 
 TEST(StabilityMatrix, FrictionCoefficient) {
   std::vector<Cell> cells;
-  for (double mu : stressFull() ? std::vector<double>{0.05, 0.1, 0.6, 1.0, 1.5} : std::vector<double>{0.05, 1.5})
+  for (double mu : stressFull() ? std::vector<double>{0.05, 0.1, 0.6, 1.0, 1.5}
+                                : std::vector<double>{0.05, 1.5})
     cells.push_back(with("mu", [&](Cell& c) { c.mu = mu; }));
   runGroup(title("friction coefficient"), cells);
 }
@@ -299,7 +312,8 @@ TEST(StabilityMatrix, MassRatioLightOnHeavy) {
 // (3.9e-8 E0 at 10 iterations, 2.0e-10 at 20, round-off at 50). Now a plain
 // test, at the double round-off tolerance.
 TEST(StabilityMatrix, MassRatioEqual) {
-  runGroup(title("mass ratio, equal masses"), {with("mass ratio", [](Cell& c) { c.massRatio = 1.0; })});
+  runGroup(title("mass ratio, equal masses"),
+           {with("mass ratio", [](Cell& c) { c.massRatio = 1.0; })});
 }
 
 // Heavy on light, 10:1: plain Gauss-Seidel over the two patches converged
@@ -307,7 +321,8 @@ TEST(StabilityMatrix, MassRatioEqual) {
 // rising by ~1.6e-5 E0 in a step); with the support held the cell passes in
 // both precisions (energy rise at round-off).
 TEST(StabilityMatrix, MassRatioHeavyOnLight) {
-  runGroup(title("mass ratio, heavy on light"), {with("mass ratio", [](Cell& c) { c.massRatio = 10.0; })});
+  runGroup(title("mass ratio, heavy on light"),
+           {with("mass ratio", [](Cell& c) { c.massRatio = 10.0; })});
 }
 
 // 100:1 and 1000:1. Until the support of a stack on the ground was also
@@ -328,7 +343,11 @@ TEST(StabilityMatrix, MassRatioHeavyOnLightExtreme) {
   for (double q : stressFull() ? std::vector<double>{1e2, 1e3} : std::vector<double>{1e3})
     cells.push_back(with("mass ratio", [&](Cell& c) { c.massRatio = q; }));
   if (stressFull()) {
-    cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 30; c.massRatio = 1e3; c.iterations = 4; }));
+    cells.push_back(with("corner", [](Cell& c) {
+      c.dt = 1.0 / 30;
+      c.massRatio = 1e3;
+      c.iterations = 4;
+    }));
     cells.push_back(with("corner", [](Cell& c) {
       c.dt = 1.0 / 1000;
       c.massRatio = 1e3;
@@ -341,7 +360,8 @@ TEST(StabilityMatrix, MassRatioHeavyOnLightExtreme) {
 
 TEST(StabilityMatrix, Spin) {
   std::vector<Cell> cells;
-  for (double w : stressFull() ? std::vector<double>{0.0, 100.0, 1000.0} : std::vector<double>{0.0, 100.0})
+  for (double w :
+       stressFull() ? std::vector<double>{0.0, 100.0, 1000.0} : std::vector<double>{0.0, 100.0})
     cells.push_back(with("spin", [&](Cell& c) { c.omega0 = w; }));
   runGroup(title("spin"), cells);
 }
@@ -349,8 +369,12 @@ TEST(StabilityMatrix, Spin) {
 // Patch size s: the coin's R omega0 = v0 (capped at omega0 = 1000 rad/s).
 TEST(StabilityMatrix, PatchSize) {
   std::vector<Cell> cells;
-  for (double s : stressFull() ? std::vector<double>{1e-3, 1e-2, 1.0, 10.0} : std::vector<double>{1e-3, 10.0})
-    cells.push_back(with("size", [&](Cell& c) { c.size = s; c.omega0 = std::min(1000.0, kV0 / (s / 2)); }));
+  for (double s :
+       stressFull() ? std::vector<double>{1e-3, 1e-2, 1.0, 10.0} : std::vector<double>{1e-3, 10.0})
+    cells.push_back(with("size", [&](Cell& c) {
+      c.size = s;
+      c.omega0 = std::min(1000.0, kV0 / (s / 2));
+    }));
   runGroup(title("patch size"), cells);
 }
 
@@ -363,13 +387,40 @@ TEST(StabilityMatrix, SolverIterations) {
 
 TEST(StabilityMatrix, Corners) {
   std::vector<Cell> cells;
-  cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 30; c.mu = 1.5; c.omega0 = 1000; }));
-  cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 30; c.size = 1e-3; c.omega0 = 1000; }));
+  cells.push_back(with("corner", [](Cell& c) {
+    c.dt = 1.0 / 30;
+    c.mu = 1.5;
+    c.omega0 = 1000;
+  }));
+  cells.push_back(with("corner", [](Cell& c) {
+    c.dt = 1.0 / 30;
+    c.size = 1e-3;
+    c.omega0 = 1000;
+  }));
   if (stressFull()) {
-    cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 1000; c.mu = 0.05; c.size = 10; c.omega0 = 0.2; }));
-    cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 30; c.massRatio = 1e-3; c.iterations = 4; }));
-    cells.push_back(with("corner", [](Cell& c) { c.size = 10; c.mu = 0.05; c.omega0 = 0.2; c.iterations = 4; }));
-    cells.push_back(with("corner", [](Cell& c) { c.dt = 1.0 / 1000; c.size = 1e-3; c.mu = 1.5; c.omega0 = 1000; }));
+    cells.push_back(with("corner", [](Cell& c) {
+      c.dt = 1.0 / 1000;
+      c.mu = 0.05;
+      c.size = 10;
+      c.omega0 = 0.2;
+    }));
+    cells.push_back(with("corner", [](Cell& c) {
+      c.dt = 1.0 / 30;
+      c.massRatio = 1e-3;
+      c.iterations = 4;
+    }));
+    cells.push_back(with("corner", [](Cell& c) {
+      c.size = 10;
+      c.mu = 0.05;
+      c.omega0 = 0.2;
+      c.iterations = 4;
+    }));
+    cells.push_back(with("corner", [](Cell& c) {
+      c.dt = 1.0 / 1000;
+      c.size = 1e-3;
+      c.mu = 1.5;
+      c.omega0 = 1000;
+    }));
   }
   runGroup(title("corners"), cells);
 }

@@ -39,12 +39,14 @@ inline bool stressFull() {
 }
 
 inline bool isFinite(const btVector3& v) {
-  return std::isfinite(double(v.x())) && std::isfinite(double(v.y())) && std::isfinite(double(v.z()));
+  return std::isfinite(double(v.x())) && std::isfinite(double(v.y())) &&
+         std::isfinite(double(v.z()));
 }
 inline bool isFinite(const btRigidBody* b) {
   const btTransform& t = b->getWorldTransform();
-  return isFinite(t.getOrigin()) && isFinite(t.getBasis().getColumn(0)) && isFinite(t.getBasis().getColumn(2)) &&
-         isFinite(b->getLinearVelocity()) && isFinite(b->getAngularVelocity());
+  return isFinite(t.getOrigin()) && isFinite(t.getBasis().getColumn(0)) &&
+         isFinite(t.getBasis().getColumn(2)) && isFinite(b->getLinearVelocity()) &&
+         isFinite(b->getAngularVelocity());
 }
 
 // Lowest / highest z of the body's real outline (boxes: corners with margin;
@@ -58,7 +60,8 @@ inline double extremeZ(const btRigidBody* b, bool lowest) {
     const btVector3 h = static_cast<const btBoxShape*>(s)->getHalfExtentsWithMargin();
     double best = sign * 1e300;
     for (int i = 0; i < 8; ++i) {
-      const btVector3 c = t * btVector3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z());
+      const btVector3 c = t * btVector3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
+                                        (i & 4) ? h.z() : -h.z());
       best = lowest ? std::min(best, double(c.z())) : std::max(best, double(c.z()));
     }
     return best;
@@ -90,7 +93,8 @@ inline double extremeZ(const btRigidBody* b, bool lowest) {
 // Table printed to stdout and appended to $PATCHSPIN_STRESS_TABLE.
 class Table {
  public:
-  Table(std::string title, std::vector<std::string> header) : title_(std::move(title)), header_(std::move(header)) {}
+  Table(std::string title, std::vector<std::string> header)
+      : title_(std::move(title)), header_(std::move(header)) {}
   void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
   std::string str() const {
     std::vector<size_t> w(header_.size(), 0);
@@ -135,6 +139,8 @@ inline std::string fmt(const char* f, double v) {
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
 }
-inline const char* passFail(bool ok) { return ok ? "ok" : "FAIL"; }
+inline const char* passFail(bool ok) {
+  return ok ? "ok" : "FAIL";
+}
 
 }  // namespace patchspin::bullet::stress

@@ -9,8 +9,12 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-double ellipticK(double m) { return std::comp_ellint_1(std::sqrt(m)); }
-double ellipticE(double m) { return std::comp_ellint_2(std::sqrt(m)); }
+double ellipticK(double m) {
+  return std::comp_ellint_1(std::sqrt(m));
+}
+double ellipticE(double m) {
+  return std::comp_ellint_2(std::sqrt(m));
+}
 
 double diskSlipRatio(const Vec3& w, double R, double rho) {
   const double wxy = std::hypot(w.x(), w.y());
@@ -63,9 +67,13 @@ double hertzDiskTorque(double eps) {
   return (poly * std::asin(1.0 / eps) + (6.0 - 3.0 * e2) * std::sqrt(e2 - 1.0)) / (4.0 * kPi);
 }
 
-double uniformDiskPiXY(double R) { return 2.0 * R / 3.0; }
+double uniformDiskPiXY(double R) {
+  return 2.0 * R / 3.0;
+}
 // (48): pi_xy = (2 pi / Pz) ∫_0^R p(s) s^2 ds = 3 R ∫_0^1 t^2 sqrt(1 - t^2) dt = 3 pi R / 16.
-double hertzDiskPiXY(double R) { return 3.0 * kPi * R / 16.0; }
+double hertzDiskPiXY(double R) {
+  return 3.0 * kPi * R / 16.0;
+}
 
 namespace {
 template <class ForceFn, class TorqueFn>
@@ -94,9 +102,13 @@ double thinStripForceAlong(double gamma) {
   return gamma == 0.0 ? 1.0 : std::asinh(gamma) / gamma;
 }
 double thinStripTorqueAlong(double gamma) {
-  return gamma == 0.0 ? 0.0 : std::sqrt(1.0 + 1.0 / (gamma * gamma)) - std::asinh(gamma) / (gamma * gamma);
+  return gamma == 0.0
+             ? 0.0
+             : std::sqrt(1.0 + 1.0 / (gamma * gamma)) - std::asinh(gamma) / (gamma * gamma);
 }
-double thinStripForceAcross(double gamma) { return gamma <= 1.0 ? 1.0 : 1.0 / gamma; }
+double thinStripForceAcross(double gamma) {
+  return gamma <= 1.0 ? 1.0 : 1.0 / gamma;
+}
 double thinStripTorqueAcross(double gamma) {
   return gamma <= 1.0 ? 0.0 : 1.0 - 1.0 / (gamma * gamma);
 }

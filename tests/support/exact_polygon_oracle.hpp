@@ -224,7 +224,8 @@ inline Mat3 oracleF(const Polygon& poly, double rho, const Vec3& w) {
 // max over columns of the normwise relative error
 inline double relativeError(const Mat3& F, const Mat3& ref, const Vec3& scale) {
   double e = 0.0;
-  for (int k = 0; k < 3; ++k) e = std::max(e, (F.col(k) - ref.col(k)).cwiseAbs().maxCoeff() / scale[k]);
+  for (int k = 0; k < 3; ++k)
+    e = std::max(e, (F.col(k) - ref.col(k)).cwiseAbs().maxCoeff() / scale[k]);
   return e;
 }
 
@@ -239,9 +240,15 @@ inline Polygon translated(Polygon p, const Vec2& t) {
   for (Vec2& v : p) v += t;
   return p;
 }
-inline Polygon unitSquare() { return {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}; }
-inline Polygon rectangle() { return {{-1.0, -0.25}, {1.0, -0.25}, {1.0, 0.25}, {-1.0, 0.25}}; }
-inline Polygon triangle() { return {{0.1, -0.3}, {1.1, 0.0}, {0.3, 0.8}}; }
+inline Polygon unitSquare() {
+  return {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+}
+inline Polygon rectangle() {
+  return {{-1.0, -0.25}, {1.0, -0.25}, {1.0, 0.25}, {-1.0, 0.25}};
+}
+inline Polygon triangle() {
+  return {{0.1, -0.3}, {1.1, 0.0}, {0.3, 0.8}};
+}
 inline Polygon irregularPentagon() {
   return {{-0.6, -0.4}, {0.3, -0.55}, {0.8, 0.1}, {0.35, 0.6}, {-0.5, 0.45}};
 }

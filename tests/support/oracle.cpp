@@ -185,8 +185,8 @@ void polygonChains(const std::vector<Vec2>& v, double x, double& ylo, double& yh
 
 // ∫ g dA over a convex polygon, special point s on panel boundaries.
 template <int N, class G>
-VecN<N> integratePolygon(const std::vector<Vec2>& v, const G& g, const Vec2* special,
-                         double relTol, QuadratureReport* report) {
+VecN<N> integratePolygon(const std::vector<Vec2>& v, const G& g, const Vec2* special, double relTol,
+                         QuadratureReport* report) {
   if (v.size() < 3) throw std::invalid_argument("oracle: polygon needs 3 vertices");
   std::vector<double> xs;
   for (const Vec2& p : v) xs.push_back(p.x());
@@ -265,8 +265,8 @@ VecN<N> integrateDisk(const Vec2& centre, double radius, const G& g, const Vec2*
     const double phi = phi0 + (i + 0.5) / kGrid * 2.0 * kPi;
     const Vec2 dir(std::cos(phi), std::sin(phi));
     for (int j = 0; j < kGrid; ++j)
-      s0 += integrand((j + 0.5) / kGrid * halfPi, dir).cwiseAbs().maxCoeff() *
-            (2.0 * kPi / kGrid) * (halfPi / kGrid);
+      s0 += integrand((j + 0.5) / kGrid * halfPi, dir).cwiseAbs().maxCoeff() * (2.0 * kPi / kGrid) *
+            (halfPi / kGrid);
   }
   const double innerAbsTol = kInnerShare * relTol * s0 / (2.0 * kPi);
   QuadratureReport inner;
@@ -277,8 +277,8 @@ VecN<N> integrateDisk(const Vec2& centre, double radius, const G& g, const Vec2*
     return integrateAdaptive<N>([&](double t) { return integrand(t, dir); }, ts, relTol,
                                 innerAbsTol, &inner);
   };
-  VecN<N> result = integrateAdaptive<N>(outer, std::vector<double>{phi0, phi0 + 2.0 * kPi},
-                                        relTol, 0.0, report);
+  VecN<N> result =
+      integrateAdaptive<N>(outer, std::vector<double>{phi0, phi0 + 2.0 * kPi}, relTol, 0.0, report);
   if (report != nullptr) {
     report->evaluations += inner.evaluations;
     report->capped = report->capped || inner.capped;
@@ -359,12 +359,18 @@ Vec3 bruteForceLineQ(double x0, double x1, double Pz, double mu, double rho, con
 
 AreaMoments bruteForceAreaMoments(const PatchShape& shape, double relTol) {
   AreaMoments m;
-  m.area = bruteForceIntegral(shape, [](const Vec2&) { return 1.0; }, relTol);
-  m.first.x() = bruteForceIntegral(shape, [](const Vec2& p) { return p.x(); }, relTol);
-  m.first.y() = bruteForceIntegral(shape, [](const Vec2& p) { return p.y(); }, relTol);
-  m.xx = bruteForceIntegral(shape, [](const Vec2& p) { return p.x() * p.x(); }, relTol);
-  m.xy = bruteForceIntegral(shape, [](const Vec2& p) { return p.x() * p.y(); }, relTol);
-  m.yy = bruteForceIntegral(shape, [](const Vec2& p) { return p.y() * p.y(); }, relTol);
+  m.area = bruteForceIntegral(
+      shape, [](const Vec2&) { return 1.0; }, relTol);
+  m.first.x() = bruteForceIntegral(
+      shape, [](const Vec2& p) { return p.x(); }, relTol);
+  m.first.y() = bruteForceIntegral(
+      shape, [](const Vec2& p) { return p.y(); }, relTol);
+  m.xx = bruteForceIntegral(
+      shape, [](const Vec2& p) { return p.x() * p.x(); }, relTol);
+  m.xy = bruteForceIntegral(
+      shape, [](const Vec2& p) { return p.x() * p.y(); }, relTol);
+  m.yy = bruteForceIntegral(
+      shape, [](const Vec2& p) { return p.y() * p.y(); }, relTol);
   return m;
 }
 
@@ -373,13 +379,20 @@ namespace {
 double tableRow(int row, const Vec2& p) {
   const double r = p.norm();
   switch (row) {
-    case MomentTable::kOne: return 1.0;
-    case MomentTable::kX: return p.x();
-    case MomentTable::kY: return p.y();
-    case MomentTable::kR: return r;
-    case MomentTable::kXOverR: return r > 0.0 ? p.x() / r : 0.0;
-    case MomentTable::kYOverR: return r > 0.0 ? p.y() / r : 0.0;
-    default: return 0.0;
+    case MomentTable::kOne:
+      return 1.0;
+    case MomentTable::kX:
+      return p.x();
+    case MomentTable::kY:
+      return p.y();
+    case MomentTable::kR:
+      return r;
+    case MomentTable::kXOverR:
+      return r > 0.0 ? p.x() / r : 0.0;
+    case MomentTable::kYOverR:
+      return r > 0.0 ? p.y() / r : 0.0;
+    default:
+      return 0.0;
   }
 }
 double tableColumn(int col, const Vec2& p) {
@@ -396,8 +409,7 @@ MomentTable bruteForceMomentTable(const PatchShape& shape, double relTol) {
   return t;
 }
 
-PiMoments bruteForcePiMoments(const PatchShape& shape, const ScalarField& pressure,
-                              double relTol) {
+PiMoments bruteForcePiMoments(const PatchShape& shape, const ScalarField& pressure, double relTol) {
   PiMoments m;
   m.Pz = bruteForceIntegral(shape, pressure, relTol);
   auto average = [&](int row) {
@@ -414,7 +426,8 @@ PiMoments bruteForcePiMoments(const PatchShape& shape, const ScalarField& pressu
 }
 
 ScalarField linearField(const LinearPressure& pressure) {
-  return [pressure](const Vec2& p) { return pressure.p0 + pressure.cx * p.x() + pressure.cy * p.y(); };
+  return
+      [pressure](const Vec2& p) { return pressure.p0 + pressure.cx * p.x() + pressure.cy * p.y(); };
 }
 
 ScalarField hertzField(const Vec2& centre, double radius, double Pz) {

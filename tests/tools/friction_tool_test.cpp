@@ -20,8 +20,10 @@ TEST(FrictionToolTest, JsonPiMatchesClosedFormForLinearPressureOnDisk) {
   //   pi_y0 = cy R / (3 p0), pi_x0 = cx R / (3 p0), pi_y = cy R^2 / (4 p0),
   //   pi_xy = rho = 2R/3, so Pi31 = -3 cy R / (8 p0), Pi32 = 3 cx R / (8 p0), Pi33 = 1.
   const double R = 0.05, p0 = 1000.0, cx = 4000.0, cy = -6000.0;
-  const auto run = runTool(PATCHSPIN_TOOL, "friction --patch disk:0.05 --model ellipsoidal --pressure 1000,4000,-6000 "
-                                           "--mu 0.4 --w 1,2,2 --json");
+  const auto run =
+      runTool(PATCHSPIN_TOOL,
+              "friction --patch disk:0.05 --model ellipsoidal --pressure 1000,4000,-6000 "
+              "--mu 0.4 --w 1,2,2 --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
   Mat3 expected;
@@ -39,8 +41,9 @@ TEST(FrictionToolTest, JsonPiMatchesClosedFormForLinearPressureOnDisk) {
 }
 
 TEST(FrictionToolTest, ExactJsonAgreesWithLibrary) {
-  const auto run = runTool(PATCHSPIN_TOOL, "friction --patch rect:0.08,0.04 --model exact --loads 10,0.01,0.02 "
-                                           "--mu 0.5 --w 0.3,-0.4,0.5 --json");
+  const auto run = runTool(PATCHSPIN_TOOL,
+                           "friction --patch rect:0.08,0.04 --model exact --loads 10,0.01,0.02 "
+                           "--mu 0.5 --w 0.3,-0.4,0.5 --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const auto j = nlohmann::json::parse(run.out);
   const PatchShape rect = PatchShape::rectangle(0.08, 0.04);
@@ -50,7 +53,8 @@ TEST(FrictionToolTest, ExactJsonAgreesWithLibrary) {
 }
 
 TEST(FrictionToolTest, TableIsReadable) {
-  const auto run = runTool(PATCHSPIN_TOOL, "friction --patch poly:0,0,0.1,0,0.05,0.08 --model exact --w 0,0,1");
+  const auto run =
+      runTool(PATCHSPIN_TOOL, "friction --patch poly:0,0,0.1,0,0.05,0.08 --model exact --w 0,0,1");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_NE(run.out.find("Px"), std::string::npos);
   EXPECT_NE(run.out.find("Tz"), std::string::npos);
@@ -59,15 +63,15 @@ TEST(FrictionToolTest, TableIsReadable) {
 
 TEST(FrictionToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
   const char* bad[] = {
-      "friction --patch disk:-1 --w 1,0,0",                      // negative radius
-      "friction --patch poly:0,0,0,1,1,0 --w 1,0,0",              // clockwise polygon
-      "friction --patch disk:0.05 --w 0,0,0",                     // zero slip direction
-      "friction --patch disk:0.05 --w 1,0",                       // wrong count
-      "friction --patch disk:0.05 --w 1,x,0",                     // not a number
-      "friction --patch disk:0.05 --loads 10,5,0 --w 1,0,0",      // tips: not admissible
-      "friction --patch rect:0.1,0.1 --hertz 3 --w 1,0,0",        // Hertz needs a disk
-      "friction --patch disk:0.05 --mu -1 --w 1,0,0",             // negative mu
-      "friction --patch blob:1 --w 1,0,0",                        // unknown shape
+      "friction --patch disk:-1 --w 1,0,0",                   // negative radius
+      "friction --patch poly:0,0,0,1,1,0 --w 1,0,0",          // clockwise polygon
+      "friction --patch disk:0.05 --w 0,0,0",                 // zero slip direction
+      "friction --patch disk:0.05 --w 1,0",                   // wrong count
+      "friction --patch disk:0.05 --w 1,x,0",                 // not a number
+      "friction --patch disk:0.05 --loads 10,5,0 --w 1,0,0",  // tips: not admissible
+      "friction --patch rect:0.1,0.1 --hertz 3 --w 1,0,0",    // Hertz needs a disk
+      "friction --patch disk:0.05 --mu -1 --w 1,0,0",         // negative mu
+      "friction --patch blob:1 --w 1,0,0",                    // unknown shape
   };
   for (const char* args : bad) {
     const auto run = runTool(PATCHSPIN_TOOL, args);

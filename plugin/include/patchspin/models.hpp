@@ -33,8 +33,7 @@ class FrictionPatch {
   FrictionPatch(const PatchShape& shape, const LinearPressure& pressure, double mu,
                 double rho = 0.0);
   // Hertz pressure (57) on a disk.
-  FrictionPatch(const PatchShape& disk, const HertzPressure& pressure, double mu,
-                double rho = 0.0);
+  FrictionPatch(const PatchShape& disk, const HertzPressure& pressure, double mu, double rho = 0.0);
 
   const PatchShape& shape() const { return shape_; }
   double mu() const { return mu_; }
@@ -49,9 +48,7 @@ class FrictionPatch {
   // New linear pressure (e.g. from the solver's normal block): refreshes Pi
   // in a few dozen flops. Throws Error if Pz <= 0.
   void setPressure(const LinearPressure& pressure);
-  void setLoads(const PatchLoads& loads) {
-    setPressure(LinearPressure::fromLoads(shape_, loads));
-  }
+  void setLoads(const PatchLoads& loads) { setPressure(LinearPressure::fromLoads(shape_, loads)); }
   void setMu(double mu);
 
   // Friction wrench for a slip direction w (any nonzero vector; normalised

@@ -19,42 +19,42 @@ namespace patchspin {
 struct SimulationSpec {
   enum class Shape { Cylinder, Box };
   Shape shape = Shape::Cylinder;
-  double R = 0.05, H = 0.01;                // cylinder [m]
-  double LX = 0.1, LY = 0.1, LZ = 0.05;     // box [m]
-  std::string model = "exact";              // "ellipsoidal" | "exact" | "stock" (bullet only)
-  std::string engine = "reference";         // "reference" | "bullet"
-  std::string precision = "double";         // bullet only: "float" | "double"
-  double mass = 1.0;                        // [kg]
-  double mu = 0.3;                          // [-]
-  double g = 9.81;                          // [m/s^2]
-  Vec2 force = Vec2::Zero();                // horizontal force at the centre of mass [N]
-  Vec3 torque = Vec3::Zero();               // couple [N m]
-  Vec2 v0 = Vec2::Zero();                   // initial velocity of the patch centre [m/s]
-  double omega0 = 0.0;                      // initial spin about z [rad/s]
-  double dt = 1.0 / 240.0;                  // time step [s]
-  double tMax = 10.0;                       // time limit [s]
-  double recordAt = 0.01;                   // record w when r first falls below recordAt * r0
-  bool keepTrajectory = false;              // fill SimulationResult::trajectory
+  double R = 0.05, H = 0.01;             // cylinder [m]
+  double LX = 0.1, LY = 0.1, LZ = 0.05;  // box [m]
+  std::string model = "exact";           // "ellipsoidal" | "exact" | "stock" (bullet only)
+  std::string engine = "reference";      // "reference" | "bullet"
+  std::string precision = "double";      // bullet only: "float" | "double"
+  double mass = 1.0;                     // [kg]
+  double mu = 0.3;                       // [-]
+  double g = 9.81;                       // [m/s^2]
+  Vec2 force = Vec2::Zero();             // horizontal force at the centre of mass [N]
+  Vec3 torque = Vec3::Zero();            // couple [N m]
+  Vec2 v0 = Vec2::Zero();                // initial velocity of the patch centre [m/s]
+  double omega0 = 0.0;                   // initial spin about z [rad/s]
+  double dt = 1.0 / 240.0;               // time step [s]
+  double tMax = 10.0;                    // time limit [s]
+  double recordAt = 0.01;                // record w when r first falls below recordAt * r0
+  bool keepTrajectory = false;           // fill SimulationResult::trajectory
 };
 
 struct SimulationSample {
-  double t = 0.0;                 // [s]
-  Vec2 position = Vec2::Zero();   // patch centre in the ground plane [m]
-  double psi = 0.0;               // rotation about z [rad]
-  Vec2 velocity = Vec2::Zero();   // patch-centre velocity [m/s]
-  double omega = 0.0;             // spin [rad/s]
-  Vec3 w = Vec3::Zero();          // slip direction in the force-aligned frame
-  double r = 0.0;                 // slip magnitude [m/s]
-  double tilt = 0.0;              // |tilt rate| [rad/s] (Bullet only; 0 for reference)
+  double t = 0.0;                // [s]
+  Vec2 position = Vec2::Zero();  // patch centre in the ground plane [m]
+  double psi = 0.0;              // rotation about z [rad]
+  Vec2 velocity = Vec2::Zero();  // patch-centre velocity [m/s]
+  double omega = 0.0;            // spin [rad/s]
+  Vec3 w = Vec3::Zero();         // slip direction in the force-aligned frame
+  double r = 0.0;                // slip magnitude [m/s]
+  double tilt = 0.0;             // |tilt rate| [rad/s] (Bullet only; 0 for reference)
 };
 
 struct SimulationResult {
   bool stopped = false;
-  double tStop = 0.0;                     // [s]
-  Vec3 wStop = Vec3::Zero();              // w when r first fell below recordAt * r0
-  std::optional<double> epsStop;          // |v| / (R |omega|) at that instant (cylinders)
-  Vec2 displacement = Vec2::Zero();       // [m]
-  double rotation = 0.0;                  // [rad]
+  double tStop = 0.0;                // [s]
+  Vec3 wStop = Vec3::Zero();         // w when r first fell below recordAt * r0
+  std::optional<double> epsStop;     // |v| / (R |omega|) at that instant (cylinders)
+  Vec2 displacement = Vec2::Zero();  // [m]
+  double rotation = 0.0;             // [rad]
   std::vector<SimulationSample> trajectory;
 };
 

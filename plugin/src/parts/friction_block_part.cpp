@@ -1,8 +1,8 @@
 // Friction block part (friction_block_part.hpp; docs/solver.md (S7)-(S14)).
 #include <patchspin/parts/friction_block_part.hpp>
 
-#include <patchspin/pressure.hpp>
 #include <patchspin/friction_block.hpp>
+#include <patchspin/pressure.hpp>
 
 #include <Eigen/Dense>
 
@@ -23,8 +23,9 @@ constexpr double kDeferStick = 0.5;
 // the ellipsoidal law (its exact stick test), the bicone's gauge
 // |(z1, z2)| + |z3| for the exact law (a set its limit set contains).  (S13)-(S14)
 double quickStickSize(Model model, const Vec3& unitLoad) {
-  return model == Model::Ellipsoidal ? unitLoad.norm()
-                                     : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
+  return model == Model::Ellipsoidal
+             ? unitLoad.norm()
+             : std::hypot(unitLoad.x(), unitLoad.y()) + std::abs(unitLoad.z());
 }
 
 const Mat3& piInverse(PressureRecord& law, const FrictionPatch& friction) {
@@ -37,9 +38,10 @@ const Mat3& piInverse(PressureRecord& law, const FrictionPatch& friction) {
 
 }  // namespace
 
-Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction, StickCertificates& certs,
-                           const PatchOutlineSummary& shape, const PatchBlocks& k, bool interior, const Vec3& s,
-                           const Vec3& lamFIn, const Vec3& lamN, int held, const FrictionPartSettings& settings,
+Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction,
+                           StickCertificates& certs, const PatchOutlineSummary& shape,
+                           const PatchBlocks& k, bool interior, const Vec3& s, const Vec3& lamFIn,
+                           const Vec3& lamN, int held, const FrictionPartSettings& settings,
                            FrictionPartCounters& counters, bool& refreshed) {
   const double L = fb.mu * lamN[0];
   refreshed = false;
@@ -72,8 +74,8 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction, Stic
     Vec3 lambda0;
     double size = NAN;
     const bool stuckBefore = fb.stateSticking || (fb.haveLast && fb.lastSticking);
-    bool refreshDue =
-        moved > (fb.refreshes == 0 ? settings.pressureRefreshTolerance : settings.pressureLagTolerance);
+    bool refreshDue = moved > (fb.refreshes == 0 ? settings.pressureRefreshTolerance
+                                                 : settings.pressureLagTolerance);
     if (refreshDue && settings.deferStickingRefresh && moved <= kDeferMove && stuckBefore) {
       size = stickSize(lambda0);
       if (size <= kDeferStick * L) {
@@ -107,8 +109,8 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction, Stic
       if (std::isnan(size)) size = stickSize(lambda0);
       if (std::isfinite(size) &&
           (size <= L || (fb.model == Model::Exact && stuckBefore &&
-                         exactHullSticks(certs, fb.law.piInv, fb.stateSticking, friction, lambda0, L,
-                                         fb.fanRefine)))) {
+                         exactHullSticks(certs, fb.law.piInv, fb.stateSticking, friction, lambda0,
+                                         L, fb.fanRefine)))) {
         quick = true;
         ++counters.quickSticks;
         fb.lastImpulse = lambda0;
@@ -126,7 +128,8 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction, Stic
       fb.lastImpulse = solved.impulse;
       fb.lastSlip = solved.slip;
       fb.lastSticking = solved.sticking;
-      if (fb.model == Model::Exact) keepGaugePoint(certs, solved.gaugeSlip, solved.gaugeValue, solved.sticking);
+      if (fb.model == Model::Exact)
+        keepGaugePoint(certs, solved.gaugeSlip, solved.gaugeValue, solved.sticking);
       fb.haveLast = true;
       fb.lastHeld = held;
       fb.lastB = in.b;
@@ -144,8 +147,8 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction, Stic
   }
 }
 
-bool frictionCanTake(FrictionBlockState& fb, const FrictionPatch& law, const Vec3& lamN, const Vec3& lamF,
-                     const Vec6& ds) {
+bool frictionCanTake(FrictionBlockState& fb, const FrictionPatch& law, const Vec3& lamN,
+                     const Vec3& lamF, const Vec6& ds) {
   const Vec3 lamS = lamF + ds.tail<3>();
   const double Ls = fb.mu * (lamN[0] + ds[0]);
   const Vec3 z = piInverse(fb.law, law) * lamS;

@@ -57,8 +57,8 @@ double innerRadiusSquared(const PatchShape& shape) {
   return r * r;
 }
 
-NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size, double dt,
-                            bool splitImpulse, double erp, double erp2) {
+NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
+                            double dt, bool splitImpulse, double erp, double erp2) {
   NormalTargets t;
   if (gap > 0.0) {
     // where a is tilted on b, only until its low side is kLowSideSinkRelTol
@@ -74,15 +74,17 @@ NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, 
   return t;
 }
 
-NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn, const Vec3& target,
-                                  const PatchOutlineSummary& outline, const PatchShape& shape) {
+NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn,
+                                  const Vec3& target, const PatchOutlineSummary& outline,
+                                  const PatchShape& shape) {
   const Vec3 y = lamN - Winv * (cn - target);
   NormalImpulse out;
   if (y[0] > 0.0) {
     // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
     const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
-    const bool onPatch = outline.disk ? (cop - outline.centre).squaredNorm() <= outline.radius * outline.radius
-                                      : cop.squaredNorm() <= outline.innerRadius2 || shape.contains(cop);
+    const bool onPatch =
+        outline.disk ? (cop - outline.centre).squaredNorm() <= outline.radius * outline.radius
+                     : cop.squaredNorm() <= outline.innerRadius2 || shape.contains(cop);
     if (onPatch) {
       out.lamN = y;
       out.interior = true;

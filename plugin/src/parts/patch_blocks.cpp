@@ -9,7 +9,8 @@ namespace patchspin::parts {
 
 bool makePatchBlocks(const Mat6& K6, PatchBlocks& b) {
   const Mat3 W = K6.topLeftCorner<3, 3>();
-  if (!(W(0, 0) > 0.0 && W.topLeftCorner<2, 2>().determinant() > 0.0 && W.determinant() > 0.0)) return false;
+  if (!(W(0, 0) > 0.0 && W.topLeftCorner<2, 2>().determinant() > 0.0 && W.determinant() > 0.0))
+    return false;
   b.Winv = W.inverse();  // 3x3 SPD: cofactors
   b.Knf = K6.topRightCorner<3, 3>();
   b.Kff = K6.bottomRightCorner<3, 3>();
@@ -21,7 +22,8 @@ bool makePatchBlocks(const Mat6& K6, PatchBlocks& b) {
   // det(D Ks D) = det(Ks) / (d0 d1 d2): no square roots or divisions, unless
   // that product leaves the normal range
   const double dProduct = d[0] * d[1] * d[2];
-  if (dProduct >= std::numeric_limits<double>::min() && dProduct <= std::numeric_limits<double>::max()) {
+  if (dProduct >= std::numeric_limits<double>::min() &&
+      dProduct <= std::numeric_limits<double>::max()) {
     if (!(b.Ks.determinant() > kMinUnitDet * dProduct)) return false;
   } else {
     const Vec3 s = d.cwiseSqrt().cwiseInverse();
@@ -32,7 +34,8 @@ bool makePatchBlocks(const Mat6& K6, PatchBlocks& b) {
 }
 
 template <int N>
-void foldHeldDofs(const Mat6& K, const Mat6& Kh, const Eigen::Matrix<double, 6, N>& C, HeldBlocks& h) {
+void foldHeldDofs(const Mat6& K, const Mat6& Kh, const Eigen::Matrix<double, 6, N>& C,
+                  HeldBlocks& h) {
   const Eigen::LDLT<Eigen::Matrix<double, N, N>> ldlt(Kh.template topLeftCorner<N, N>());
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return;
   const Eigen::Matrix<double, N, 6> KhInvCt = ldlt.solve(C.transpose());
@@ -43,7 +46,9 @@ void foldHeldDofs(const Mat6& K, const Mat6& Kh, const Eigen::Matrix<double, 6, 
   h.valid = h.Winv.allFinite() && h.KsInv.allFinite() && h.gain.allFinite();
 }
 
-template void foldHeldDofs<3>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 3>&, HeldBlocks&);
-template void foldHeldDofs<6>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 6>&, HeldBlocks&);
+template void foldHeldDofs<3>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 3>&,
+                              HeldBlocks&);
+template void foldHeldDofs<6>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 6>&,
+                              HeldBlocks&);
 
 }  // namespace patchspin::parts

@@ -35,12 +35,18 @@ Mat6 patchEffectiveMass(const PatchBody& t, const Mat3& F, double rho) {
   // Ja_i . x_j for j >= i
   auto row = [&](int i, const Vec3& xj) {
     switch (i) {
-      case 0: return ry * xj[0] + -rx * xj[1];
-      case 1: return xj[0];
-      case 2: return xj[1];
-      case 3: return rz * xj[1] + -ry * xj[2];
-      case 4: return -rz * xj[0] + rx * xj[2];
-      default: return rho * xj[2];
+      case 0:
+        return ry * xj[0] + -rx * xj[1];
+      case 1:
+        return xj[0];
+      case 2:
+        return xj[1];
+      case 3:
+        return rz * xj[1] + -ry * xj[2];
+      case 4:
+        return -rz * xj[0] + rx * xj[2];
+      default:
+        return rho * xj[2];
     }
   };
   for (int i = 0; i < 6; ++i)
@@ -48,7 +54,8 @@ Mat6 patchEffectiveMass(const PatchBody& t, const Mat3& F, double rho) {
   // linear part: rows 0, 3, 4 select u'_z, u'_x, u'_y
   constexpr int kSel[3] = {0, 3, 4}, kComp[3] = {2, 0, 1};
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) K(kSel[i], kSel[j]) = invM(kComp[i], kComp[j]) + K(kSel[i], kSel[j]);
+    for (int j = 0; j < 3; ++j)
+      K(kSel[i], kSel[j]) = invM(kComp[i], kComp[j]) + K(kSel[i], kSel[j]);
   return K;
 }
 

@@ -46,7 +46,8 @@ void linkStackedPatches(const std::vector<StackPatchView>& patches, int numBodie
     // and the other way round: a support on a static body (the bottom of the
     // stack) is solved with its load P held, K_S - K_SP K_P^-1 K_PS, so the
     // floor feels the heavy body's inertia
-    if (sp.b->dynamic || links[std::size_t(support)].load >= 0 || otherRows[std::size_t(pc.bodyA)]) continue;
+    if (sp.b->dynamic || links[std::size_t(support)].load >= 0 || otherRows[std::size_t(pc.bodyA)])
+      continue;
     StackHold lh;
     foldHeldDofs<6>(K6s, K6p, Kps.topRows<6>().transpose(), lh.all);
     foldHeldDofs<3>(K6s, K6p, Kps.topRows<3>().transpose(), lh.normal);

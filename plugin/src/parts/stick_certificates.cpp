@@ -42,8 +42,9 @@ Vec3 fanSlip(const Vec3& ws, int k) {
   return (ws + kFanSpread * (std::cos(angle) * u + std::sin(angle) * v)).normalized();
 }
 
-bool exactFanSticks(StickCertificates& st, const Mat3& piInv, bool sticking, const FrictionPatch& friction,
-                    const Vec3& x, const Vec3& direction, bool& refine) {
+bool exactFanSticks(StickCertificates& st, const Mat3& piInv, bool sticking,
+                    const FrictionPatch& friction, const Vec3& x, const Vec3& direction,
+                    bool& refine) {
   if ((piInv * x).norm() > kFanGate) return false;
   if (!st.fanValid || direction.dot(st.fanDirection) < kHullTurnCos) {
     st.fanValid = false;
@@ -102,8 +103,8 @@ bool exactFanSticks(StickCertificates& st, const Mat3& piInv, bool sticking, con
 
 }  // namespace
 
-bool exactHullSticks(StickCertificates& st, const Mat3& piInv, bool sticking, const FrictionPatch& friction,
-                     const Vec3& lambda0, double L, bool& refine) {
+bool exactHullSticks(StickCertificates& st, const Mat3& piInv, bool sticking,
+                     const FrictionPatch& friction, const Vec3& lambda0, double L, bool& refine) {
   const Vec3 x = lambda0 / L;
   const double xNorm = x.norm();
   if (!(xNorm > 0.0) || !std::isfinite(xNorm)) return false;
@@ -131,7 +132,8 @@ bool exactHullSticks(StickCertificates& st, const Mat3& piInv, bool sticking, co
   return exactFanSticks(st, piInv, sticking, friction, x, direction, refine);
 }
 
-void keepGaugePoint(StickCertificates& st, const Vec3& gaugeSlip, const Vec3& gaugeValue, bool sticking) {
+void keepGaugePoint(StickCertificates& st, const Vec3& gaugeSlip, const Vec3& gaugeValue,
+                    bool sticking) {
   if (gaugeSlip.isZero(0.0)) return;
   st.gaugeSlip = gaugeSlip;
   if (sticking && gaugeValue.allFinite()) {

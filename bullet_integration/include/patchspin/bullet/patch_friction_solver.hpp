@@ -78,15 +78,15 @@ struct PatchReport {
   std::optional<PatchShape> shape;           // overlap of the two faces, patch frame [m]
                                              // (always set in a report)
   Model model = Model::Ellipsoidal;
-  double mu = 0.0;                           // [-]
-  double rho = 0.0;                          // [m]
-  PatchLoads loads;                          // Pz [N], Tx, Ty [N m] = normal impulses / dt
-  LinearPressure pressure;                   // p0 [Pa], cx, cy [Pa/m] carrying `loads`
-  Vec3 Q = Vec3::Zero();                     // friction wrench (P_x, P_y, T_z / rho) [N]
-  Vec3 slip = Vec3::Zero();                  // x_o = (u_x, u_y, rho w_z) after the step [m/s]
-  double r = 0.0;                            // |x_o| [m/s]
-  Vec3 w = Vec3::Zero();                     // x_o / r (zero while sticking)
-  bool sticking = false;                     // friction block in its stick branch
+  double mu = 0.0;           // [-]
+  double rho = 0.0;          // [m]
+  PatchLoads loads;          // Pz [N], Tx, Ty [N m] = normal impulses / dt
+  LinearPressure pressure;   // p0 [Pa], cx, cy [Pa/m] carrying `loads`
+  Vec3 Q = Vec3::Zero();     // friction wrench (P_x, P_y, T_z / rho) [N]
+  Vec3 slip = Vec3::Zero();  // x_o = (u_x, u_y, rho w_z) after the step [m/s]
+  double r = 0.0;            // |x_o| [m/s]
+  Vec3 w = Vec3::Zero();     // x_o / r (zero while sticking)
+  bool sticking = false;     // friction block in its stick branch
 };
 
 // Work-saving rules of the solver, exposed so that their effect can be
@@ -146,10 +146,10 @@ struct PatchSolverSettings {
 // (patchspin::Error: the patch kept its impulse and its manifold went to
 // Bullet's contacts).
 struct PatchSolverStats : parts::FrictionPartCounters {
-  long patches = 0;          // active patches
-  long visits = 0;           // patch visits in the solver iterations
-  long skippedVisits = 0;    // visits skipped (settled patch, bodies untouched)
-  long shapeRebuilds = 0;    // patch shapes and friction laws built anew (outline changed)
+  long patches = 0;        // active patches
+  long visits = 0;         // patch visits in the solver iterations
+  long skippedVisits = 0;  // visits skipped (settled patch, bodies untouched)
+  long shapeRebuilds = 0;  // patch shapes and friction laws built anew (outline changed)
   // patches solved with their support or their load held (supportedStacks;
   // only where the held body is in no other contact or joint)
   long stackHolds = 0;
@@ -204,11 +204,12 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
                                 btPersistentManifold** manifolds, int numManifolds,
                                 btTypedConstraint** constraints, int numConstraints,
-                                const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+                                const btContactSolverInfo& info,
+                                btIDebugDraw* debugDrawer) override;
   void solveGroupCacheFriendlySplitImpulseIterations(
-      btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
-      int numManifolds, btTypedConstraint** constraints, int numConstraints,
-      const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+      btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
+      btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& info,
+      btIDebugDraw* debugDrawer) override;
   btScalar solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                          const btContactSolverInfo& info) override;
 

@@ -39,8 +39,8 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
 // jacobian is not null, its d/dw = sum_k pressure_k dF[k]; the same
 // polygon, rho, w and tolerance as exactPolygonBasis, in one pass over the
 // single function p (about half the basis' work with the Jacobian).
-Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w, const Vec3& pressure,
-                     Mat3* jacobian, double tolerance = 0.0);
+Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
+                     const Vec3& pressure, Mat3* jacobian, double tolerance = 0.0);
 
 // Disk of radius R centred at `centre` (patch frame).
 void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, bool wantJacobian,

@@ -50,12 +50,12 @@ struct PressureRecord {
 struct FrictionBlockState {
   Model model = Model::Ellipsoidal;
   double mu = 0.0, rho = 0.0, dt = 0.0;  // [-], [m], [s]
-  bool stateSticking = false;  // the block stuck at the end of the last step
-  bool sticking = false;       // ... at its last visit
-  bool failed = false;         // the law or block refused its input in this step
-  bool fanRefine = true;       // the stick certificates may refine (until that fails)
-  int refreshes = 0;           // pressure refreshes in this step
-  Vec3 warmSlip = Vec3::Zero();  // slip of the last solution (or the last step's)
+  bool stateSticking = false;            // the block stuck at the end of the last step
+  bool sticking = false;                 // ... at its last visit
+  bool failed = false;                   // the law or block refused its input in this step
+  bool fanRefine = true;                 // the stick certificates may refine (until that fails)
+  int refreshes = 0;                     // pressure refreshes in this step
+  Vec3 warmSlip = Vec3::Zero();          // slip of the last solution (or the last step's)
   // the last solve of this step, reused while its input stays put
   bool haveLast = false;
   int lastHeld = 0;  // the support hold it was solved with (0 none, 1 normal, 2 all)
@@ -73,13 +73,14 @@ struct FrictionBlockState {
 // <= 0 gives zero. On Error from the law or the block: lamF unchanged,
 // state.failed set, counted.                                         (S7)-(S14)
 Vec3 solveFrictionVelocity(FrictionBlockState& state, FrictionPatch& law, StickCertificates& certs,
-                           const PatchOutlineSummary& outline, const PatchBlocks& k, bool interior, const Vec3& s,
-                           const Vec3& lamF, const Vec3& lamN, int held, const FrictionPartSettings& settings,
-                           FrictionPartCounters& counters, bool& refreshed);
+                           const PatchOutlineSummary& outline, const PatchBlocks& k, bool interior,
+                           const Vec3& s, const Vec3& lamF, const Vec3& lamN, int held,
+                           const FrictionPartSettings& settings, FrictionPartCounters& counters,
+                           bool& refreshed);
 
 // Whether the block keeps its impulse inside the quick test's set (L Pi B,
 // or the exact law's bicone) after taking the share ds of a stacked patch.
-bool frictionCanTake(FrictionBlockState& state, const FrictionPatch& law, const Vec3& lamN, const Vec3& lamF,
-                     const Vec6& ds);
+bool frictionCanTake(FrictionBlockState& state, const FrictionPatch& law, const Vec3& lamN,
+                     const Vec3& lamF, const Vec6& ds);
 
 }  // namespace patchspin::parts

@@ -28,7 +28,7 @@ constexpr double kLowSideSinkRelTol = 1e-3;
 // What the normal block reads of the patch's outline (fixed within a step).
 struct PatchOutlineSummary {
   bool disk = true;
-  Vec2 centre = Vec2::Zero();  // disk centre in the patch frame [m]
+  Vec2 centre = Vec2::Zero();           // disk centre in the patch frame [m]
   double radius = 0.0, diameter = 0.0;  // [m]
   // squared radius of the largest disk about O inside a polygon patch [m^2]:
   // a centre of pressure within it is on the patch without the edge tests
@@ -39,7 +39,9 @@ PatchOutlineSummary summarizeOutline(const PatchShape& shape);
 // Normal impulses (Lambda_z, couple about x, couple about y) on the moving
 // body <-> loads of Eq. (94): the pressure's couple on the body is
 // (int y p, -int x p) = (-Tx, -Ty) with Tx = -int y p, Ty = int x p (Eq. (3)), (S5)
-inline PatchLoads toLoads(const Vec3& lamN) { return PatchLoads{lamN[0], -lamN[1], -lamN[2]}; }
+inline PatchLoads toLoads(const Vec3& lamN) {
+  return PatchLoads{lamN[0], -lamN[1], -lamN[2]};
+}
 
 // The point of the patch nearest to p (p itself if inside).
 Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p);
@@ -57,8 +59,8 @@ struct NormalTargets {
   Vec3 velocity = Vec3::Zero();  // of the iterations [m/s, rad/s, rad/s]
   Vec3 push = Vec3::Zero();      // of the split-impulse iterations
 };
-NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size, double dt,
-                            bool splitImpulse, double erp, double erp2);
+NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
+                            double dt, bool splitImpulse, double erp, double erp2);
 
 struct NormalImpulse {
   Vec3 lamN = Vec3::Zero();  // accumulated (Lambda_z, Lambda_Tx, Lambda_Ty) [N s, N m s]
@@ -68,8 +70,9 @@ struct NormalImpulse {
 // One velocity solve:                                                     (S4)-(S6)
 //   y = lamN - W^-1 (c_n - target),  accepted while y_z > 0 and its centre of
 //   pressure (-y2 / y0, y1 / y0) is on the patch; else clamped onto it.
-NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn, const Vec3& target,
-                                  const PatchOutlineSummary& outline, const PatchShape& shape);
+NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn,
+                                  const Vec3& target, const PatchOutlineSummary& outline,
+                                  const PatchShape& shape);
 
 // One position solve on the pseudo velocities: pushes only apart.          (S18)
 Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c, const Vec3& target);

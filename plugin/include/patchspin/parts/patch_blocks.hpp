@@ -40,9 +40,12 @@ bool makePatchBlocks(const Mat6& K6, PatchBlocks& blocks);
 // patch's K6 (its top-left N x N block is used), C the coupling (rows: this
 // patch's DOFs, columns: the held ones). `held.valid` says whether it worked.
 template <int N>
-void foldHeldDofs(const Mat6& K, const Mat6& Kh, const Eigen::Matrix<double, 6, N>& C, HeldBlocks& held);
+void foldHeldDofs(const Mat6& K, const Mat6& Kh, const Eigen::Matrix<double, 6, N>& C,
+                  HeldBlocks& held);
 
-extern template void foldHeldDofs<3>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 3>&, HeldBlocks&);
-extern template void foldHeldDofs<6>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 6>&, HeldBlocks&);
+extern template void foldHeldDofs<3>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 3>&,
+                                     HeldBlocks&);
+extern template void foldHeldDofs<6>(const Mat6&, const Mat6&, const Eigen::Matrix<double, 6, 6>&,
+                                     HeldBlocks&);
 
 }  // namespace patchspin::parts

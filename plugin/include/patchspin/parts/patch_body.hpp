@@ -38,8 +38,8 @@ Mat6 patchBodyRows(const PatchBody& body, const Mat3& F, double rho);
 
 // The DOF velocities from A's (va, wa) and B's (vb, wb) world velocities; a
 // static body's are not read. (Inline: every patch visit calls it.)
-inline Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b, const Vec3& vb,
-                          const Vec3& wb, const Mat3& F, double rho) {
+inline Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b,
+                          const Vec3& vb, const Vec3& wb, const Mat3& F, double rho) {
   Vec3 u = Vec3::Zero(), w = Vec3::Zero();
   if (a.dynamic) {
     u += va + wa.cross(a.r);
@@ -60,8 +60,8 @@ inline Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, co
 // rho l5) on A, minus both on B. `add(side, dv, dw)` is called for each
 // dynamic body, side 0 for A and 1 for B.
 template <class Add>
-void applyPatchImpulse(const PatchBody& a, const PatchBody& b, const Mat3& F, double rho, const Vec6& lam,
-                       Add add) {
+void applyPatchImpulse(const PatchBody& a, const PatchBody& b, const Mat3& F, double rho,
+                       const Vec6& lam, Add add) {
   const Vec3 f = F * Vec3(lam[3], lam[4], lam[0]);
   const Vec3 m = F * Vec3(lam[1], lam[2], rho * lam[5]);
   if (a.dynamic) add(0, a.invM.cwiseProduct(f), a.invI * (m + a.r.cross(f)));

@@ -37,11 +37,12 @@ struct StickCertificates {
 // piInv: Pi^-1 of `law`; sticking: the block stuck at the end of the last
 // step (the fan is built only then); refine: the fan may spend one more law
 // value (cleared when that fails, for the rest of the step).
-bool exactHullSticks(StickCertificates& certs, const Mat3& piInv, bool sticking, const FrictionPatch& law,
-                     const Vec3& lambda0, double L, bool& refine);
+bool exactHullSticks(StickCertificates& certs, const Mat3& piInv, bool sticking,
+                     const FrictionPatch& law, const Vec3& lambda0, double L, bool& refine);
 
 // After an exact block solve that stuck: its boundary point along lambda0
 // becomes the hull test's q* for the next visits.
-void keepGaugePoint(StickCertificates& certs, const Vec3& gaugeSlip, const Vec3& gaugeValue, bool sticking);
+void keepGaugePoint(StickCertificates& certs, const Vec3& gaugeSlip, const Vec3& gaugeValue,
+                    bool sticking);
 
 }  // namespace patchspin::parts
