@@ -1,5 +1,6 @@
-// Determinism: trajectory hashes of three scenes (the coin trio, the blocks
-// row with a stack, a 100-coin pour), with the solver's work-saving rules on
+// Determinism: trajectory hashes of three catalogue scenes (the coin trio,
+// the blocks row with its stack, the 100-coin pour; scenes/catalogue.hpp),
+// with the solver's work-saving rules on
 // (the default settings). They pin the solver's arithmetic, bit for bit, so
 // that a restructuring of the solver can show it changed nothing: every
 // refactoring commit keeps these hashes, or its message says which changed
@@ -11,7 +12,7 @@
 // float and double. Re-baseline only for a reason a commit message states:
 // PATCHSPIN_PRINT_HASHES=1 prints the values.
 #include <patchspin/bullet/patch_friction_solver.hpp>
-#include <patchspin/bullet/scene.hpp>
+#include <patchspin/scenes/catalogue.hpp>
 
 #include <gtest/gtest.h>
 
@@ -20,12 +21,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
-#include <random>
 #include <string>
 #include <vector>
 
 namespace patchspin::bullet {
 namespace {
+
+using scenes::Friction;
+using scenes::Scene;
 
 constexpr bool kDouble = sizeof(btScalar) == sizeof(double);
 constexpr double kDt = 1.0 / 240.0;
@@ -101,76 +104,26 @@ Hashes run(Scene& scene, const std::vector<btRigidBody*>& bodies, int steps) {
   return {motion.get(), work.get(), total};
 }
 
-btVector3 bt(double x, double y, double z) { return btVector3(btScalar(x), btScalar(y), btScalar(z)); }
-
-enum class Law { Stock, Ellipsoidal, Exact };
-void optIn(Scene& scene, btRigidBody* b, Law law) {
-  if (law != Law::Stock) scene.solver().enablePatchFriction(b, {law == Law::Exact ? Model::Exact : Model::Ellipsoidal});
+// The coin demo's coin under one law (stock: not opted in).
+Hashes coin(Friction law) {
+  btRigidBody* c = nullptr;
+  const std::unique_ptr<Scene> scene = scenes::makeCoin(scenes::CoinSpec(), law, &c);
+  return run(*scene, {c}, 480);
 }
 
-// One coin (R = 5 cm, H = 1 cm, 0.2 kg, mu = 0.5 against the plane's 1)
-// sliding at 0.5 m/s and spinning at 20 rad/s, as the coin demo's trio.
-Hashes coin(Law law) {
-  Scene scene;
-  scene.addGroundPlane(1.0);
-  btRigidBody* c = scene.addCylinder(0.05, 0.01, 0.2, bt(0, 0, 0.005), 0.5);
-  c->setLinearVelocity(bt(0.5, 0, 0));
-  c->setAngularVelocity(bt(0, 0, 20));
-  optIn(scene, c, law);
-  return run(scene, {c}, 480);
-}
-
-// Three boxes of aspect 1:1, 3:1 and 7:1 sliding and spinning side by side,
-// and a stack (a 2 kg box on a 0.2 kg one) pushed along the floor.
-Hashes blocks(Law law) {
-  Scene scene;
-  scene.addGroundPlane(1.0);
+// The blocks demo's row: a sliding and spinning block, a square spinning in
+// place, a stack of three, a coin, a rolling sphere (never opted in).
+Hashes blocks(Friction law) {
   std::vector<btRigidBody*> bodies;
-  const btVector3 halves[3] = {bt(0.05, 0.05, 0.02), bt(0.09, 0.03, 0.02), bt(0.14, 0.02, 0.02)};
-  for (int i = 0; i < 3; ++i) {
-    btRigidBody* b = scene.addBox(halves[i], 0.5, bt(0.4 * i, 0, 0.02), 0.5);
-    b->setLinearVelocity(bt(0.3, 0.1 * i, 0));
-    b->setAngularVelocity(bt(0, 0, 6.0 + 3.0 * i));
-    bodies.push_back(b);
-  }
-  btRigidBody* lower = scene.addBox(bt(0.06, 0.06, 0.02), 0.2, bt(0, 0.5, 0.02), 0.5);
-  btRigidBody* upper = scene.addBox(bt(0.04, 0.04, 0.02), 2.0, bt(0, 0.5, 0.06), 0.5);
-  lower->setLinearVelocity(bt(0.4, 0, 0));
-  upper->setLinearVelocity(bt(0.4, 0, 0));
-  upper->setAngularVelocity(bt(0, 0, 3));
-  bodies.push_back(lower);
-  bodies.push_back(upper);
-  for (btRigidBody* b : bodies) optIn(scene, b, law);
-  return run(scene, bodies, 480);
+  const std::unique_ptr<Scene> scene = scenes::makeBlocksRow(scenes::BlocksRowSpec(), law, &bodies);
+  return run(*scene, bodies, 480);
 }
 
-// 100 coins (R = 2 cm, H = 4 mm, 10 g) in a 10 x 10 layer with seeded
-// offsets, tilts, throws and spins, poured into a walled box.
-Hashes pour(Law law) {
-  Scene scene;
-  scene.addGroundPlane(1.0);
-  for (int side = 0; side < 4; ++side) {
-    const double sx = side < 2 ? (side == 0 ? -1 : 1) : 0, sy = side >= 2 ? (side == 2 ? -1 : 1) : 0;
-    const btVector3 half = sx != 0 ? bt(0.05, 0.45, 0.1) : bt(0.45, 0.05, 0.1);
-    scene.addStaticBox(half, bt(sx * 0.35, sy * 0.35, 0.1), 1.0);
-  }
-  std::mt19937 rng(12345);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+// The 100-coin pour as its tests start it (seeded), in metres.
+Hashes pour(Friction law) {
   std::vector<btRigidBody*> coins;
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j) {
-      const btVector3 p = bt((i - 4.5) * 0.055 + 0.005 * u(rng), (j - 4.5) * 0.055 + 0.005 * u(rng),
-                             0.03 + 0.01 * ((i + j) % 3));
-      btRigidBody* c = scene.addCylinder(0.02, 0.004, 0.01, p, 0.4);
-      btTransform t = c->getWorldTransform();
-      t.setRotation(btQuaternion(bt(u(rng), u(rng), 0).normalized(), btScalar(0.3 * std::abs(u(rng)))));
-      c->setWorldTransform(t);
-      c->setLinearVelocity(bt(0.3 * u(rng), 0.3 * u(rng), -0.5));
-      c->setAngularVelocity(bt(0, 0, 10 * u(rng)));
-      optIn(scene, c, law);
-      coins.push_back(c);
-    }
-  return run(scene, coins, 360);
+  const std::unique_ptr<Scene> scene = scenes::makePour(scenes::PourSpec(), law, &coins);
+  return run(*scene, coins, 360);
 }
 
 bool printHashes() {
@@ -185,11 +138,13 @@ struct Pinned {
 
 void expectHashes(const char* name, const Hashes& got, const Pinned& pinned) {
   if (printHashes())
-    std::printf("%s (%s): motion 0x%016llxull, work 0x%016llxull\n", name, kDouble ? "double" : "float",
-                static_cast<unsigned long long>(got.motion), static_cast<unsigned long long>(got.work));
+    std::printf("%s (%s): motion 0x%016llxull, work 0x%016llxull\n", name,
+                kDouble ? "double" : "float", static_cast<unsigned long long>(got.motion),
+                static_cast<unsigned long long>(got.work));
   EXPECT_EQ(got.motion, kDouble ? pinned.motionDouble : pinned.motionFloat)
       << name << ": the motion or the reports changed";
-  EXPECT_EQ(got.work, kDouble ? pinned.workDouble : pinned.workFloat) << name << ": the solver's work counters changed";
+  EXPECT_EQ(got.work, kDouble ? pinned.workDouble : pinned.workFloat)
+      << name << ": the solver's work counters changed";
 }
 
 // The scenes exercise what they pin: patches, quick sticks, block solves,
@@ -206,42 +161,42 @@ void expectExercised(const char* name, const Hashes& h, bool stack) {
 }
 
 TEST(Determinism, CoinTrioIsBitIdentical) {
-  expectHashes("coin stock", coin(Law::Stock),
-               {0xea83f73dcb9199a9ull, 0x0fa5400ee6ae8725ull,
-                0xc06fe979eade0798ull, 0x0fa5400ee6ae8725ull});
-  const Hashes ellipsoidal = coin(Law::Ellipsoidal), exact = coin(Law::Exact);
+  expectHashes(
+      "coin stock", coin(Friction::Stock),
+      {0xc9686c2ba75e1315ull, 0x0fa5400ee6ae8725ull, 0x81a8de17dc45eeecull, 0x0fa5400ee6ae8725ull});
+  const Hashes ellipsoidal = coin(Friction::Ellipsoidal), exact = coin(Friction::Exact);
   EXPECT_GT(ellipsoidal.total.patches, 0);
   EXPECT_GT(exact.total.patches, 0);
-  expectHashes("coin ellipsoidal", ellipsoidal,
-               {0x2f95a488869445a9ull, 0xdc9d13be2c40039aull,
-                0x6311d17604f51588ull, 0x5c561fefa2d231e2ull});
-  expectHashes("coin exact", exact,
-               {0x07d064eaaede979bull, 0x8ad949bfc8818b55ull,
-                0x2ae89a9132011e31ull, 0x281875fec696cca3ull});
+  expectHashes(
+      "coin ellipsoidal", ellipsoidal,
+      {0x76d683ca5c9d0e10ull, 0xb450503722d763ecull, 0xb53c0a720c0f0e4full, 0x7106f6e28b1280f9ull});
+  expectHashes(
+      "coin exact", exact,
+      {0x8ae606f8714a7d5aull, 0x193b2b5849bb040bull, 0xa97edf9a906c0d15ull, 0x598c4254ae4c336eull});
 }
 
 TEST(Determinism, BlocksRowAndStackAreBitIdentical) {
-  const Hashes ellipsoidal = blocks(Law::Ellipsoidal), exact = blocks(Law::Exact);
+  const Hashes ellipsoidal = blocks(Friction::Ellipsoidal), exact = blocks(Friction::Exact);
   expectExercised("blocks ellipsoidal", ellipsoidal, true);
   expectExercised("blocks exact", exact, true);
-  expectHashes("blocks ellipsoidal", ellipsoidal,
-               {0xd0fecba1b28ce11bull, 0x615e2a7b82f02d64ull,
-                0x40d82319b1cd05d2ull, 0x82e73757538399b2ull});
-  expectHashes("blocks exact", exact,
-               {0xd23aa194a7138b18ull, 0xa3a6b1e6cfdceb21ull,
-                0x2209ff878b259c34ull, 0xa86b9938779ebe7eull});
+  expectHashes(
+      "blocks ellipsoidal", ellipsoidal,
+      {0x6442a47bcbc6f91dull, 0xdc0a7e7620e51aeaull, 0x1f7e4f4aa22ab7a4ull, 0x420ee391f8f19325ull});
+  expectHashes(
+      "blocks exact", exact,
+      {0xf7d18762b888d1c1ull, 0x028ddea6a8cf9b32ull, 0xadb1ed4ce7b81be7ull, 0x5a05d99b51cff504ull});
 }
 
 TEST(Determinism, HundredCoinPourIsBitIdentical) {
-  const Hashes ellipsoidal = pour(Law::Ellipsoidal), exact = pour(Law::Exact);
+  const Hashes ellipsoidal = pour(Friction::Ellipsoidal), exact = pour(Friction::Exact);
   expectExercised("pour ellipsoidal", ellipsoidal, false);
   expectExercised("pour exact", exact, false);
-  expectHashes("pour ellipsoidal", ellipsoidal,
-               {0x94d7e1c0260bc729ull, 0xabe8949d80459661ull,
-                0x75fa9534d1aa7cb0ull, 0xe9a9bd2dfab8ce88ull});
-  expectHashes("pour exact", exact,
-               {0xa5f1a1f1740f4439ull, 0x016b51f0b9896280ull,
-                0xcd52f9b3483018abull, 0xdd0684ec551e125full});
+  expectHashes(
+      "pour ellipsoidal", ellipsoidal,
+      {0xd89331b3b7e0cdc4ull, 0xc7ebd6dfe391a935ull, 0xc1a41062dacd5decull, 0x922c8e4a9df0fb41ull});
+  expectHashes(
+      "pour exact", exact,
+      {0x58daa044a5981849ull, 0x87ac26a0e77efcdbull, 0x2d0975292b121d8eull, 0x9edb1d7395195191ull});
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 // Bullet itself is frame invariant only to round-off, so the tolerances are
 // those of round-off grown over the run, per precision.
 #include <patchspin/bullet/patch_friction_solver.hpp>
-#include <patchspin/bullet/scene.hpp>
+#include <patchspin/scenes/scene.hpp>
 
 #include <gtest/gtest.h>
 
@@ -16,6 +16,8 @@
 
 namespace patchspin::bullet {
 namespace {
+
+using scenes::Scene;
 
 constexpr bool kDouble = sizeof(btScalar) == sizeof(double);
 constexpr double kDt = 1.0 / 240.0;
@@ -34,9 +36,7 @@ constexpr double kVelocityTol = kDouble ? 1e-12 : 2e-4;  // [m/s], [rad/s]
 constexpr double kReportTol = kDouble ? 1e-10 : 1e-4;    // of the body's weight (loads, wrench)
 constexpr double kSlipTol = kDouble ? 1e-16 : 1e-8;      // [m/s]
 
-btVector3 bt(double x, double y, double z) {
-  return btVector3(btScalar(x), btScalar(y), btScalar(z));
-}
+using scenes::bt;
 
 struct Trajectory {
   std::vector<btTransform> poses;    // per body, at the end, in the original frame
