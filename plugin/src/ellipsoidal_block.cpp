@@ -84,7 +84,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     // to round-off of |K| |lambda| (CoreBadInput.FrictionBlockSticksWithBEqualToMinusKLambda);
     // where it and the adjugate's -L Pi A^-1 b differ by more than
     // kStickAgreement, d (a cubic in A's entries) may be noise and the stick
-    // is decided again below (StepConditioning.EllipsoidalStickNeverLeavesTheLimitSet)
+    // is decided again below (FrictionBlockIllConditioned.EllipsoidalStickNeverLeavesTheLimitSet)
     constexpr double kStickAgreement = 1e-4;
     if (stick) {
       lambda0 =
@@ -162,7 +162,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   // have cancelled to noise (a K near singular), and the root is found again
   // with (rI + A)^-1 b by pivoted solves (backward stable, whatever A's
   // conditioning). Guarded by
-  // StepConditioning.EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution.
+  // FrictionBlockIllConditioned.EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution.
   constexpr double kBackwardErrorUlps = 100.0, kMinBackwardError = 1e-10;
   const double backwardTol = std::max(kBackwardErrorUlps * tol, kMinBackwardError) * scale;
   auto backwardError = [&] {
@@ -231,7 +231,8 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
       // Newton on the residual F(w, r) = b - L K Pi w - r w with w on the
       // sphere, whose bordered Jacobian [A + rI, w; w^T, 0] is regular where
       // A + rI is singular along the slip, brings e to the round-off of the
-      // residual (StepConditioning.EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution).
+      // residual
+      // (FrictionBlockIllConditioned.EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution).
       double rr = std::max(out.slip.dot(w), 0.0);
       // (quadratic convergence: a few steps reach kPolishTarget of the
       // backward tolerance, well inside it, or stop improving)

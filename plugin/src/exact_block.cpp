@@ -404,7 +404,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
 //    kVerifyLaw of the set's size (the step fuzz target's tolerance);
 //  * the slip's kinetic energy may not grow, s^T K^-1 s <= b^T K^-1 b
 //    (maximum dissipation), to kVerifyEnergy, resolved or not.
-// Guarded by StepConditioning.ExactBlockWithAnIllConditionedKIsTheLawOrRefused.
+// Guarded by FrictionBlockIllConditioned.ExactBlockWithAnIllConditionedKIsTheLawOrRefused.
 constexpr double kVerifyCondition = 1e5, kVerifyLaw = 1e-6, kVerifyEnergy = 1e-10;
 FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
                                              const FrictionBlockInput& in,

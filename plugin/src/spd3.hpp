@@ -41,7 +41,7 @@ double rangeSafeNorm(const Eigen::MatrixBase<Derived>& v) {
 // diagonal and a finite factor. Accurate to the condition number of Ksym
 // scaled to a unit diagonal, whatever the diagonal's spread.
 // Guarded by CoreBadInput.ExactBlockStickWithCofactorsWithoutDigits and
-// StepConditioning.ExactBlockAcceptsAPositiveDefiniteKWhoseDeterminantHasNoDigits.
+// FrictionBlockIllConditioned.ExactBlockAcceptsAPositiveDefiniteKWhoseDeterminantHasNoDigits.
 Eigen::LLT<Mat3> requirePositiveDefiniteFactor(const Mat3& Ksym);
 
 // x = K^-1 b by forward and back substitution on llt's factor L, L L^T = K.
@@ -57,13 +57,14 @@ void requireNotNumericallySingular(const Mat3& Ksym);
 
 // Throws Error unless K's symmetric part is positive definite (the decision of
 // requirePositiveDefiniteFactor, without the factor on the common path).
-// Guarded by StepFastPaths.EllipsoidalPositiveDefinitenessShortcutDecidesAsTheFactorisation.
+// Guarded by
+// FrictionBlockFastPaths.EllipsoidalPositiveDefinitenessShortcutDecidesAsTheFactorisation.
 void requirePositiveDefinite(const Mat3& K);
 
 // A stick's impulse lambda = -K^-1 b from the Cholesky factor of K's symmetric
 // part, refined once with K itself (K may be asymmetric to 1e-10); Cholesky,
 // unlike partial pivoting, is invariant under K's diagonal scaling.
-// Guarded by StepConditioning.ExactStickWithABadlyScaledKIsMinusKInverseB.
+// Guarded by FrictionBlockIllConditioned.ExactStickWithABadlyScaledKIsMinusKInverseB.
 Vec3 stickSolve(const Mat3& K, const Eigen::LLT<Mat3>& llt, const Vec3& b);
 
 // Returns lambda if it stops the slip, |b + K lambda| <= kStickResidual

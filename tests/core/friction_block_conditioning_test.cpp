@@ -11,6 +11,7 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "error_matchers.hpp"
+#include "fuzz_inputs.hpp"
 #include "oracle.hpp"
 
 #include <array>
@@ -120,23 +121,7 @@ BigBlock solveEllipsoidalBig(const Mat3& Pi, const Mat3& K, const Vec3& b, doubl
 // K with entries 0.5 to 9.5e19: the impulse is inside |lambda| <= L |Pi|_F
 // and slip = b + K impulse to kSlipSlack of the products.
 TEST(FrictionBlockConditioning, EllipsoidalWithAnIllConditionedKStaysInTheSet) {
-  const PatchShape dodecagon = PatchShape::polygon({{0.93879128094518638, 0.7397127693021015},
-                                                    {0.7601480116065954, 0.92699298829973165},
-                                                    {0.51179829264545484, 0.99986078090869679},
-                                                    {0.2602872306978985, 0.93879128094518638},
-                                                    {0.073007011700268465, 0.7601480116065954},
-                                                    {0.00013921909130315546, 0.51179829264545473},
-                                                    {0.061208719054813621, 0.26028723069789855},
-                                                    {0.23985198839340438, 0.073007011700268576},
-                                                    {0.48820170735454504, 0.00013921909130315546},
-                                                    {0.73971276930210139, 0.061208719054813621},
-                                                    {0.92699298829973165, 0.23985198839340471},
-                                                    {0.99986078090869679, 0.48820170735454499}});
-  const FrictionPatch patch(
-      dodecagon,
-      LinearPressure::fromLoads(dodecagon,
-                                {0.36071503384922143, -0.1370213875319439, 0.1908799795625202}),
-      0.5, 0.5);
+  const FrictionPatch patch = testing::fuzzDodecagonPatch();
   FrictionBlockInput in;
   in.b = Vec3(0.5, 0.5, 0.5);
   in.L = 0.5;

@@ -251,7 +251,7 @@ TEST(ExactBlock, RefusesALawWithoutDigits) {
       1e-8, 0.5);
   // the law is noise: some direction's unit torque exceeded ten times its
   // bound max|r| / rho (measured here before the sixth round; since then the
-  // exact law itself refuses this pressure, StepConditioning.
+  // exact law itself refuses this pressure, FrictionBlockIllConditioned.
   // ExactLawRefusesAPressureWithoutDigits)
   ASSERT_GE(minPressure(sliver, noisy.pressure()),
             -1e-6 * noisy.Pz() / sliver.area());  // inside the p >= 0 domain

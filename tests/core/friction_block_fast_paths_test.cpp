@@ -46,7 +46,7 @@ bool blockRefusesAsIndefinite(const FrictionPatch& patch, const Mat3& K) {
 // [-0.6, 0.6] (the shortcut's bound is |c| <= sqrt(0.2) = 0.447; beyond it
 // are indefinite and exactly singular C, e.g. all three -0.5) and diagonals
 // D spanning 1e-3 to 1e3: the block refuses exactly the K that LLT refuses.
-TEST(StepFastPaths, EllipsoidalPositiveDefinitenessShortcutDecidesAsTheFactorisation) {
+TEST(FrictionBlockFastPaths, EllipsoidalPositiveDefinitenessShortcutDecidesAsTheFactorisation) {
   const PatchShape disk = PatchShape::disk(0.05);
   const FrictionPatch patch(disk, LinearPressure::uniform(disk, 1.0), 0.3);
   constexpr int kSteps = 13;  // c = -0.6, -0.5, ..., 0.6

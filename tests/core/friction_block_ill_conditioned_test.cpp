@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include "fuzz_inputs.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -52,7 +54,7 @@ Vec3l ellipsoidalReference(const Mat3& Pi, const Mat3& K, const Vec3& b, double 
 // with |s| = 0.19 where the true slip is 1.1e-9: the impulse 1.28 of
 // L |Pi| off the law at its slip. Now a slip verifies its backward error
 // and falls back to pivoted solves and a bordered Newton step.
-TEST(StepConditioning, EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution) {
+TEST(FrictionBlockIllConditioned, EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution) {
   const PatchShape disk = PatchShape::disk(0.5, Vec2(0.5, 0.5));
   const FrictionPatch patch(
       disk,
@@ -95,24 +97,8 @@ TEST(StepConditioning, EllipsoidalBlockWithANearSingularKIsTheLongDoubleSolution
 // solve, an impulse 12.2 against L |Pi|_F = 1.27, outside the limit set.
 // Now K is factored by Cholesky and the stick is decided with the impulse it
 // returns: refused (Cholesky fails), or an impulse inside L E.
-TEST(StepConditioning, EllipsoidalStickNeverLeavesTheLimitSet) {
-  const PatchShape dodecagon = PatchShape::polygon({{0.93879128094518638, 0.7397127693021015},
-                                                    {0.7601480116065954, 0.92699298829973165},
-                                                    {0.51179829264545484, 0.99986078090869679},
-                                                    {0.2602872306978985, 0.93879128094518638},
-                                                    {0.073007011700268465, 0.7601480116065954},
-                                                    {0.00013921909130315546, 0.51179829264545473},
-                                                    {0.061208719054813621, 0.26028723069789855},
-                                                    {0.23985198839340438, 0.073007011700268576},
-                                                    {0.48820170735454504, 0.00013921909130315546},
-                                                    {0.73971276930210139, 0.061208719054813621},
-                                                    {0.92699298829973165, 0.23985198839340471},
-                                                    {0.99986078090869679, 0.48820170735454499}});
-  const FrictionPatch patch(
-      dodecagon,
-      LinearPressure::fromLoads(dodecagon,
-                                {0.36071503384922143, -0.1370213875319439, 0.1908799795625202}),
-      0.5, 0.5);
+TEST(FrictionBlockIllConditioned, EllipsoidalStickNeverLeavesTheLimitSet) {
+  const FrictionPatch patch = testing::fuzzDodecagonPatch();
   FrictionBlockInput in;
   in.b = Vec3(0.5, 4.9406564584124654e-324, 0.5);
   in.L = 0.5;
@@ -147,7 +133,7 @@ TEST(StepConditioning, EllipsoidalStickNeverLeavesTheLimitSet) {
 // with diameter^2 / A = 5e7, the exact block rightly refuses as a law
 // without digits (fuzz/README.md, item 59). This test is about K: it keeps
 // the uniform pressure of the same Pz.)
-TEST(StepConditioning, ExactBlockAcceptsAPositiveDefiniteKWhoseDeterminantHasNoDigits) {
+TEST(FrictionBlockIllConditioned, ExactBlockAcceptsAPositiveDefiniteKWhoseDeterminantHasNoDigits) {
   const PatchShape quad = PatchShape::polygon({{0.49999999749999996, -0.24999999000000006},
                                                {0.50000000749999995, -0.24999998999999995},
                                                {0.50000000249999998, 0.25000001000000005},
@@ -186,7 +172,7 @@ TEST(StepConditioning, ExactBlockAcceptsAPositiveDefiniteKWhoseDeterminantHasNoD
 // 1.65 times outside L E. Now -K^-1 b comes from K's Cholesky factor
 // (invariant under the diagonal's scaling): checked against a long double
 // solve and against the limit set's force bound L ∫|p| / Pz (p >= 0: L).
-TEST(StepConditioning, ExactStickWithABadlyScaledKIsMinusKInverseB) {
+TEST(FrictionBlockIllConditioned, ExactStickWithABadlyScaledKIsMinusKInverseB) {
   const PatchShape disk =
       PatchShape::disk(1e-8, Vec2(6.532982249993248e-06, -0.00010626135640955286));
   const FrictionPatch patch(
@@ -233,7 +219,7 @@ TEST(StepConditioning, ExactStickWithABadlyScaledKIsMinusKInverseB) {
 // verified against the law at its slip and the block is refused otherwise:
 // solved and the law, or refused naming the cause. Checked against unitQ at
 // the returned slip.
-TEST(StepConditioning, ExactBlockWithAnIllConditionedKIsTheLawOrRefused) {
+TEST(FrictionBlockIllConditioned, ExactBlockWithAnIllConditionedKIsTheLawOrRefused) {
   struct Case {
     PatchShape shape;
     PatchLoads loads;
@@ -317,7 +303,7 @@ TEST(StepConditioning, ExactBlockWithAnIllConditionedKIsTheLawOrRefused) {
 // bounds of the law (p >= 0 here: unit force <= 1, unit torque <= max|r| /
 // rho, closed forms); an ordinary 1 m x 1 mm face at the end of its kern
 // (model 1.4e-10) evaluates, inside its bounds.
-TEST(StepConditioning, ExactLawRefusesAPressureWithoutDigits) {
+TEST(FrictionBlockIllConditioned, ExactLawRefusesAPressureWithoutDigits) {
   const PatchShape sliver = PatchShape::polygon({{-5.00585889346894e-09, -5.4910742118954658e-09},
                                                  {-3.1943728212127098e-09, -5.4910742300103267e-09},
                                                  {0.49999999680574098, 1.3205255290824883e-09},
