@@ -61,7 +61,13 @@ if [[ $mode == test ]]; then
   (cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 900)
   if [[ -d "$root/tests/bullet" ]] && ls "$root"/tests/bullet/*_test.cpp >/dev/null 2>&1; then
     echo "== tests of the Bullet layer against double-precision Bullet (bullet-float64)"
-    configure_and_build "$build-double" -DPATCHSPIN_BULLET_DOUBLE=ON -DPATCHSPIN_BUILD_RENDER=OFF
+    # only what those tests need: no renderer, tool or benchmarks, and the
+    # Bullet layer's test executables alone (not the core's, run above)
+    echo "== configuring $build-double (double-precision Bullet)"
+    cmake -S "$root" -B "$build-double" -DCMAKE_BUILD_TYPE=Release -DPATCHSPIN_BULLET_DOUBLE=ON \
+      -DPATCHSPIN_BUILD_RENDER=OFF -DPATCHSPIN_BUILD_TOOLS=OFF -DPATCHSPIN_BUILD_BENCH=OFF >/dev/null
+    echo "== building $build-double: the Bullet layer's tests (-j$jobs)"
+    cmake --build "$build-double" -j"$jobs" --target patchspin_bullet_tests
     (cd "$build-double" && ctest --output-on-failure -j"$jobs" --timeout 900 -L "bullet|stress")
   fi
   # The core label again under the presets of CMakePresets.json: asan (ASan +
