@@ -121,7 +121,7 @@ BigBlock solveEllipsoidalBig(const Mat3& Pi, const Mat3& K, const Vec3& b, doubl
 // K with entries 0.5 to 9.5e19: the impulse is inside |lambda| <= L |Pi|_F
 // and slip = b + K impulse to kSlipSlack of the products.
 TEST(FrictionBlockConditioning, EllipsoidalWithAnIllConditionedKStaysInTheSet) {
-  const FrictionPatch patch = testing::fuzzDodecagonPatch();
+  const FrictionPatch patch = patchspin::testing::fuzzDodecagonPatch();
   FrictionBlockInput in;
   in.b = Vec3(0.5, 0.5, 0.5);
   in.L = 0.5;

@@ -98,7 +98,7 @@ TEST(FrictionBlockIllConditioned, EllipsoidalBlockWithANearSingularKIsTheLongDou
 // Now K is factored by Cholesky and the stick is decided with the impulse it
 // returns: refused (Cholesky fails), or an impulse inside L E.
 TEST(FrictionBlockIllConditioned, EllipsoidalStickNeverLeavesTheLimitSet) {
-  const FrictionPatch patch = testing::fuzzDodecagonPatch();
+  const FrictionPatch patch = patchspin::testing::fuzzDodecagonPatch();
   FrictionBlockInput in;
   in.b = Vec3(0.5, 4.9406564584124654e-324, 0.5);
   in.L = 0.5;
