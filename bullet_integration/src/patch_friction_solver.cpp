@@ -161,8 +161,8 @@ struct PatchFrictionSolver::Impl {
   std::vector<internal::Candidate> candidates;    // of the chunk in hand
   std::vector<PatchConstraint> patches;           // of the island
   std::vector<parts::StackHold> holds;            // of the island's stacked patches
-  std::vector<parts::StackPatchView> stackViews;  // scratch of linkStacks
-  std::vector<parts::StackLinks> stackLinks;      // scratch of linkStacks
+  std::vector<parts::StackPatchView> stackViews;  // scratch of stage 3 (link stacks)
+  std::vector<parts::StackLinks> stackLinks;      // scratch of stage 3 (link stacks)
   std::vector<char> otherRows;                    // by solver body id: in one of Bullet's rows
   PatchConstraint retry;                          // a stacked patch's state before its visit
   std::vector<btRigidBody*> flushBodies;          // bodies of the island's patches
