@@ -59,10 +59,9 @@ parts::FrictionPartSettings frictionSettings(const PatchSolverSettings& s) {
 // plus the solver body's delta velocities (the line Bullet's rows read too).
 template <class Velocity>
 Vec6 patchVelocity(const PatchConstraint& pc, Velocity velocity) {
-  Vec3 va = Vec3::Zero(), wa = Vec3::Zero(), vb = Vec3::Zero(), wb = Vec3::Zero();
-  if (pc.a.body.dynamic) velocity(pc.a, va, wa);
-  if (pc.b.body.dynamic) velocity(pc.b, vb, wb);
-  return parts::patchVelocity(pc.a.body, va, wa, pc.b.body, vb, wb, pc.F, pc.fb.rho);
+  return parts::patchVelocityOf(
+      pc.a.body, pc.b.body, pc.F, pc.fb.rho,
+      [&](int side, Vec3& v, Vec3& w) { velocity(side == 0 ? pc.a : pc.b, v, w); });
 }
 Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
   return patchVelocity(pc, [&](const internal::BodyTerms& t, Vec3& v, Vec3& w) {

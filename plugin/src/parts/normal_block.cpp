@@ -74,33 +74,11 @@ NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, 
   return t;
 }
 
-NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn,
-                                  const Vec3& target, const PatchOutlineSummary& outline,
-                                  const PatchShape& shape) {
-  const Vec3 y = lamN - Winv * (cn - target);
-  NormalImpulse out;
-  if (y[0] > 0.0) {
-    // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
-    const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
-    const bool onPatch =
-        outline.disk ? (cop - outline.centre).squaredNorm() <= outline.radius * outline.radius
-                     : cop.squaredNorm() <= outline.innerRadius2 || shape.contains(cop);
-    if (onPatch) {
-      out.lamN = y;
-      out.interior = true;
-    } else {
-      const Vec2 clamped = nearestPointOn(shape, cop);
-      out.lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
-      out.tipping = (cop - clamped).norm() > kTipRelTol * outline.diameter;
-    }
-  }
-  return out;
-}
-
-Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c, const Vec3& target) {
-  Vec3 lam = lamPush - Winv * (c - target);
-  if (lam[0] < 0.0) lam.setZero();
-  return lam;
+void clampNormalImpulse(const Vec3& y, const Vec2& cop, const PatchOutlineSummary& outline,
+                        const PatchShape& shape, NormalImpulse& out) {
+  const Vec2 clamped = nearestPointOn(shape, cop);
+  out.lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
+  out.tipping = (cop - clamped).norm() > kTipRelTol * outline.diameter;
 }
 
 }  // namespace patchspin::parts

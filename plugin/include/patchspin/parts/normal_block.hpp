@@ -67,14 +67,43 @@ struct NormalImpulse {
   bool interior = false;     // centre of pressure on the patch: the block held bilateral
   bool tipping = false;      // clamped by more than kTipRelTol of the diameter
 };
+// The clamp of solveNormalVelocity: y's centre of pressure cop is off the
+// patch; out gets y's normal impulse with the nearest point of the patch as
+// its centre of pressure, and whether that is tipping.
+void clampNormalImpulse(const Vec3& y, const Vec2& cop, const PatchOutlineSummary& outline,
+                        const PatchShape& shape, NormalImpulse& out);
 // One velocity solve:                                                     (S4)-(S6)
 //   y = lamN - W^-1 (c_n - target),  accepted while y_z > 0 and its centre of
 //   pressure (-y2 / y0, y1 / y0) is on the patch; else clamped onto it.
-NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn,
-                                  const Vec3& target, const PatchOutlineSummary& outline,
-                                  const PatchShape& shape);
+// (Inline, as Jolt keeps its parts' solve steps: every patch visit calls it;
+// the clamp, the rare path, is the call.)
+inline NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, const Vec3& cn,
+                                         const Vec3& target, const PatchOutlineSummary& outline,
+                                         const PatchShape& shape) {
+  const Vec3 y = lamN - Winv * (cn - target);
+  NormalImpulse out;
+  if (y[0] > 0.0) {
+    // centre of pressure (Ty / Pz, -Tx / Pz) = (-y2 / y0, y1 / y0)
+    const Vec2 cop(-y[2] / y[0], y[1] / y[0]);
+    const bool onPatch =
+        outline.disk ? (cop - outline.centre).squaredNorm() <= outline.radius * outline.radius
+                     : cop.squaredNorm() <= outline.innerRadius2 || shape.contains(cop);
+    if (onPatch) {
+      out.lamN = y;
+      out.interior = true;
+    } else {
+      clampNormalImpulse(y, cop, outline, shape, out);
+    }
+  }
+  return out;
+}
 
 // One position solve on the pseudo velocities: pushes only apart.          (S18)
-Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c, const Vec3& target);
+inline Vec3 solveNormalPosition(const Mat3& Winv, const Vec3& lamPush, const Vec3& c,
+                                const Vec3& target) {
+  Vec3 lam = lamPush - Winv * (c - target);
+  if (lam[0] < 0.0) lam.setZero();
+  return lam;
+}
 
 }  // namespace patchspin::parts

@@ -36,23 +36,39 @@ Mat6 patchEffectiveMass(const PatchBody& a, const PatchBody& b, const Mat3& F, d
 // The DOFs' rows for one body (A's side): c = J [v; omega]           (S1)
 Mat6 patchBodyRows(const PatchBody& body, const Mat3& F, double rho);
 
-// The DOF velocities from A's (va, wa) and B's (vb, wb) world velocities; a
-// static body's are not read. (Inline: every patch visit calls it.)
-inline Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b,
-                          const Vec3& vb, const Vec3& wb, const Mat3& F, double rho) {
+// The DOF velocities of the patch; `velocity(side, v, w)` gives a dynamic
+// body's world velocities (side 0: A, 1: B), a static body's are not asked.
+// A template in the header, as applyPatchImpulse: the adapter's gather and
+// this sum compile into one function at each use (every patch visit calls
+// it; docs/notes/2026-11-28-solver-parts.md counts the call's cost).
+template <class Velocity>
+inline Vec6 patchVelocityOf(const PatchBody& a, const PatchBody& b, const Mat3& F, double rho,
+                            Velocity velocity) {
   Vec3 u = Vec3::Zero(), w = Vec3::Zero();
+  Vec3 v, om;
   if (a.dynamic) {
-    u += va + wa.cross(a.r);
-    w += wa;
+    velocity(0, v, om);
+    u += v + om.cross(a.r);
+    w += om;
   }
   if (b.dynamic) {
-    u -= vb + wb.cross(b.r);
-    w -= wb;
+    velocity(1, v, om);
+    u -= v + om.cross(b.r);
+    w -= om;
   }
   const Vec3 uf = F.transpose() * u, wf = F.transpose() * w;
   Vec6 c;
   c << uf.z(), wf.x(), wf.y(), uf.x(), uf.y(), rho * wf.z();
   return c;
+}
+
+// The same from A's (va, wa) and B's (vb, wb) world velocities.
+inline Vec6 patchVelocity(const PatchBody& a, const Vec3& va, const Vec3& wa, const PatchBody& b,
+                          const Vec3& vb, const Vec3& wb, const Mat3& F, double rho) {
+  return patchVelocityOf(a, b, F, rho, [&](int side, Vec3& v, Vec3& w) {
+    v = side == 0 ? va : vb;
+    w = side == 0 ? wa : wb;
+  });
 }
 
 // A generalised impulse `lam` of the six DOFs as velocity changes of the two
