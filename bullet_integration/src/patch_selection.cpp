@@ -147,8 +147,8 @@ void PatchSelection::endStep(long step) {
   }
 }
 
-bool PatchSelection::select(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
-                            std::vector<Candidate>& out) {
+bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double dt,
+                                     PatchSolverStats& stats, std::vector<Candidate>& out) {
   // Empty manifolds (the broadphase keeps one for every pair whose bounding
   // boxes overlap, ~10 per touching one in a pile) become patches two ways:
   // a patch that ended the last step flat outlives an empty manifold while
@@ -165,12 +165,7 @@ bool PatchSelection::select(btPersistentManifold* m, int index, double dt, Patch
   if (empty) {
     // one body static or kinematic, a plane, a box or a cylinder: its faces
     // are probed below (most empty manifolds of a pile are dynamic pairs)
-    const bool support0 = o0->isStaticOrKinematicObject();
-    if (support0 != o1->isStaticOrKinematicObject()) {
-      const int type = (support0 ? o0 : o1)->getCollisionShape()->getShapeType();
-      probed = type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE ||
-               type == CYLINDER_SHAPE_PROXYTYPE;
-    }
+    probed = probeable(*m);
     if (!probed) {
       if (!mayHaveBeenFlat(m)) return false;
       const auto it = states_.find(m);

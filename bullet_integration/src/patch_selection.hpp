@@ -6,6 +6,8 @@
 
 #include "solver_data.hpp"
 
+#include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
+#include <BulletCollision/CollisionShapes/btCollisionShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 
 namespace patchspin::bullet::internal {
@@ -26,13 +28,32 @@ class PatchSelection {
   void beginIsland(int numSolverBodies);
   // The manifold becomes a patch (a Candidate appended to `out`) or is left
   // to Bullet (false). `dt` [s] is the step.
+  // (Inline: the pile's many empty manifolds, which had no patch in the last
+  // step and have no static plane, box or cylinder to probe, leave here
+  // without a call; selectCandidate tests the same first.)
   bool select(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
-              std::vector<Candidate>& out);
+              std::vector<Candidate>& out) {
+    if (m->getNumContacts() == 0 && !mayHaveBeenFlat(m) && !probeable(*m)) return false;
+    return selectCandidate(m, index, dt, stats, out);
+  }
   // Forgets manifolds not seen for a while (they may have been deleted);
   // every kSweepSteps steps.
   void endStep(long step);
 
  private:
+  bool selectCandidate(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
+                       std::vector<Candidate>& out);
+  // An empty manifold between a dynamic body and a static or kinematic plane,
+  // box or cylinder: the support's faces are probed (probeSupportFace).
+  static bool probeable(const btPersistentManifold& m) {
+    const btCollisionObject* o0 = m.getBody0();
+    const btCollisionObject* o1 = m.getBody1();
+    const bool support0 = o0->isStaticOrKinematicObject();
+    if (support0 == o1->isStaticOrKinematicObject()) return false;
+    const int type = (support0 ? o0 : o1)->getCollisionShape()->getShapeType();
+    return type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE ||
+           type == CYLINDER_SHAPE_PROXYTYPE;
+  }
   const PatchOptions* cachedOptionsOf(const btCollisionObject* o);
   const PatchOptions* dynamicOptions(const btCollisionObject* o);
   PatchShape shapeOf(const internal::PatchOutline& outline);
