@@ -55,12 +55,25 @@ bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA
   if (!parts::makePatchBlocks(parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho),
                               pc.k))
     return false;
+  // restitution from the normal velocity at O before the step (without the
+  // step's external impulses, as Bullet's rows take it)
+  double bounce = 0.0;
+  if (cand.restitution > 0.0) {
+    const btSolverBody* sb[2] = {&sbA, &sbB};
+    const Vec6 before = parts::patchVelocityOf(pc.a.body, pc.b.body, pc.F, pc.fb.rho,
+                                               [&](int side, Vec3& v, Vec3& w) {
+                                                 v = toEigen(sb[side]->m_linearVelocity);
+                                                 w = toEigen(sb[side]->m_angularVelocity);
+                                               });
+    bounce = parts::restitutionVelocity(before[0], st.geometry.gap, dt, cand.restitution,
+                                        double(info.m_restitutionVelocityThreshold));
+  }
   // position error: gap at O (< 0 penetrating) and tilt of the face
   const Vec3 tilt = toEigen(st.geometry.tilt);
-  const parts::NormalTargets targets =
-      parts::normalTargets(st.geometry.gap, st.geometry.clearance,
-                           Vec3(0.0, tilt.dot(ex), tilt.dot(ey)), st.geometry.outline.size(), dt,
-                           info.m_splitImpulse != 0, double(info.m_erp), double(info.m_erp2));
+  const parts::NormalTargets targets = parts::normalTargets(
+      st.geometry.gap, st.geometry.clearance, Vec3(0.0, tilt.dot(ex), tilt.dot(ey)),
+      st.geometry.outline.size(), dt, info.m_splitImpulse != 0, double(info.m_erp),
+      double(info.m_erp2), bounce);
   pc.targetN = targets.velocity;
   pc.targetPush = targets.push;
   return true;

@@ -333,7 +333,10 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       return false;
     }
   }
-  out.push_back({index, &st, &opt, A, B, mu, wasFlat});
+  // (and its combined restitution, alike)
+  const double restitution = empty ? double(gCalculateCombinedRestitutionCallback(o0, o1))
+                                   : double(m->getContactPoint(0).m_combinedRestitution);
+  out.push_back({index, &st, &opt, A, B, mu, restitution, wasFlat});
   markFlat(m);
   return true;
 }

@@ -138,6 +138,7 @@ struct Candidate {
   const btCollisionObject* A;
   const btCollisionObject* B;
   double mu;
+  double restitution;  // Bullet's combined restitution of the pair
   bool wasFlat;
 };
 

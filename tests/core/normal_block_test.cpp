@@ -201,17 +201,50 @@ TEST(NormalBlock, PositionSolvePushesOnlyApart) {
 TEST(NormalBlock, TargetsCloseAGapAndCorrectPenetration) {
   const double dt = 0.01, size = 0.05;
   const Vec3 tilt(0.0, 0.002, -0.001);
-  NormalTargets t = normalTargets(0.001, 0.0005, tilt, size, dt, true, 0.2, 0.8);
+  NormalTargets t = normalTargets(0.001, 0.0005, tilt, size, dt, true, 0.2, 0.8, 0.0);
   EXPECT_DOUBLE_EQ(t.velocity[0], -(0.0005 + kLowSideSinkRelTol * size) / dt);
   EXPECT_EQ(t.push, Vec3(tilt * 0.2 / dt));
-  t = normalTargets(0.001, 0.002, tilt, size, dt, false, 0.2, 0.8);
+  t = normalTargets(0.001, 0.002, tilt, size, dt, false, 0.2, 0.8, 0.0);
   EXPECT_DOUBLE_EQ(t.velocity[0], -0.001 / dt);  // at most the gap
   EXPECT_EQ(t.push, Vec3::Zero());
-  t = normalTargets(-0.001, -0.001, tilt, size, dt, true, 0.2, 0.8);
+  t = normalTargets(-0.001, -0.001, tilt, size, dt, true, 0.2, 0.8, 0.0);
   EXPECT_EQ(t.velocity, Vec3::Zero());
   EXPECT_EQ(t.push, Vec3((Vec3(0.001, 0.0, 0.0) + tilt) * 0.2 / dt));
-  t = normalTargets(-0.001, -0.001, tilt, size, dt, false, 0.2, 0.8);
+  t = normalTargets(-0.001, -0.001, tilt, size, dt, false, 0.2, 0.8, 0.0);
   EXPECT_EQ(t.velocity, Vec3((Vec3(0.001, 0.0, 0.0) + tilt) * 0.8 / dt));
+}
+
+// The bounce is added to the normal velocity target where the faces touch
+// (split impulse or not), replaces the gap's target across a gap, and never
+// enters the tilt rates.
+TEST(NormalBlock, BounceSetsTheNormalTargetOnly) {
+  const double dt = 0.01, size = 0.05, bounce = 0.7;
+  const Vec3 tilt(0.0, 0.002, -0.001);
+  for (const double gap : {0.001, -0.001})
+    for (const bool split : {true, false}) {
+      const NormalTargets plain = normalTargets(gap, gap, tilt, size, dt, split, 0.2, 0.8, 0.0);
+      const NormalTargets t = normalTargets(gap, gap, tilt, size, dt, split, 0.2, 0.8, bounce);
+      EXPECT_DOUBLE_EQ(t.velocity[0], gap > 0.0 ? bounce : plain.velocity[0] + bounce);
+      EXPECT_EQ(t.velocity.tail<2>(), plain.velocity.tail<2>());
+      EXPECT_EQ(t.push, plain.push);
+    }
+}
+
+// Bullet's restitution curve: e times the closing speed, none below the
+// velocity threshold, none for a separating contact or a negative e; and
+// none while a gap stays open through the step.
+TEST(NormalBlock, RestitutionFollowsBulletsCurve) {
+  const double dt = 0.01;
+  EXPECT_DOUBLE_EQ(restitutionVelocity(-2.0, 0.0, dt, 0.5, 0.2), 1.0);
+  EXPECT_DOUBLE_EQ(restitutionVelocity(-0.2, 0.0, dt, 0.5, 0.2), 0.1);  // at the threshold
+  EXPECT_EQ(restitutionVelocity(-0.19, 0.0, dt, 0.5, 0.2), 0.0);
+  EXPECT_EQ(restitutionVelocity(1.0, 0.0, dt, 0.5, 0.2), 0.0);    // separating
+  EXPECT_EQ(restitutionVelocity(-1.0, 0.0, dt, -0.5, 0.2), 0.0);  // negative coefficient
+  EXPECT_EQ(restitutionVelocity(-1.0, 0.0, dt, 0.0, 0.2), 0.0);
+  // a gap of 1 cm closes in this step at 1 m/s, not at 0.99 m/s
+  EXPECT_DOUBLE_EQ(restitutionVelocity(-1.0, 0.01, dt, 0.5, 0.2), 0.5);
+  EXPECT_EQ(restitutionVelocity(-0.99, 0.01, dt, 0.5, 0.2), 0.0);
+  EXPECT_DOUBLE_EQ(restitutionVelocity(-1.0, -0.01, dt, 0.5, 0.2), 0.5);  // penetrating
 }
 
 }  // namespace

@@ -58,7 +58,7 @@ double innerRadiusSquared(const PatchShape& shape) {
 }
 
 NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
-                            double dt, bool splitImpulse, double erp, double erp2) {
+                            double dt, bool splitImpulse, double erp, double erp2, double bounce) {
   NormalTargets t;
   if (gap > 0.0) {
     // where a is tilted on b, only until its low side is kLowSideSinkRelTol
@@ -71,6 +71,7 @@ NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, 
     t.velocity = (Vec3(-gap, 0.0, 0.0) + tiltRate) * erp2 / dt;
   }
   if (gap > 0.0 && splitImpulse) t.push = tiltRate * erp / dt;
+  if (bounce > 0.0) t.velocity[0] = gap > 0.0 ? bounce : t.velocity[0] + bounce;
   return t;
 }
 

@@ -9,6 +9,9 @@
 // every iteration -> solveNormalPosition in the split-impulse iterations.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <patchspin/geometry.hpp>
 #include <patchspin/pressure.hpp>
 
@@ -55,12 +58,32 @@ double innerRadiusSquared(const PatchShape& shape);
 //                   kLowSideSinkRelTol * size past the low side (clearance)
 //   split impulse:  pseudo-velocity target (-gap, tilt) * erp / dt
 //   otherwise:      Baumgarte, (-gap, tilt) * erp2 / dt in the velocity target
+// plus the restitution velocity `bounce` (restitutionVelocity): where the
+// faces touch it is added to the normal velocity target (as Bullet adds its
+// restitution to a row's velocity error); across a gap that closes in this
+// step it replaces the gap's target (the body turns within the gap instead of
+// arriving slowed by gap / dt); the tilt rates get none (a face that lands
+// flat leaves flat: no rocking).
 struct NormalTargets {
   Vec3 velocity = Vec3::Zero();  // of the iterations [m/s, rad/s, rad/s]
   Vec3 push = Vec3::Zero();      // of the split-impulse iterations
 };
 NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
-                            double dt, bool splitImpulse, double erp, double erp2);
+                            double dt, bool splitImpulse, double erp, double erp2, double bounce);
+
+// Restitution as Bullet's btSequentialImpulseConstraintSolver::restitutionCurve:
+// a contact closing at `approach` (normal velocity before the step, < 0
+// closing [m/s]) is to separate at restitution * -approach; none when
+// |approach| < threshold (Bullet's m_restitutionVelocityThreshold), nor for a
+// separating contact or a negative coefficient. Unlike Bullet's rows, none
+// while a gap > 0 [m] stays open through the step of length dt at that speed:
+// a patch found across a gap (probed) would otherwise spend the bounce on
+// slowing the approach, step after step (normal_block_test; restitution_test).
+inline double restitutionVelocity(double approach, double gap, double dt, double restitution,
+                                  double threshold) {
+  if (std::abs(approach) < threshold || gap > -approach * dt) return 0.0;
+  return std::max(0.0, restitution * -approach);
+}
 
 struct NormalImpulse {
   Vec3 lamN = Vec3::Zero();  // accumulated (Lambda_z, Lambda_Tx, Lambda_Ty) [N s, N m s]
