@@ -1,0 +1,44 @@
+// Point impulses part: a patch's impulse spread over a few contact points
+// (an adapter's record of the contact, e.g. Bullet's manifold points), so
+// that whoever reads the points the engine's way sees the patch's force
+// (issue 31, item 3; docs/solver.md, "Reported impulses").
+//
+// In the patch frame at O, with the points at r_i = (x_i, y_i) in the
+// patch plane, the patch's normal impulse (Lambda_z, Lambda_Tx, Lambda_Ty)
+// (S5) and friction impulse (f_x, f_y, lambda_s), whose couple about n is
+// rho lambda_s (S1):
+//   normal:      p_i >= 0 with  sum p_i = Lambda_z  exactly, and
+//                sum p_i (y_i, -x_i) = (Lambda_Tx, Lambda_Ty)  when the centre
+//                of pressure lies in the points' convex hull; else the
+//                centre of pressure of the p_i is the hull's point nearest to
+//                it. Of those, the p_i with the least sum of squares (the most
+//                even spread).
+//   tangential:  t_i = p_i (a + b perp(r_i)), perp(r) = (-y, x), with
+//                sum t_i = (f_x, f_y) and sum r_i x t_i = rho lambda_s: the
+//                least sum |t_i|^2 / p_i (each point's share follows its
+//                load); a twist the loaded points cannot carry (all on one
+//                point) is met in least squares, the force still exactly.
+// Guarded by point_impulses_test (sums, moments, the least-norm property
+// against a brute-force search, the nearest hull point against sampling).
+#pragma once
+
+#include <patchspin/types.hpp>
+
+#include <vector>
+
+namespace patchspin::parts {
+
+struct PointImpulses {
+  std::vector<double> normal;  // p_i [N s]
+  std::vector<Vec2> tangent;   // t_i in the patch frame [N s]
+  bool momentMatched = false;  // the normal impulses carry the tipping couple exactly
+  bool twistMatched = false;   // the tangential impulses carry the twist exactly
+};
+
+// `points`: r_i in the patch frame [m] (at most kMaxPoints, at least one);
+// lamN, lamF: the patch's accumulated impulses; rho [m].
+constexpr std::size_t kMaxPoints = 8;
+PointImpulses spreadPatchImpulse(const std::vector<Vec2>& points, const Vec3& lamN,
+                                 const Vec3& lamF, double rho);
+
+}  // namespace patchspin::parts
