@@ -14,13 +14,16 @@
 //   5 iterate       per patch: normal block, then friction block with the
 //                   normal block held, then the coupled support share
 //   6 store         warm start and law record into the PatchState, report
-//                   sources, then Bullet's write-back and the crumb flush
+//                   sources, the impulses onto the manifold's points
+//                   (writeManifoldImpulses), then Bullet's write-back and
+//                   the crumb flush
 //
 // Work-saving rules (settings().skipSettledPatches, quickStick, ...) change
 // how often a part runs, never what it computes: Determinism.* pins the
 // trajectories bit for bit.
 #include <patchspin/bullet/patch_friction_solver.hpp>
 
+#include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
@@ -267,6 +270,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     for (int i = begin; i < end; ++i) {
       btPersistentManifold* m = manifolds[i];
       if (next == im.candidates.size() || im.candidates[next].index != i) {
+        im.selection.handBack(m);
         convertContact(m, info);
         continue;
       }
@@ -279,9 +283,11 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
                                          m_tmpSolverBodyPool[idB], idB, info, pc)) {
         im.patches.pop_back();
         cand.state->flat = false;  // no usable effective mass: Bullet's contact
+        im.selection.handBack(m);
         convertContact(m, info);
         continue;
       }
+      pc.manifold = m;
       Vec6 lam;
       if (internal::warmStart(cand, info, pc, lam)) applyImpulse(pc, m_tmpSolverBodyPool, lam);
     }
@@ -405,6 +411,10 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
     internal::storePatchState(pc, c, im.step);
     im.reports.record(pc, c);
+    if (internal::writeManifoldImpulses(pc, *pc.manifold))
+      im.selection.markWritten(*pc.state);
+    else
+      ++im.stats.patchesWithoutPoints;
     const PatchLoads l = parts::toLoads(pc.lamN);
     if (l.Pz > 0.0 && pc.fb.mu > 0.0) {
       const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);

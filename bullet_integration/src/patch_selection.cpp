@@ -137,6 +137,15 @@ void PatchSelection::beginIsland(int numSolverBodies) {
   optionsKnown_.assign(std::size_t(numSolverBodies), 0);
 }
 
+void PatchSelection::clearWrittenImpulses(btPersistentManifold* m) {
+  const auto it = states_.find(m);
+  if (it == states_.end() || it->second.pointsWritten != step_ - 1) return;
+  for (int k = 0; k < m->getNumContacts(); ++k) {
+    btManifoldPoint& p = m->getContactPoint(k);
+    p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
+  }
+}
+
 void PatchSelection::endStep(long step) {
   if (step % kSweepSteps != 0) return;
   for (auto it = states_.begin(); it != states_.end();) {

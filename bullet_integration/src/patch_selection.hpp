@@ -36,11 +36,22 @@ class PatchSelection {
     if (m->getNumContacts() == 0 && !mayHaveBeenFlat(m) && !probeable(*m)) return false;
     return selectCandidate(m, index, dt, stats, out);
   }
+  // A manifold handed back to Bullet's rows (not a patch in this step):
+  // if the last step wrote a patch's impulses onto its points, they are
+  // cleared, and Bullet's rows start from zero as they would have without
+  // that record (warm-starting them from the patch's impulses was measured
+  // to inject energy: docs/notes/2026-11-28-contact-features.md).
+  void handBack(btPersistentManifold* m) {
+    if (m->getNumContacts() > 0 && mayHaveBeenFlat(m)) clearWrittenImpulses(m);
+  }
+  // The step's patch impulses were written onto m's points (stage 6).
+  void markWritten(PatchState& st) { st.pointsWritten = step_; }
   // Forgets manifolds not seen for a while (they may have been deleted);
   // every kSweepSteps steps.
   void endStep(long step);
 
  private:
+  void clearWrittenImpulses(btPersistentManifold* m);
   bool selectCandidate(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
                        std::vector<Candidate>& out);
   // An empty manifold between a dynamic body and a static or kinematic plane,

@@ -75,6 +75,7 @@ struct PatchState {
   // the faces' kinds when geometry's overlap was last clipped (see overlapPose)
   internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
                                           internal::Face::Kind::Polygon};
+  long pointsWritten = -1;    // step whose patch impulses are on the manifold's points
   long shapeId = 0;           // unique per built `friction`
   double innerRadius2 = 0.0;  // parts::PatchOutlineSummary::innerRadius2 of `friction`
   parts::PressureRecord law;  // the pressure `friction` was last refreshed with
@@ -118,6 +119,7 @@ struct PatchConstraint {
   parts::PatchBlocks k;
   // read outside the iterations only
   Vec3 lamPush = Vec3::Zero(), targetPush = Vec3::Zero();
+  btPersistentManifold* manifold = nullptr;  // whose points get the impulses (stage 6)
 };
 
 // What a PatchReport is made of, kept at the end of the step.

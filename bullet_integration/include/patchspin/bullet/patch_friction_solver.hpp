@@ -157,6 +157,10 @@ struct PatchSolverStats : parts::FrictionPartCounters {
   // centre of pressure at the end of the step and the one its friction law
   // was last refreshed with [-]
   double maxPressureLag = 0.0;
+  // patches whose manifold had no points to carry their impulses (a patch
+  // kept or found without Bullet's contact points): their PatchReport is
+  // the only record of their force
+  long patchesWithoutPoints = 0;
 };
 
 class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
