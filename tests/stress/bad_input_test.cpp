@@ -548,18 +548,23 @@ TEST(BadInput, RemovingOptedInBodiesInsideAStep) {
     scene.world().setInternalTickCallback(preTick, &removal, true);
     scene.world().setInternalTickCallback(postTick, &removal, false);
   };
-  // (the two callbacks share the user pointer; setInternalTickCallback sets it)
-  bool sawBoth = false, sawAfter = false;
+  // (the two callbacks share the user pointer; setInternalTickCallback sets
+  // it). The bodies are read while their scene lives: run() deletes them.
+  bool sawBoth = false, sawAfter = false, preInWorld = true, postInWorld = true;
   h.before = [&](Scene& scene, int k) {
     const PatchFrictionSolver& s = scene.solver();
     if (k == 30) sawBoth = s.findPatchReport(removal.pre) && s.findPatchReport(removal.post);
-    if (k == 100) sawAfter = s.findPatchReport(removal.pre) || s.findPatchReport(removal.post);
+    if (k == 100) {
+      sawAfter = s.findPatchReport(removal.pre) || s.findPatchReport(removal.post);
+      preInWorld = removal.pre->isInWorld();
+      postInWorld = removal.post->isInWorld();
+    }
   };
   const RunResult r = run(h);
   EXPECT_TRUE(sawBoth);
   EXPECT_FALSE(sawAfter) << "removed bodies have no patch";
-  EXPECT_FALSE(removal.pre->isInWorld());
-  EXPECT_FALSE(removal.post->isInWorld());
+  EXPECT_FALSE(preInWorld);
+  EXPECT_FALSE(postInWorld);
   expectWitnessesUnaffected(r, "removed inside a step");
 }
 
