@@ -205,6 +205,11 @@ const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject*
   return impl_->reports.find(body);
 }
 
+std::optional<PatchReport> PatchFrictionSolver::patchReportOf(const btCollisionObject* body) const {
+  const PatchReport* r = impl_->reports.find(body);
+  return r ? std::optional<PatchReport>(*r) : std::nullopt;
+}
+
 void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
   using patchspin::internal::formatDouble;
   for (const auto& [value, name] :

@@ -185,14 +185,25 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   const PatchSolverSettings& settings() const;
   const PatchSolverStats& stats() const;
 
-  // Patches that were active in the last step (all islands). The reports
-  // are filled from the solver's record of the step at the first call after
-  // it (a step that nobody asks about does not pay for them), so a
-  // reference or pointer kept from an earlier call shows the reports as of
-  // the last call. Between steps only (not from inside a solve).
+  // Patches that were active in the last step (all islands). Between steps
+  // only (not from inside a solve).
+  //
+  // Lifetime: the reports are filled in place from the solver's record of a
+  // step at the first call (to either function) after it, so a step that
+  // nobody asks about does not pay for them. The reference and the pointer
+  // returned are valid from that call until the world's next step (or the
+  // solver's destruction), and must not be used after it: the first call
+  // after that step refills the same storage, where a kept pointer then
+  // dangles if the number of patches grew, or shows another body's report.
+  // To keep a report across steps, keep a copy (patchReportOf).
+  // (PatchReports.*)
   const std::vector<PatchReport>& patchReports() const;
-  // The report of the patch under `body` in the last step, or null.
+  // The report of the patch under `body` in the last step, or null; valid
+  // until the next step, as above.
   const PatchReport* findPatchReport(const btCollisionObject* body) const;
+  // The same report by value (a copy, its own for as long as it is kept),
+  // or none.
+  std::optional<PatchReport> patchReportOf(const btCollisionObject* body) const;
 
   // btConstraintSolver hooks called once per world step.
   void prepareSolve(int numBodies, int numManifolds) override;
