@@ -186,15 +186,15 @@ void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOpti
   if (options.rho) patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
   patchspin::internal::requirePositive(options.flatnessTolerance,
                                        "PatchOptions::flatnessTolerance");
-  impl_->selection.setOptions(body, options);
+  impl_->selection.optIns().enable(*body, options);
 }
 
 void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) {
-  impl_->selection.eraseOptions(body);
+  if (body) impl_->selection.optIns().disable(*body);
 }
 
 bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
-  return impl_->selection.optionsOf(body) != nullptr;
+  return impl_->selection.optIns().optionsOf(body) != nullptr;
 }
 
 const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
@@ -252,11 +252,10 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   im.patches.clear();
   im.holds.clear();
   // no opted-in body: stock Bullet, stock cost
-  if (!im.selection.anyOptedIn()) {
+  if (!im.selection.optIns().any()) {
     btSequentialImpulseConstraintSolver::convertContacts(manifolds, numManifolds, info);
     return;
   }
-  im.selection.beginIsland(m_tmpSolverBodyPool.size());
   // In chunks of manifolds: first the chunk's selection, then, in the
   // manifolds' order, Bullet's contacts and the patches' set-up, exactly as
   // one pass would make them; each pass's code stays in the instruction

@@ -63,46 +63,12 @@ PatchSelection::PatchSelection() {
   for (auto& filter : flatFilter_) filter.assign(std::size_t(1) << (kFlatFilterLog2 - 6), 0);
 }
 
-void PatchSelection::setOptions(const btCollisionObject* body, const PatchOptions& options) {
-  options_[body] = options;
-  ++optionsVersion_;
-}
-void PatchSelection::eraseOptions(const btCollisionObject* body) {
-  options_.erase(body);
-  ++optionsVersion_;
-}
-const PatchOptions* PatchSelection::optionsOf(const btCollisionObject* o) const {
-  auto it = options_.find(o);
-  return it == options_.end() ? nullptr : &it->second;
-}
-
-// An entry holds for the same object (address) while the options are
-// unchanged (optionsVersion_).
-const PatchOptions* PatchSelection::cachedOptionsOf(const btCollisionObject* o) {
-  const int ix = o->getWorldArrayIndex();
-  if (ix < 0) return optionsOf(o);
-  if (std::size_t(ix) >= optionsByIndex_.size()) optionsByIndex_.resize(std::size_t(ix) + 1);
-  OptionsEntry& e = optionsByIndex_[std::size_t(ix)];
-  if (e.object != o || e.version != optionsVersion_) {
-    e.object = o;
-    e.options = optionsOf(o);
-    e.version = optionsVersion_;
-  }
-  return e.options;
-}
-
 // The options of an opted-in dynamic body (a static or kinematic body opted
 // in has no patch of its own: what stands on it decides).
 const PatchOptions* PatchSelection::dynamicOptions(const btCollisionObject* o) {
   const btRigidBody* rb = btRigidBody::upcast(o);
   if (!rb || !(rb->getInvMass() > 0)) return nullptr;
-  const int id = o->getCompanionId();
-  if (id < 0 || std::size_t(id) >= optionsById_.size()) return cachedOptionsOf(o);
-  if (!optionsKnown_[std::size_t(id)]) {
-    optionsById_[std::size_t(id)] = cachedOptionsOf(o);
-    optionsKnown_[std::size_t(id)] = 1;
-  }
-  return optionsById_[std::size_t(id)];
+  return optIns_.optionsOf(o);
 }
 
 // PatchShape::disk is a function of the radius: a copy is the shape it would
@@ -130,11 +96,6 @@ void PatchSelection::clearFlatFilter(int k) {
 void PatchSelection::beginStep(long step) {
   step_ = step;
   clearFlatFilter(int(step & 1));
-}
-
-void PatchSelection::beginIsland(int numSolverBodies) {
-  optionsById_.assign(std::size_t(numSolverBodies), nullptr);
-  optionsKnown_.assign(std::size_t(numSolverBodies), 0);
 }
 
 void PatchSelection::endStep(long step) {

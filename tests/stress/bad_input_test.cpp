@@ -24,7 +24,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <new>
 #include <string>
 #include <vector>
 
@@ -566,68 +565,6 @@ TEST(BadInput, RemovingOptedInBodiesInsideAStep) {
   EXPECT_FALSE(preInWorld);
   EXPECT_FALSE(postInWorld);
   expectWitnessesUnaffected(r, "removed inside a step");
-}
-
-// The documented contract (patch_friction_solver.hpp): options are kept
-// under the body's address until disablePatchFriction; call it before
-// deleting an opted-in body, or a new body that gets the same address
-// inherits them; a body removed from the world and added again keeps them.
-// The new body is forced onto the old address with placement new, as an
-// allocator may do.
-bool newBodyInheritsOptions(bool disableBeforeDelete) {
-  Scene scene(kG, 10);
-  scene.addGroundPlane(1.0);
-  btBoxShape shape(bt(0.05, 0.05, 0.05));
-  shape.setMargin(btScalar(1e-3));
-  alignas(btRigidBody) unsigned char storage[sizeof(btRigidBody)];
-  btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, &shape, bt(1.7e-3, 1.7e-3, 1.7e-3));
-  info.m_startWorldTransform.setIdentity();
-  info.m_startWorldTransform.setOrigin(bt(0, 0, 0.05));
-  auto* first = new (storage) btRigidBody(info);
-  scene.world().addRigidBody(first);
-  scene.solver().enablePatchFriction(first, {Model::Exact});
-  scene.step(kDt);
-  EXPECT_NE(scene.solver().findPatchReport(first), nullptr);
-  scene.world().removeRigidBody(first);
-  if (disableBeforeDelete) scene.solver().disablePatchFriction(first);
-  first->~btRigidBody();
-  auto* second = new (storage) btRigidBody(info);  // same address, never opted in by the user
-  scene.world().addRigidBody(second);
-  scene.step(kDt);
-  const bool inherited = scene.solver().isPatchFrictionEnabled(second);
-  EXPECT_EQ(inherited, scene.solver().findPatchReport(second) != nullptr);
-  EXPECT_TRUE(isFinite(second));
-  scene.world().removeRigidBody(second);
-  second->~btRigidBody();
-  return inherited;
-}
-
-TEST(BadInput, DeletingAnOptedInBodyFollowsTheDocumentedContract) {
-  const bool withDisable = newBodyInheritsOptions(true),
-             withoutDisable = newBodyInheritsOptions(false);
-  std::printf(
-      "[address reuse] new body at a deleted opted-in body's address inherits its options: "
-      "after disablePatchFriction %d, without %d (documented)\n",
-      int(withDisable), int(withoutDisable));
-  EXPECT_FALSE(withDisable);
-  EXPECT_TRUE(withoutDisable) << "the documented caveat changed: update patch_friction_solver.hpp";
-}
-
-TEST(BadInput, RemovedAndReaddedBodyKeepsItsOptions) {
-  Scene scene(kG, 10);
-  scene.addGroundPlane(1.0);
-  btRigidBody* box = scene.addBox(bt(0.05, 0.05, 0.05), 1.0, bt(0, 0, 0.05), 0.4);
-  scene.solver().enablePatchFriction(box, {Model::Exact, 0.35});
-  scene.step(kDt);
-  scene.world().removeRigidBody(box);
-  for (int k = 0; k < 20; ++k) scene.step(kDt);  // longer than the solver's memory of the manifold
-  EXPECT_EQ(scene.solver().findPatchReport(box), nullptr);
-  scene.world().addRigidBody(box);
-  scene.step(kDt);
-  const PatchReport* rep = scene.solver().findPatchReport(box);
-  ASSERT_NE(rep, nullptr);
-  EXPECT_EQ(rep->model, Model::Exact);
-  EXPECT_EQ(rep->mu, 0.35);
 }
 
 // ---- no flat face ---------------------------------------------------------------------

@@ -172,13 +172,28 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   // kinematic body opted in is ignored (what stands on it decides), and so is
   // a body with negative mass, which Bullet accepts: it keeps stock Bullet's
   // friction. Where two opted-in bodies touch, the patch is the upper one's
-  // (the normal enters it against its gravity). The options are kept under the
-  // body's address until disablePatchFriction: call it before deleting an
-  // opted-in body (as for a btTypedConstraint on it), or a new body that
-  // happens to get the same address inherits them. Removing a body from the
-  // world without deleting it keeps its options for when it comes back.
+  // (the normal enters it against its gravity).
+  //
+  // Lifetime: the opt-in is kept in the body itself, in
+  // btRigidBody::m_frictionSolverType (a field Bullet zeroes in the body's
+  // constructor and never reads; do not write it yourself), as a code naming
+  // this solver and its copy of the options. So it lasts exactly as long as
+  // the body object, until disablePatchFriction:
+  //  * deleting an opted-in body needs no disablePatchFriction; nothing of
+  //    it stays in the solver, and a new body, at any address (the deleted
+  //    one's included), is not opted in until enabled;
+  //  * removing a body from the world and adding it again (to this world or
+  //    another one stepped by this solver) keeps its options;
+  //  * a body opted in by another PatchFrictionSolver is not opted in for
+  //    this one (disablePatchFriction leaves it alone);
+  //  * the solver keeps one copy of each distinct PatchOptions value it was
+  //    given (not one per body): a spawn/despawn loop with the same options
+  //    does not grow it. More than 2^20 - 1 distinct values: Error.
+  // (BodyLifetime.*)
   void enablePatchFriction(btRigidBody* body, const PatchOptions& options = PatchOptions());
+  // Opts `body` out (null, or a body not opted in by this solver: no-op).
   void disablePatchFriction(btRigidBody* body);
+  // `body` must be alive (it is read).
   bool isPatchFrictionEnabled(const btCollisionObject* body) const;
 
   void setSettings(const PatchSolverSettings& settings);
