@@ -14,7 +14,10 @@ namespace {
 // A face takes part in a patch only while the contact normal is within 45
 // degrees of its normal (cosine): between the faces' own flatness (<= 2 x
 // 0.02 rad by default) and a rim contact (~90 degrees) any cut separates them.
-constexpr double kFacingCos = 0.70710678118654752;
+constexpr double kFacingAngle = 0.78539816339744831;  // pi/4
+constexpr double kFacingCos = 0.70710678118654752;    // cos(kFacingAngle)
+// a patch ends (2 x the flatness tolerance) before its faces stop facing
+static_assert(2.0 * kMaxFlatnessTolerance <= kFacingAngle);
 // A contact point lies on a face when it is within this many times the two
 // shapes' summed collision margins of the face's plane: box and cylinder
 // points lie within 0.05 of the summed margins, a hull's one margin outside

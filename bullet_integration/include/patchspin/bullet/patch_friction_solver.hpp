@@ -43,6 +43,22 @@
 
 namespace patchspin::bullet {
 
+// The largest PatchOptions::flatnessTolerance [rad], pi/8: a patch ends at
+// twice the tolerance (hysteresis), which then stays within the 45 degrees
+// beyond which the selection never takes a face for the contact's anyway,
+// and a box landing on an edge (both faces 45 degrees from the support) is
+// never snapped flat (BadInput.FlatnessToleranceAbovePiOver8IsRefused).
+inline constexpr double kMaxFlatnessTolerance = 0.39269908169872415;
+// PatchOptions::rho [m] outside [kMinRho, kMaxRho] can never make a patch:
+// the friction block takes a lever max|r| / rho in [1e-5, 1e5] only, where
+// max|r| (the patch's farthest point from O) is below 1e6 m, as Bullet takes
+// a moving body out of the simulation when its bounding box's diagonal
+// reaches 1e6 m (btCollisionWorld::updateSingleAabb), and at least
+// sqrt(4.9e-324 / pi) = 1.25e-162 m, for the patch's area (at most
+// pi max|r|^2) to be a positive double (BadInput.RhoThatCanNeverMakeAPatchIsRefused).
+inline constexpr double kMinRho = 1.25e-167;
+inline constexpr double kMaxRho = 1e11;
+
 // Per-body options of the patch friction law.
 struct PatchOptions {
   PatchOptions() = default;
@@ -51,6 +67,7 @@ struct PatchOptions {
                std::optional<double> rho_ = std::nullopt, double flatnessTolerance_ = 0.02)
       : model(model_), mu(mu_), rho(rho_), flatnessTolerance(flatnessTolerance_) {}
 
+  // Model::Ellipsoidal or Model::Exact (any other value: Error).
   Model model = Model::Ellipsoidal;
   // Friction coefficient [-]; default: Bullet's combined friction of the pair.
   std::optional<double> mu;
@@ -58,11 +75,12 @@ struct PatchOptions {
   // Eq. (11) about O (mean distance of the patch from O). The friction block
   // accepts a lever max|r| / rho in [1e-5, 1e5] only (friction_block.hpp): a patch
   // whose rho is set beyond that from its size goes to Bullet's point
-  // contacts, counted in stats().blockErrors.
+  // contacts, counted in stats().blockErrors. Outside [kMinRho, kMaxRho]
+  // no patch can ever have such a lever: Error.
   std::optional<double> rho;
   // Faces count as parallel (a flat patch) once the angle between them falls
   // below this [rad]; they stay a patch until it exceeds twice this
-  // (hysteresis).
+  // (hysteresis). In (0, kMaxFlatnessTolerance].
   double flatnessTolerance = 0.02;
 };
 
@@ -167,7 +185,8 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   PatchFrictionSolver& operator=(const PatchFrictionSolver&) = delete;
 
   // Opts `body` in (or replaces its options). Throws Error for a null body,
-  // mu < 0, rho <= 0 or a non-positive/non-finite flatness tolerance.
+  // a model outside the enum, mu < 0 or not finite, rho outside [kMinRho,
+  // kMaxRho] or a flatness tolerance outside (0, kMaxFlatnessTolerance].
   // Only dynamic bodies (inverse mass > 0) get patches; a static or
   // kinematic body opted in is ignored (what stands on it decides), and so is
   // a body with negative mass, which Bullet accepts: it keeps stock Bullet's
