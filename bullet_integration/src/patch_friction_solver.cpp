@@ -29,6 +29,7 @@
 #include "patch_selection.hpp"
 
 #include <algorithm>
+#include <string>
 
 namespace patchspin::bullet {
 
@@ -180,23 +181,39 @@ PatchFrictionSolver::~PatchFrictionSolver() = default;
 void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOptions& options) {
   using patchspin::internal::formatDouble;
   if (!body) throw Error("enablePatchFriction: body is null");
+  if (options.model != Model::Ellipsoidal && options.model != Model::Exact)
+    throw Error("PatchOptions::model must be Model::Ellipsoidal or Model::Exact: got " +
+                std::to_string(int(options.model)));
   if (options.mu) {
     patchspin::internal::requireFinite(*options.mu, "PatchOptions::mu");
     if (*options.mu < 0.0)
       throw Error("PatchOptions::mu must be >= 0: got " + formatDouble(*options.mu));
   }
-  if (options.rho) patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
+  if (options.rho) {
+    patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
+    if (!(*options.rho >= kMinRho && *options.rho <= kMaxRho))
+      throw Error("PatchOptions::rho = " + formatDouble(*options.rho) +
+                  " m can never make a patch: the lever max|r| / rho must lie in [1e-5, 1e5] "
+                  "with max|r| in [1.25e-162, 1e6] m, so rho in [" +
+                  formatDouble(kMinRho) + ", " + formatDouble(kMaxRho) + "] m");
+  }
   patchspin::internal::requirePositive(options.flatnessTolerance,
                                        "PatchOptions::flatnessTolerance");
-  impl_->selection.setOptions(body, options);
+  if (options.flatnessTolerance > kMaxFlatnessTolerance)
+    throw Error("PatchOptions::flatnessTolerance must be at most pi/8 = " +
+                formatDouble(kMaxFlatnessTolerance) +
+                " rad (a patch ends at twice it, within "
+                "the 45 degrees beyond which a face no longer faces the contact): got " +
+                formatDouble(options.flatnessTolerance));
+  impl_->selection.optIns().enable(*body, options);
 }
 
 void PatchFrictionSolver::disablePatchFriction(btRigidBody* body) {
-  impl_->selection.eraseOptions(body);
+  if (body) impl_->selection.optIns().disable(*body);
 }
 
 bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
-  return impl_->selection.optionsOf(body) != nullptr;
+  return impl_->selection.optIns().optionsOf(body) != nullptr;
 }
 
 const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
@@ -205,6 +222,11 @@ const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
 
 const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
   return impl_->reports.find(body);
+}
+
+std::optional<PatchReport> PatchFrictionSolver::patchReportOf(const btCollisionObject* body) const {
+  const PatchReport* r = impl_->reports.find(body);
+  return r ? std::optional<PatchReport>(*r) : std::nullopt;
 }
 
 void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
@@ -249,11 +271,10 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   im.patches.clear();
   im.holds.clear();
   // no opted-in body: stock Bullet, stock cost
-  if (!im.selection.anyOptedIn()) {
+  if (!im.selection.optIns().any()) {
     btSequentialImpulseConstraintSolver::convertContacts(manifolds, numManifolds, info);
     return;
   }
-  im.selection.beginIsland(m_tmpSolverBodyPool.size());
   // In chunks of manifolds: first the chunk's selection, then, in the
   // manifolds' order, Bullet's contacts and the patches' set-up, exactly as
   // one pass would make them; each pass's code stays in the instruction
@@ -377,7 +398,9 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
     btIDebugDraw* debugDrawer) {
   btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIterations(
       bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
-  if (!info.m_splitImpulse) return;
+  // (zero iterations: Bullet solves nothing, nor does the patch;
+  // BadInput.ZeroSolverIterationsSolveNothingAsInBullet)
+  if (!info.m_splitImpulse || info.m_numIterations <= 0) return;
   auto& pool = m_tmpSolverBodyPool;
   for (int it = 0; it < kPushIterations; ++it) {
     for (PatchConstraint& pc : impl_->patches) {

@@ -14,7 +14,10 @@ namespace {
 // A face takes part in a patch only while the contact normal is within 45
 // degrees of its normal (cosine): between the faces' own flatness (<= 2 x
 // 0.02 rad by default) and a rim contact (~90 degrees) any cut separates them.
-constexpr double kFacingCos = 0.70710678118654752;
+constexpr double kFacingAngle = 0.78539816339744831;  // pi/4
+constexpr double kFacingCos = 0.70710678118654752;    // cos(kFacingAngle)
+// a patch ends (2 x the flatness tolerance) before its faces stop facing
+static_assert(2.0 * kMaxFlatnessTolerance <= kFacingAngle);
 // A contact point lies on a face when it is within this many times the two
 // shapes' summed collision margins of the face's plane: box and cylinder
 // points lie within 0.05 of the summed margins, a hull's one margin outside
@@ -63,46 +66,12 @@ PatchSelection::PatchSelection() {
   for (auto& filter : flatFilter_) filter.assign(std::size_t(1) << (kFlatFilterLog2 - 6), 0);
 }
 
-void PatchSelection::setOptions(const btCollisionObject* body, const PatchOptions& options) {
-  options_[body] = options;
-  ++optionsVersion_;
-}
-void PatchSelection::eraseOptions(const btCollisionObject* body) {
-  options_.erase(body);
-  ++optionsVersion_;
-}
-const PatchOptions* PatchSelection::optionsOf(const btCollisionObject* o) const {
-  auto it = options_.find(o);
-  return it == options_.end() ? nullptr : &it->second;
-}
-
-// An entry holds for the same object (address) while the options are
-// unchanged (optionsVersion_).
-const PatchOptions* PatchSelection::cachedOptionsOf(const btCollisionObject* o) {
-  const int ix = o->getWorldArrayIndex();
-  if (ix < 0) return optionsOf(o);
-  if (std::size_t(ix) >= optionsByIndex_.size()) optionsByIndex_.resize(std::size_t(ix) + 1);
-  OptionsEntry& e = optionsByIndex_[std::size_t(ix)];
-  if (e.object != o || e.version != optionsVersion_) {
-    e.object = o;
-    e.options = optionsOf(o);
-    e.version = optionsVersion_;
-  }
-  return e.options;
-}
-
 // The options of an opted-in dynamic body (a static or kinematic body opted
 // in has no patch of its own: what stands on it decides).
 const PatchOptions* PatchSelection::dynamicOptions(const btCollisionObject* o) {
   const btRigidBody* rb = btRigidBody::upcast(o);
   if (!rb || !(rb->getInvMass() > 0)) return nullptr;
-  const int id = o->getCompanionId();
-  if (id < 0 || std::size_t(id) >= optionsById_.size()) return cachedOptionsOf(o);
-  if (!optionsKnown_[std::size_t(id)]) {
-    optionsById_[std::size_t(id)] = cachedOptionsOf(o);
-    optionsKnown_[std::size_t(id)] = 1;
-  }
-  return optionsById_[std::size_t(id)];
+  return optIns_.optionsOf(o);
 }
 
 // PatchShape::disk is a function of the radius: a copy is the shape it would
@@ -130,11 +99,6 @@ void PatchSelection::clearFlatFilter(int k) {
 void PatchSelection::beginStep(long step) {
   step_ = step;
   clearFlatFilter(int(step & 1));
-}
-
-void PatchSelection::beginIsland(int numSolverBodies) {
-  optionsById_.assign(std::size_t(numSolverBodies), nullptr);
-  optionsKnown_.assign(std::size_t(numSolverBodies), 0);
 }
 
 void PatchSelection::clearWrittenImpulses(btPersistentManifold* m) {

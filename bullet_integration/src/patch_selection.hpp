@@ -4,6 +4,7 @@
 // Candidates out; the rest of the solver never looks at a manifold's points.
 #pragma once
 
+#include "patch_opt_ins.hpp"
 #include "solver_data.hpp"
 
 #include <BulletCollision/BroadphaseCollision/btBroadphaseProxy.h>
@@ -16,16 +17,13 @@ class PatchSelection {
  public:
   PatchSelection();
 
-  // Options (PatchFrictionSolver's enable/disable).
-  void setOptions(const btCollisionObject* body, const PatchOptions& options);
-  void eraseOptions(const btCollisionObject* body);
-  const PatchOptions* optionsOf(const btCollisionObject* o) const;
-  bool anyOptedIn() const { return !options_.empty(); }
+  // Options (PatchFrictionSolver's enable/disable), kept in the bodies
+  // (patch_opt_ins.hpp).
+  PatchOptIns& optIns() { return optIns_; }
+  const PatchOptIns& optIns() const { return optIns_; }
 
-  // Start of step `step` (after the last one's end): `numSolverBodies` solver
-  // bodies are numbered for this island (companion ids).
+  // Start of step `step` (after the last one's end).
   void beginStep(long step);
-  void beginIsland(int numSolverBodies);
   // The manifold becomes a patch (a Candidate appended to `out`) or is left
   // to Bullet (false). `dt` [s] is the step.
   // (Inline: the pile's many empty manifolds, which had no patch in the last
@@ -65,7 +63,6 @@ class PatchSelection {
     return type == STATIC_PLANE_PROXYTYPE || type == BOX_SHAPE_PROXYTYPE ||
            type == CYLINDER_SHAPE_PROXYTYPE;
   }
-  const PatchOptions* cachedOptionsOf(const btCollisionObject* o);
   const PatchOptions* dynamicOptions(const btCollisionObject* o);
   PatchShape shapeOf(const internal::PatchOutline& outline);
   // the flat filter: the manifolds that had a patch in a step, as bits by
@@ -89,7 +86,7 @@ class PatchSelection {
   }
   void clearFlatFilter(int k);
 
-  std::unordered_map<const btCollisionObject*, PatchOptions> options_;
+  PatchOptIns optIns_;
   std::unordered_map<const btPersistentManifold*, PatchState> states_;
   long step_ = 0;
   std::vector<std::uint64_t> flatFilter_[2];
@@ -101,17 +98,6 @@ class PatchSelection {
   std::vector<std::pair<double, PatchShape>> diskShapes_;
   std::size_t diskShapeNext_ = 0;
   long shapeCount_ = 0;
-  // options by solver body id for this island, and by world array index
-  // across steps (the hash map is asked only when an entry is stale)
-  std::vector<const PatchOptions*> optionsById_;
-  std::vector<char> optionsKnown_;
-  struct OptionsEntry {
-    const btCollisionObject* object = nullptr;
-    const PatchOptions* options = nullptr;
-    long version = -1;
-  };
-  std::vector<OptionsEntry> optionsByIndex_;
-  long optionsVersion_ = 0;
 };
 
 }  // namespace patchspin::bullet::internal

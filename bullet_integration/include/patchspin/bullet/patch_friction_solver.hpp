@@ -43,6 +43,22 @@
 
 namespace patchspin::bullet {
 
+// The largest PatchOptions::flatnessTolerance [rad], pi/8: a patch ends at
+// twice the tolerance (hysteresis), which then stays within the 45 degrees
+// beyond which the selection never takes a face for the contact's anyway,
+// and a box landing on an edge (both faces 45 degrees from the support) is
+// never snapped flat (BadInput.FlatnessToleranceAbovePiOver8IsRefused).
+inline constexpr double kMaxFlatnessTolerance = 0.39269908169872415;
+// PatchOptions::rho [m] outside [kMinRho, kMaxRho] can never make a patch:
+// the friction block takes a lever max|r| / rho in [1e-5, 1e5] only, where
+// max|r| (the patch's farthest point from O) is below 1e6 m, as Bullet takes
+// a moving body out of the simulation when its bounding box's diagonal
+// reaches 1e6 m (btCollisionWorld::updateSingleAabb), and at least
+// sqrt(4.9e-324 / pi) = 1.25e-162 m, for the patch's area (at most
+// pi max|r|^2) to be a positive double (BadInput.RhoThatCanNeverMakeAPatchIsRefused).
+inline constexpr double kMinRho = 1.25e-167;
+inline constexpr double kMaxRho = 1e11;
+
 // Per-body options of the patch friction law.
 struct PatchOptions {
   PatchOptions() = default;
@@ -51,6 +67,7 @@ struct PatchOptions {
                std::optional<double> rho_ = std::nullopt, double flatnessTolerance_ = 0.02)
       : model(model_), mu(mu_), rho(rho_), flatnessTolerance(flatnessTolerance_) {}
 
+  // Model::Ellipsoidal or Model::Exact (any other value: Error).
   Model model = Model::Ellipsoidal;
   // Friction coefficient [-]; default: Bullet's combined friction of the pair.
   std::optional<double> mu;
@@ -58,11 +75,12 @@ struct PatchOptions {
   // Eq. (11) about O (mean distance of the patch from O). The friction block
   // accepts a lever max|r| / rho in [1e-5, 1e5] only (friction_block.hpp): a patch
   // whose rho is set beyond that from its size goes to Bullet's point
-  // contacts, counted in stats().blockErrors.
+  // contacts, counted in stats().blockErrors. Outside [kMinRho, kMaxRho]
+  // no patch can ever have such a lever: Error.
   std::optional<double> rho;
   // Faces count as parallel (a flat patch) once the angle between them falls
   // below this [rad]; they stay a patch until it exceeds twice this
-  // (hysteresis).
+  // (hysteresis). In (0, kMaxFlatnessTolerance].
   double flatnessTolerance = 0.02;
 };
 
@@ -171,32 +189,59 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   PatchFrictionSolver& operator=(const PatchFrictionSolver&) = delete;
 
   // Opts `body` in (or replaces its options). Throws Error for a null body,
-  // mu < 0, rho <= 0 or a non-positive/non-finite flatness tolerance.
+  // a model outside the enum, mu < 0 or not finite, rho outside [kMinRho,
+  // kMaxRho] or a flatness tolerance outside (0, kMaxFlatnessTolerance].
   // Only dynamic bodies (inverse mass > 0) get patches; a static or
   // kinematic body opted in is ignored (what stands on it decides), and so is
   // a body with negative mass, which Bullet accepts: it keeps stock Bullet's
   // friction. Where two opted-in bodies touch, the patch is the upper one's
-  // (the normal enters it against its gravity). The options are kept under the
-  // body's address until disablePatchFriction: call it before deleting an
-  // opted-in body (as for a btTypedConstraint on it), or a new body that
-  // happens to get the same address inherits them. Removing a body from the
-  // world without deleting it keeps its options for when it comes back.
+  // (the normal enters it against its gravity).
+  //
+  // Lifetime: the opt-in is kept in the body itself, in
+  // btRigidBody::m_frictionSolverType (a field Bullet zeroes in the body's
+  // constructor and never reads; do not write it yourself), as a code naming
+  // this solver and its copy of the options. So it lasts exactly as long as
+  // the body object, until disablePatchFriction:
+  //  * deleting an opted-in body needs no disablePatchFriction; nothing of
+  //    it stays in the solver, and a new body, at any address (the deleted
+  //    one's included), is not opted in until enabled;
+  //  * removing a body from the world and adding it again (to this world or
+  //    another one stepped by this solver) keeps its options;
+  //  * a body opted in by another PatchFrictionSolver is not opted in for
+  //    this one (disablePatchFriction leaves it alone);
+  //  * the solver keeps one copy of each distinct PatchOptions value it was
+  //    given (not one per body): a spawn/despawn loop with the same options
+  //    does not grow it. More than 2^20 - 1 distinct values: Error.
+  // (BodyLifetime.*)
   void enablePatchFriction(btRigidBody* body, const PatchOptions& options = PatchOptions());
+  // Opts `body` out (null, or a body not opted in by this solver: no-op).
   void disablePatchFriction(btRigidBody* body);
+  // `body` must be alive (it is read).
   bool isPatchFrictionEnabled(const btCollisionObject* body) const;
 
   void setSettings(const PatchSolverSettings& settings);
   const PatchSolverSettings& settings() const;
   const PatchSolverStats& stats() const;
 
-  // Patches that were active in the last step (all islands). The reports
-  // are filled from the solver's record of the step at the first call after
-  // it (a step that nobody asks about does not pay for them), so a
-  // reference or pointer kept from an earlier call shows the reports as of
-  // the last call. Between steps only (not from inside a solve).
+  // Patches that were active in the last step (all islands). Between steps
+  // only (not from inside a solve).
+  //
+  // Lifetime: the reports are filled in place from the solver's record of a
+  // step at the first call (to either function) after it, so a step that
+  // nobody asks about does not pay for them. The reference and the pointer
+  // returned are valid from that call until the world's next step (or the
+  // solver's destruction), and must not be used after it: the first call
+  // after that step refills the same storage, where a kept pointer then
+  // dangles if the number of patches grew, or shows another body's report.
+  // To keep a report across steps, keep a copy (patchReportOf).
+  // (PatchReports.*)
   const std::vector<PatchReport>& patchReports() const;
-  // The report of the patch under `body` in the last step, or null.
+  // The report of the patch under `body` in the last step, or null; valid
+  // until the next step, as above.
   const PatchReport* findPatchReport(const btCollisionObject* body) const;
+  // The same report by value (a copy, its own for as long as it is kept),
+  // or none.
+  std::optional<PatchReport> patchReportOf(const btCollisionObject* body) const;
 
   // btConstraintSolver hooks called once per world step.
   void prepareSolve(int numBodies, int numManifolds) override;
