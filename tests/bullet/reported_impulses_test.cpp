@@ -115,7 +115,10 @@ TEST(ReportedImpulses, SlidingBoxsLateralImpulsesSumToCoulombFriction) {
     const PointSums s = pointSums(scene, b, r->origin);
     const double coulomb = mu * mass * kG * kDt;
     EXPECT_NEAR(s.lateral.length(), coulomb, 1e-3 * coulomb);  // the exact law: mu Pz
-    EXPECT_NEAR(s.lateral.length(), mu * s.normal, kSumRelTol * coulomb);
+    // mu Pz for a pure slide; the box picks up a spin ~1e-9 of its slide (the
+    // pressure is not centred while it decelerates), which lowers the force
+    // by that order (double: 1.3e-9 relative), far below 1e-6
+    EXPECT_NEAR(s.lateral.length(), mu * s.normal, 1e-6 * coulomb);
     const btVector3 dp = btScalar(mass) * (b->getLinearVelocity() - v0);
     const btVector3 dpLateral(dp.x(), dp.y(), 0);
     EXPECT_NEAR((s.lateral - dpLateral).length(), 0.0, kNewtonRelTol * coulomb);
