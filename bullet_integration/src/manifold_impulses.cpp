@@ -4,24 +4,24 @@
 #include <patchspin/parts/point_impulses.hpp>
 
 #include <algorithm>
-#include <vector>
+#include <array>
 
 namespace patchspin::bullet::internal {
 
 bool writeManifoldImpulses(const PatchConstraint& pc, btPersistentManifold& m) {
-  const int count = std::min(m.getNumContacts(), int(parts::kMaxPoints));
+  const int count = std::min(m.getNumContacts(), parts::kMaxPoints);
   if (count == 0) return false;
   const PatchState& st = *pc.state;
   const Vec3 O = toEigen(st.geometry.origin);
   const Vec3 ex = pc.F.col(0), ey = pc.F.col(1);
-  std::vector<Vec2> points(static_cast<std::size_t>(count));
+  std::array<Vec2, parts::kMaxPoints> points;
   for (int k = 0; k < count; ++k) {
     const btManifoldPoint& p = m.getContactPoint(k);
     const Vec3 mid = 0.5 * (toEigen(p.m_positionWorldOnA) + toEigen(p.m_positionWorldOnB)) - O;
     points[std::size_t(k)] = Vec2(mid.dot(ex), mid.dot(ey));
   }
   const parts::PointImpulses spread =
-      parts::spreadPatchImpulse(points, pc.lamN, pc.lamF, pc.fb.rho);
+      parts::spreadPatchImpulse(points.data(), count, pc.lamN, pc.lamF, pc.fb.rho);
   // Bullet's impulses act on body 0: the friction on A, or its reaction when
   // A is body 1; the normal impulse is a compression either way
   const double side = m.getBody0() == st.body ? 1.0 : -1.0;

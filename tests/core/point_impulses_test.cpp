@@ -27,10 +27,11 @@ struct Sums {
 Sums sums(const std::vector<Vec2>& r, const PointImpulses& s) {
   Sums out;
   for (std::size_t i = 0; i < r.size(); ++i) {
-    out.P += s.normal[i];
-    out.moment += s.normal[i] * Vec2(r[i].y(), -r[i].x());
-    out.force += s.tangent[i];
-    out.twist += r[i].x() * s.tangent[i].y() - r[i].y() * s.tangent[i].x();
+    out.P += s.normal[std::size_t(i)];
+    out.moment += s.normal[std::size_t(i)] * Vec2(r[i].y(), -r[i].x());
+    out.force += s.tangent[std::size_t(i)];
+    out.twist +=
+        r[i].x() * s.tangent[std::size_t(i)].y() - r[i].y() * s.tangent[std::size_t(i)].x();
   }
   return out;
 }
@@ -42,14 +43,15 @@ std::vector<Vec2> square(double h) {
 TEST(PointImpulses, SquareUnderCentralLoadAndPureTwistMatchesClosedForm) {
   const double h = 0.05, P = 2.0, M = 0.03, rho = 0.04;
   const auto r = square(h);
-  const PointImpulses s = spreadPatchImpulse(r, Vec3(P, 0, 0), Vec3(0, 0, M / rho), rho);
+  const PointImpulses s =
+      spreadPatchImpulse(r.data(), int(r.size()), Vec3(P, 0, 0), Vec3(0, 0, M / rho), rho);
   EXPECT_TRUE(s.momentMatched);
   EXPECT_TRUE(s.twistMatched);
   for (std::size_t i = 0; i < 4; ++i) {
-    EXPECT_NEAR(s.normal[i], P / 4, kSumTol);
+    EXPECT_NEAR(s.normal[std::size_t(i)], P / 4, kSumTol);
     // each corner carries a quarter of the twist at lever h sqrt(2), across its radius
     const Vec2 expected = M / (4 * 2 * h * h) * Vec2(-r[i].y(), r[i].x());
-    EXPECT_NEAR((s.tangent[i] - expected).norm(), 0.0, kSumTol);
+    EXPECT_NEAR((s.tangent[std::size_t(i)] - expected).norm(), 0.0, kSumTol);
   }
 }
 
@@ -74,7 +76,7 @@ TEST(PointImpulses, ReachableWrenchIsMetExactlyWithTheLeastNorm) {
     const double P = 1.0 + std::abs(u(rng)), rho = 0.03;
     const Vec3 lamN(P, P * c.y(), -P * c.x());
     const Vec3 lamF(0.3 * u(rng), 0.3 * u(rng), 0.2 * u(rng));
-    const PointImpulses s = spreadPatchImpulse(r, lamN, lamF, rho);
+    const PointImpulses s = spreadPatchImpulse(r.data(), int(r.size()), lamN, lamF, rho);
     ASSERT_TRUE(s.momentMatched);
     const Sums got = sums(r, s);
     EXPECT_NEAR(got.P, P, kSumTol);
@@ -96,7 +98,7 @@ TEST(PointImpulses, ReachableWrenchIsMetExactlyWithTheLeastNorm) {
       double norm = 0.0;
       bool feasible = true;
       for (std::size_t i = 0; i < n; ++i) {
-        const double p = s.normal[i] + d[Eigen::Index(i)];
+        const double p = s.normal[std::size_t(i)] + d[Eigen::Index(i)];
         feasible = feasible && p >= 0.0;
         norm += p * p;
       }
@@ -119,8 +121,8 @@ TEST(PointImpulses, UnreachableMomentGoesToTheNearestHullPoint) {
     for (auto& p : r) p = 0.05 * Vec2(u(rng), u(rng));
     const Vec2 c = 0.2 * Vec2(u(rng), u(rng)).normalized();  // beyond every point
     const double P = 1.5;
-    const PointImpulses s =
-        spreadPatchImpulse(r, Vec3(P, P * c.y(), -P * c.x()), Vec3::Zero(), 0.03);
+    const PointImpulses s = spreadPatchImpulse(r.data(), int(r.size()),
+                                               Vec3(P, P * c.y(), -P * c.x()), Vec3::Zero(), 0.03);
     EXPECT_FALSE(s.momentMatched);
     const Sums got = sums(r, s);
     EXPECT_NEAR(got.P, P, kSumTol);
@@ -143,22 +145,22 @@ TEST(PointImpulses, TwistOnOneLoadedPointKeepsTheForceExact) {
   const auto r = square(0.05);
   const Vec2 corner = r[0];
   const double P = 1.0, rho = 0.03;
-  const PointImpulses s =
-      spreadPatchImpulse(r, Vec3(P, P * corner.y(), -P * corner.x()), Vec3(0.2, -0.1, 0.5), rho);
+  const PointImpulses s = spreadPatchImpulse(
+      r.data(), int(r.size()), Vec3(P, P * corner.y(), -P * corner.x()), Vec3(0.2, -0.1, 0.5), rho);
   EXPECT_TRUE(s.momentMatched);
   EXPECT_FALSE(s.twistMatched);
   const Sums got = sums(r, s);
   EXPECT_NEAR((got.force - Vec2(0.2, -0.1)).norm(), 0.0, kSumTol);
   for (std::size_t i = 1; i < 4; ++i) {
-    EXPECT_NEAR(s.normal[i], 0.0, kSumTol);
-    EXPECT_NEAR(s.tangent[i].norm(), 0.0, kSumTol);
+    EXPECT_NEAR(s.normal[std::size_t(i)], 0.0, kSumTol);
+    EXPECT_NEAR(s.tangent[std::size_t(i)].norm(), 0.0, kSumTol);
   }
 }
 
 TEST(PointImpulses, RefusesNoPointsAndTooMany) {
-  EXPECT_THROW(spreadPatchImpulse({}, Vec3(1, 0, 0), Vec3::Zero(), 0.1), Error);
-  EXPECT_THROW(spreadPatchImpulse(std::vector<Vec2>(kMaxPoints + 1, Vec2::Zero()), Vec3(1, 0, 0),
-                                  Vec3::Zero(), 0.1),
+  const std::vector<Vec2> many(kMaxPoints + 1, Vec2::Zero());
+  EXPECT_THROW(spreadPatchImpulse(many.data(), 0, Vec3(1, 0, 0), Vec3::Zero(), 0.1), Error);
+  EXPECT_THROW(spreadPatchImpulse(many.data(), kMaxPoints + 1, Vec3(1, 0, 0), Vec3::Zero(), 0.1),
                Error);
 }
 

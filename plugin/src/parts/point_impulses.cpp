@@ -19,22 +19,25 @@ constexpr double kRelTol = 1e-12;
 // digits is met; a twist out of reach misses by its own size).
 constexpr double kTangentRelTol = 1e-9;
 
-// The point of segment [a, b] nearest to c.
-Vec2 nearestOnSegment(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const Vec2 e = b - a;
-  const double len2 = e.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((c - a).dot(e) / len2, 0.0, 1.0) : 0.0;
-  return a + t * e;
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
 }
 
-// The point of the convex hull of `points` nearest to c, for c outside it:
+// The point of segment [a, b] nearest to c, as a + t (b - a).
+double segmentParameter(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 e = b - a;
+  const double len2 = e.squaredNorm();
+  return len2 > 0.0 ? std::clamp((c - a).dot(e) / len2, 0.0, 1.0) : 0.0;
+}
+
+// The point of the convex hull of the points nearest to c, for c outside it:
 // it lies on a hull edge, and every pair's segment lies in the hull.
-Vec2 nearestHullPoint(const std::vector<Vec2>& points, const Vec2& c) {
-  Vec2 best = points[0];
+Vec2 nearestHullPoint(const Vec2* r, int n, const Vec2& c) {
+  Vec2 best = r[0];
   double bestDist = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (std::size_t j = i; j < points.size(); ++j) {
-      const Vec2 q = nearestOnSegment(points[i], points[j], c);
+  for (int i = 0; i < n; ++i)
+    for (int j = i; j < n; ++j) {
+      const Vec2 q = r[i] + segmentParameter(r[i], r[j], c) * (r[j] - r[i]);
       const double d = (q - c).squaredNorm();
       if (d < bestDist) bestDist = d, best = q;
     }
@@ -42,61 +45,126 @@ Vec2 nearestHullPoint(const std::vector<Vec2>& points, const Vec2& c) {
 }
 
 // The least-norm p >= 0 with sum p_i = P and sum p_i r_i = P c, or false if
-// there is none. Enumerates the supports: the optimum's restriction to its
-// support is that support's least-norm solution, which is then >= 0, so the
-// least-norm nonnegative candidate over all supports is the optimum.
-bool spreadNormal(const std::vector<Vec2>& points, double P, const Vec2& c, double scale,
-                  std::vector<double>& p) {
-  const std::size_t n = points.size();
-  const Eigen::Vector3d b(P, P * c.x(), P * c.y());
+// c is not in the points' hull (to within tol [m]). The optimum restricted
+// to its support is that support's least-norm solution, so it is the
+// least-norm nonnegative candidate among: all points (p = A^T (A A^T)^-1 b,
+// when A A^T is regular), every triangle (c's barycentric coordinates),
+// every segment through c, every point at c. With at most four points these
+// are all the supports.
+// (Solved in coordinates about the points' centroid, in units of their
+// spread: the conditions are affine invariant, and A A^T is then well
+// conditioned.)
+bool spreadNormal(const Vec2* points, int n, double P, const Vec2& cIn, double tolIn, double* p) {
+  Vec2 m = Vec2::Zero();
+  for (int i = 0; i < n; ++i) m += points[i];
+  m /= double(n);
+  double L = 0.0;
+  for (int i = 0; i < n; ++i) L = std::max(L, (points[i] - m).norm());
+  if (!(L > 0.0)) L = 1.0;  // all points at one place
+  Vec2 r[kMaxPoints];
+  for (int i = 0; i < n; ++i) r[i] = (points[i] - m) / L;
+  const Vec2 c = (cIn - m) / L;
+  const double tol = tolIn / L;
+  double best[kMaxPoints];
   double bestNorm = std::numeric_limits<double>::infinity();
-  for (unsigned mask = 1; mask < (1u << n); ++mask) {
-    std::vector<std::size_t> support;
-    for (std::size_t i = 0; i < n; ++i)
-      if (mask & (1u << i)) support.push_back(i);
-    Eigen::MatrixXd A(3, Eigen::Index(support.size()));
-    for (std::size_t k = 0; k < support.size(); ++k)
-      A.col(Eigen::Index(k)) << 1.0, points[support[k]].x(), points[support[k]].y();
-    const Eigen::VectorXd x = A.completeOrthogonalDecomposition().solve(b);
-    if ((A * x - b).norm() > kRelTol * scale || x.minCoeff() < -kRelTol * P) continue;
-    if (x.squaredNorm() < bestNorm) {
-      bestNorm = x.squaredNorm();
-      p.assign(n, 0.0);
-      for (std::size_t k = 0; k < support.size(); ++k)
-        p[support[k]] = std::max(0.0, x[Eigen::Index(k)]);
+  auto offer = [&](const double* q) {
+    double norm = 0.0;
+    for (int i = 0; i < n; ++i) norm += q[i] * q[i];
+    if (norm < bestNorm) {
+      bestNorm = norm;
+      std::copy(q, q + n, best);
+    }
+  };
+  if (n >= 3) {
+    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d a(1.0, r[i].x(), r[i].y());
+      G += a * a.transpose();
+    }
+    bool invertible = false;
+    Eigen::Matrix3d Ginv;
+    G.computeInverseWithCheck(Ginv, invertible, 1e-12 * G.norm() * G.norm() * G.norm());
+    if (invertible) {
+      // nu = G^-1 b, with one step of iterative refinement (near-collinear
+      // points make G ill-conditioned; the step restores the sums to round-off)
+      const Eigen::Vector3d b(P, P * c.x(), P * c.y());
+      Eigen::Vector3d nu = Ginv * b;
+      double q[kMaxPoints];
+      for (int pass = 0; pass < 2; ++pass) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (int i = 0; i < n; ++i) {
+          q[i] = nu[0] + nu[1] * r[i].x() + nu[2] * r[i].y();
+          sum += q[i] * Eigen::Vector3d(1.0, r[i].x(), r[i].y());
+        }
+        if (pass == 0) nu += Ginv * (b - sum);
+      }
+      bool nonnegative = true;
+      for (int i = 0; i < n; ++i) nonnegative = nonnegative && q[i] >= -kRelTol * P;
+      if (nonnegative) {
+        for (int i = 0; i < n; ++i) p[i] = std::max(0.0, q[i]);
+        return true;  // the unconstrained optimum is feasible
+      }
     }
   }
-  return std::isfinite(bestNorm);
+  double q[kMaxPoints];
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      for (int k = j + 1; k < n; ++k) {
+        const double area = cross(r[j] - r[i], r[k] - r[i]);
+        if (!(std::abs(area) > 0.0)) continue;
+        const double bi = cross(r[j] - c, r[k] - c) / area, bj = cross(r[k] - c, r[i] - c) / area;
+        const double bk = 1.0 - bi - bj;
+        if (std::min({bi, bj, bk}) < -kRelTol) continue;
+        std::fill(q, q + n, 0.0);
+        q[i] = P * std::max(0.0, bi), q[j] = P * std::max(0.0, bj), q[k] = P * std::max(0.0, bk);
+        offer(q);
+      }
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      const double t = segmentParameter(r[i], r[j], c);
+      if ((r[i] + t * (r[j] - r[i]) - c).norm() > tol) continue;
+      std::fill(q, q + n, 0.0);
+      q[i] = P * (1.0 - t), q[j] = P * t;
+      offer(q);
+    }
+  for (int i = 0; i < n; ++i) {
+    if ((r[i] - c).norm() > tol) continue;
+    std::fill(q, q + n, 0.0);
+    q[i] = P;
+    offer(q);
+  }
+  if (!std::isfinite(bestNorm)) return false;
+  std::copy(best, best + n, p);
+  return true;
 }
 
 }  // namespace
 
-PointImpulses spreadPatchImpulse(const std::vector<Vec2>& points, const Vec3& lamN,
-                                 const Vec3& lamF, double rho) {
-  if (points.empty() || points.size() > kMaxPoints)
+PointImpulses spreadPatchImpulse(const Vec2* points, int n, const Vec3& lamN, const Vec3& lamF,
+                                 double rho) {
+  if (n < 1 || n > kMaxPoints)
     throw Error("spreadPatchImpulse: needs 1 to " + std::to_string(kMaxPoints) + " points, got " +
-                std::to_string(points.size()));
-  const std::size_t n = points.size();
+                std::to_string(n));
   double extent = 0.0;  // size of the points' coordinates [m]
-  for (const Vec2& r : points) extent = std::max(extent, r.norm());
+  for (int i = 0; i < n; ++i) extent = std::max(extent, points[i].norm());
   PointImpulses out;
-  out.normal.assign(n, 0.0);
-  out.tangent.assign(n, Vec2::Zero());
+  out.count = n;
   // normal: centre of pressure (Ty / Pz, -Tx / Pz) = (-lamN2 / lamN0, lamN1 / lamN0)  (S5)
   const double P = lamN[0];
   if (P > 0.0) {
     const Vec2 c(-lamN[2] / P, lamN[1] / P);
-    const double scale = P * (1.0 + extent + c.norm());
-    out.momentMatched = spreadNormal(points, P, c, scale, out.normal);
-    if (!out.momentMatched) spreadNormal(points, P, nearestHullPoint(points, c), scale, out.normal);
+    const double tol = kRelTol * (extent + c.norm() + 1e-300);  // [m]
+    out.momentMatched = spreadNormal(points, n, P, c, tol, out.normal.data());
+    if (!out.momentMatched)
+      spreadNormal(points, n, P, nearestHullPoint(points, n, c), tol, out.normal.data());
   } else {
     out.momentMatched = lamN[1] == 0.0 && lamN[2] == 0.0;
   }
   // tangential: t_i = w_i (a + b perp(r_i)), w_i = p_i (1 without a load)
-  std::vector<double> w(out.normal);
-  if (!(P > 0.0)) w.assign(n, 1.0);
+  double w[kMaxPoints];
+  for (int i = 0; i < n; ++i) w[i] = P > 0.0 ? out.normal[std::size_t(i)] : 1.0;
   double W = 0.0, Sx = 0.0, Sy = 0.0, Srr = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (int i = 0; i < n; ++i) {
     W += w[i];
     Sx += w[i] * points[i].x();
     Sy += w[i] * points[i].y();
@@ -104,26 +172,35 @@ PointImpulses spreadPatchImpulse(const std::vector<Vec2>& points, const Vec3& la
   }
   const Vec2 f(lamF[0], lamF[1]);
   const double M = rho * lamF[2];  // twisting couple about n (S1)
-  Eigen::Matrix3d K;
-  K << W, 0.0, -Sy, 0.0, W, Sx, -Sy, Sx, Srr;
-  const Eigen::Vector3d abc =
-      K.completeOrthogonalDecomposition().solve(Eigen::Vector3d(f.x(), f.y(), M));
   auto spread = [&](const Vec2& a, double b) {
-    for (std::size_t i = 0; i < n; ++i)
-      out.tangent[i] = w[i] * (a + b * Vec2(-points[i].y(), points[i].x()));
+    for (int i = 0; i < n; ++i)
+      out.tangent[std::size_t(i)] = w[i] * (a + b * Vec2(-points[i].y(), points[i].x()));
   };
-  spread(Vec2(abc[0], abc[1]), abc[2]);
-  Vec2 sumT = Vec2::Zero();
-  double twist = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    sumT += out.tangent[i];
-    twist += points[i].x() * out.tangent[i].y() - points[i].y() * out.tangent[i].x();
+  // [W 0 -Sy; 0 W Sx; -Sy Sx Srr] (a, b) = (f, M): with the weighted centre
+  // s = (Sx, Sy) / W, b = (M - s x f) / (Srr - W |s|^2), a = f / W - b perp(s)
+  const Vec2 s = Vec2(Sx, Sy) / W;
+  const double spreadMoment = Srr - W * s.squaredNorm();  // sum w |r - s|^2
+  if (spreadMoment > 1e-12 * Srr) {
+    const double b = (M - cross(s, f)) / spreadMoment;
+    spread(f / W - b * Vec2(-s.y(), s.x()), b);
+    Vec2 sumT = Vec2::Zero();
+    double twist = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const Vec2& t = out.tangent[std::size_t(i)];
+      sumT += t;
+      twist += cross(points[i], t);
+    }
+    const double forceScale = f.norm() + std::abs(M) / std::max(extent, 1e-300);
+    const double twistScale = std::abs(M) + extent * f.norm();
+    out.twistMatched = (sumT - f).norm() <= kTangentRelTol * forceScale &&
+                       std::abs(twist - M) <= kTangentRelTol * twistScale;
+    if (!out.twistMatched) spread(f / W, 0.0);  // out of reach: the force exactly
+  } else {
+    // the load on one point (or all at its centre): the twist is s x f
+    spread(f / W, 0.0);
+    out.twistMatched =
+        std::abs(M - cross(s, f)) <= kTangentRelTol * (std::abs(M) + extent * f.norm());
   }
-  const double forceScale = f.norm() + std::abs(M) / std::max(extent, 1e-300);
-  const double twistScale = std::abs(M) + extent * f.norm();
-  out.twistMatched = (sumT - f).norm() <= kTangentRelTol * forceScale &&
-                     std::abs(twist - M) <= kTangentRelTol * twistScale;
-  if (!out.twistMatched) spread(f / W, 0.0);  // the twist is out of reach: the force exactly
   return out;
 }
 

@@ -18,27 +18,32 @@
 //                least sum |t_i|^2 / p_i (each point's share follows its
 //                load); a twist the loaded points cannot carry (all on one
 //                point) is met in least squares, the force still exactly.
+// Closed forms (no decomposition, no heap: every patch, every step).
 // Guarded by point_impulses_test (sums, moments, the least-norm property
 // against a brute-force search, the nearest hull point against sampling).
 #pragma once
 
 #include <patchspin/types.hpp>
 
-#include <vector>
+#include <array>
 
 namespace patchspin::parts {
 
+// At most this many points (Bullet's manifolds keep four: MANIFOLD_CACHE_SIZE).
+constexpr int kMaxPoints = 4;
+
 struct PointImpulses {
-  std::vector<double> normal;  // p_i [N s]
-  std::vector<Vec2> tangent;   // t_i in the patch frame [N s]
-  bool momentMatched = false;  // the normal impulses carry the tipping couple exactly
-  bool twistMatched = false;   // the tangential impulses carry the twist exactly
+  int count = 0;
+  std::array<double, kMaxPoints> normal{};  // p_i [N s]
+  std::array<Vec2, kMaxPoints> tangent;     // t_i in the patch frame [N s]
+  bool momentMatched = false;               // the normal impulses carry the tipping couple exactly
+  bool twistMatched = false;                // the tangential impulses carry the twist exactly
 };
 
-// `points`: r_i in the patch frame [m] (at most kMaxPoints, at least one);
-// lamN, lamF: the patch's accumulated impulses; rho [m].
-constexpr std::size_t kMaxPoints = 8;
-PointImpulses spreadPatchImpulse(const std::vector<Vec2>& points, const Vec3& lamN,
-                                 const Vec3& lamF, double rho);
+// `points`: r_0 .. r_(count-1) in the patch frame [m], 1 <= count <=
+// kMaxPoints (else Error); lamN, lamF: the patch's accumulated impulses; rho
+// [m]. No heap allocation (called for every patch in every step).
+PointImpulses spreadPatchImpulse(const Vec2* points, int count, const Vec3& lamN, const Vec3& lamF,
+                                 double rho);
 
 }  // namespace patchspin::parts
