@@ -47,24 +47,13 @@ Vec2 nearestHullPoint(const Vec2* r, int n, const Vec2& c) {
 // The least-norm p >= 0 with sum p_i = P and sum p_i r_i = P c, or false if
 // c is not in the points' hull (to within tol [m]). The optimum restricted
 // to its support is that support's least-norm solution, so it is the
-// least-norm nonnegative candidate among: all points (p = A^T (A A^T)^-1 b,
-// when A A^T is regular), every triangle (c's barycentric coordinates),
-// every segment through c, every point at c. With at most four points these
-// are all the supports.
-// (Solved in coordinates about the points' centroid, in units of their
-// spread: the conditions are affine invariant, and A A^T is then well
-// conditioned.)
-bool spreadNormal(const Vec2* points, int n, double P, const Vec2& cIn, double tolIn, double* p) {
-  Vec2 m = Vec2::Zero();
-  for (int i = 0; i < n; ++i) m += points[i];
-  m /= double(n);
-  double L = 0.0;
-  for (int i = 0; i < n; ++i) L = std::max(L, (points[i] - m).norm());
-  if (!(L > 0.0)) L = 1.0;  // all points at one place
-  Vec2 r[kMaxPoints];
-  for (int i = 0; i < n; ++i) r[i] = (points[i] - m) / L;
-  const Vec2 c = (cIn - m) / L;
-  const double tol = tolIn / L;
+// least-norm nonnegative candidate among: all points, every triangle (c's
+// barycentric coordinates), every segment through c, every point at c.
+// With at most four points these are all the supports. Over all points, in
+// coordinates about their centroid m, A A^T = diag(n, S) with S the 2x2
+// second moment: p_i = P / n + (r_i - m) . S^-1 P (c - m), exact when S is
+// regular (not all points on one line).
+bool spreadNormal(const Vec2* r, int n, double P, const Vec2& c, double tol, double* p) {
   double best[kMaxPoints];
   double bestNorm = std::numeric_limits<double>::infinity();
   auto offer = [&](const double* q) {
@@ -76,32 +65,26 @@ bool spreadNormal(const Vec2* points, int n, double P, const Vec2& cIn, double t
     }
   };
   if (n >= 3) {
-    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+    Vec2 m = Vec2::Zero();
+    for (int i = 0; i < n; ++i) m += r[i];
+    m /= double(n);
+    double sxx = 0.0, sxy = 0.0, syy = 0.0;
     for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3d a(1.0, r[i].x(), r[i].y());
-      G += a * a.transpose();
+      const Vec2 d = r[i] - m;
+      sxx += d.x() * d.x(), sxy += d.x() * d.y(), syy += d.y() * d.y();
     }
-    bool invertible = false;
-    Eigen::Matrix3d Ginv;
-    G.computeInverseWithCheck(Ginv, invertible, 1e-12 * G.norm() * G.norm() * G.norm());
-    if (invertible) {
-      // nu = G^-1 b, with one step of iterative refinement (near-collinear
-      // points make G ill-conditioned; the step restores the sums to round-off)
-      const Eigen::Vector3d b(P, P * c.x(), P * c.y());
-      Eigen::Vector3d nu = Ginv * b;
+    const double det = sxx * syy - sxy * sxy;
+    if (det > 1e-8 * (sxx + syy) * (sxx + syy)) {
+      const Vec2 e = P * (c - m);
+      const Vec2 nu((syy * e.x() - sxy * e.y()) / det, (sxx * e.y() - sxy * e.x()) / det);
       double q[kMaxPoints];
-      for (int pass = 0; pass < 2; ++pass) {
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-        for (int i = 0; i < n; ++i) {
-          q[i] = nu[0] + nu[1] * r[i].x() + nu[2] * r[i].y();
-          sum += q[i] * Eigen::Vector3d(1.0, r[i].x(), r[i].y());
-        }
-        if (pass == 0) nu += Ginv * (b - sum);
-      }
       bool nonnegative = true;
-      for (int i = 0; i < n; ++i) nonnegative = nonnegative && q[i] >= -kRelTol * P;
+      for (int i = 0; i < n; ++i) {
+        q[i] = P / double(n) + (r[i] - m).dot(nu);
+        nonnegative = nonnegative && q[i] >= 0.0;
+      }
       if (nonnegative) {
-        for (int i = 0; i < n; ++i) p[i] = std::max(0.0, q[i]);
+        std::copy(q, q + n, p);
         return true;  // the unconstrained optimum is feasible
       }
     }
@@ -145,8 +128,9 @@ PointImpulses spreadPatchImpulse(const Vec2* points, int n, const Vec3& lamN, co
   if (n < 1 || n > kMaxPoints)
     throw Error("spreadPatchImpulse: needs 1 to " + std::to_string(kMaxPoints) + " points, got " +
                 std::to_string(n));
-  double extent = 0.0;  // size of the points' coordinates [m]
-  for (int i = 0; i < n; ++i) extent = std::max(extent, points[i].norm());
+  double extent2 = 0.0;
+  for (int i = 0; i < n; ++i) extent2 = std::max(extent2, points[i].squaredNorm());
+  const double extent = std::sqrt(extent2);  // size of the points' coordinates [m]
   PointImpulses out;
   out.count = n;
   // normal: centre of pressure (Ty / Pz, -Tx / Pz) = (-lamN2 / lamN0, lamN1 / lamN0)  (S5)
