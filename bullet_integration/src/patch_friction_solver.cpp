@@ -224,6 +224,14 @@ const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject*
   return impl_->reports.find(body);
 }
 
+const NotPatchedCounts* PatchFrictionSolver::notPatchedOf(const btCollisionObject* body) const {
+  return impl_->selection.notPatchedOf(body);
+}
+
+void PatchFrictionSolver::setUnsupportedShapeCallback(UnsupportedShapeCallback callback) {
+  impl_->selection.setUnsupportedShapeCallback(std::move(callback));
+}
+
 std::optional<PatchReport> PatchFrictionSolver::patchReportOf(const btCollisionObject* body) const {
   const PatchReport* r = impl_->reports.find(body);
   return r ? std::optional<PatchReport>(*r) : std::nullopt;

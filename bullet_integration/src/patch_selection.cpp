@@ -96,8 +96,28 @@ void PatchSelection::clearFlatFilter(int k) {
   flatWords_[k].clear();
 }
 
+const NotPatchedCounts* PatchSelection::notPatchedOf(const btCollisionObject* body) const {
+  const auto it = notPatched_.find(body);
+  return it == notPatched_.end() ? nullptr : &it->second;
+}
+
+void PatchSelection::countNotPatched(const btCollisionObject* A, const btCollisionObject* B,
+                                     long NotPatchedCounts::*reason, PatchSolverStats& stats) {
+  ++(stats.notPatched.*reason);
+  ++(notPatched_[A].*reason);
+  if (reason != &NotPatchedCounts::unsupportedShape || !unsupported_) return;
+  const std::pair<int, int> types(A->getCollisionShape()->getShapeType(),
+                                  B->getCollisionShape()->getShapeType());
+  if (std::find(reportedShapePairs_.begin(), reportedShapePairs_.end(), types) !=
+      reportedShapePairs_.end())
+    return;
+  reportedShapePairs_.push_back(types);
+  unsupported_(A, B);
+}
+
 void PatchSelection::beginStep(long step) {
   step_ = step;
+  notPatched_.clear();
   clearFlatFilter(int(step & 1));
 }
 
@@ -218,6 +238,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   const bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_) &&
                          internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
   bool flat = false;
+  long NotPatchedCounts::*reason = haveFaces ? nullptr : &NotPatchedCounts::unsupportedShape;
   std::optional<internal::DetectedPatch> geo;
   bool kept = false;  // st.geometry is this step's patch (geo unset)
   if (haveFaces && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
@@ -228,6 +249,11 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     // last of the cheap tests: acos
     flat = cosA >= kFacingCos && cosB >= kFacingCos && step_ - st.tipStep > kTipCooldownSteps &&
            std::acos(c) < tol && contactOnFaces(*m, aIs0, faceA_, faceB_);
+    if (!flat)
+      reason = !(cosA >= kFacingCos && cosB >= kFacingCos) ? &NotPatchedCounts::sideContact
+               : !(step_ - st.tipStep > kTipCooldownSteps) ? &NotPatchedCounts::tipCooldown
+               : !(std::acos(c) < tol)                     ? &NotPatchedCounts::notFlat
+                                                           : &NotPatchedCounts::offFaces;
     // x axis fixed in the moving body: a box spinning on a plane keeps the
     // same outline, and its cached shape, in this frame
     if (flat) {
@@ -256,9 +282,13 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     }
   }
   st.flat = flat && (kept || geo.has_value());
+  if (flat && !st.flat) reason = &NotPatchedCounts::noOverlap;
   // without Bullet's contact, the faces themselves must touch
   if (st.flat && empty && !((kept ? st.geometry : *geo).clearance <= reach)) st.flat = false;
-  if (!st.flat) return false;
+  if (!st.flat) {
+    if (!empty && reason) countNotPatched(A, B, reason, stats);
+    return false;
+  }
   // Bullet's rows of this manifold are replaced: start them from zero if the
   // contact goes back to Bullet later (after a step that ended flat they are
   // zero already)
@@ -293,6 +323,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       st.flat = false;  // degenerate overlap: leave it to Bullet
       st.friction.reset();
       st.outline.reset();
+      if (!empty) countNotPatched(A, B, &NotPatchedCounts::lawRefused, stats);
       return false;
     }
   }
@@ -303,6 +334,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       st.flat = false;  // a coefficient the law cannot take (mu Pz overflows): Bullet's contact
       st.friction.reset();
       st.outline.reset();
+      if (!empty) countNotPatched(A, B, &NotPatchedCounts::lawRefused, stats);
       return false;
     }
   }

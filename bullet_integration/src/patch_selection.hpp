@@ -22,6 +22,13 @@ class PatchSelection {
   PatchOptIns& optIns() { return optIns_; }
   const PatchOptIns& optIns() const { return optIns_; }
 
+  // Contacts left to Bullet (PatchFrictionSolver::notPatchedOf and
+  // setUnsupportedShapeCallback).
+  const NotPatchedCounts* notPatchedOf(const btCollisionObject* body) const;
+  void setUnsupportedShapeCallback(UnsupportedShapeCallback callback) {
+    unsupported_ = std::move(callback);
+  }
+
   // Start of step `step` (after the last one's end).
   void beginStep(long step);
   // The manifold becomes a patch (a Candidate appended to `out`) or is left
@@ -50,6 +57,9 @@ class PatchSelection {
 
  private:
   void clearWrittenImpulses(btPersistentManifold* m);
+  // A contact of A (opted in) with B left to Bullet for `reason`.
+  void countNotPatched(const btCollisionObject* A, const btCollisionObject* B,
+                       long NotPatchedCounts::*reason, PatchSolverStats& stats);
   bool selectCandidate(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
                        std::vector<Candidate>& out);
   // An empty manifold between a dynamic body and a static or kinematic plane,
@@ -89,6 +99,9 @@ class PatchSelection {
   PatchOptIns optIns_;
   std::unordered_map<const btPersistentManifold*, PatchState> states_;
   long step_ = 0;
+  std::unordered_map<const btCollisionObject*, NotPatchedCounts> notPatched_;  // this step's
+  UnsupportedShapeCallback unsupported_;
+  std::vector<std::pair<int, int>> reportedShapePairs_;  // told to unsupported_ already
   std::vector<std::uint64_t> flatFilter_[2];
   std::vector<std::size_t> flatWords_[2];  // the words of flatFilter_[k] that are not zero
   // the two faces of the manifold in hand, kept for their vertex storage

@@ -37,6 +37,7 @@
 #include <BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -154,6 +155,24 @@ struct PatchSolverSettings {
   bool deferStickingRefresh = true;
 };
 
+// Contacts of opted-in bodies (manifolds with Bullet's points) that did not
+// become patches, by reason; they went to Bullet's point contacts.
+struct NotPatchedCounts {
+  long unsupportedShape = 0;  // a shape without flat faces: sphere, capsule, compound,
+                              // triangle mesh, heightfield (either body)
+  long sideContact = 0;       // the contact normal is more than 45 degrees off both faces
+                              // (a rim, an edge, a side)
+  long notFlat = 0;           // faces further apart than the flatness tolerance
+  long offFaces = 0;          // contact points off the faces' planes (rim to rim)
+  long tipCooldown = 0;       // within kTipCooldownSteps of the patch's tip
+  long noOverlap = 0;         // the faces' overlap is empty or degenerate
+  long lawRefused = 0;        // the friction law refused the overlap or mu
+  long total() const {
+    return unsupportedShape + sideContact + notFlat + offFaces + tipCooldown + noOverlap +
+           lawRefused;
+  }
+};
+
 // What the solver did in the last step (all islands), for profiling. The
 // friction block's counters (blockSolves, pressureRefreshes,
 // deferredRefreshes, quickSticks, blockErrors) are those of
@@ -179,7 +198,15 @@ struct PatchSolverStats : parts::FrictionPartCounters {
   // kept or found without Bullet's contact points): their PatchReport is
   // the only record of their force
   long patchesWithoutPoints = 0;
+  // contacts of opted-in bodies left to Bullet, by reason (notPatchedOf: per body)
+  NotPatchedCounts notPatched;
 };
+
+// Called once per pair of shape types (the opted-in body's, the other's)
+// for which a contact could not become a patch because a shape has no flat
+// faces (setUnsupportedShapeCallback).
+using UnsupportedShapeCallback =
+    std::function<void(const btCollisionObject* body, const btCollisionObject* other)>;
 
 class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
  public:
@@ -242,6 +269,14 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   // The same report by value (a copy, its own for as long as it is kept),
   // or none.
   std::optional<PatchReport> patchReportOf(const btCollisionObject* body) const;
+
+  // The opted-in body's contacts that were left to Bullet in the last step,
+  // by reason, or null if there were none; valid until the next step.
+  const NotPatchedCounts* notPatchedOf(const btCollisionObject* body) const;
+  // Told once per pair of shape types that cannot make a patch (a sphere, a
+  // compound, a mesh...), the first time an opted-in body touches one;
+  // nothing is reported without a callback (null: none).
+  void setUnsupportedShapeCallback(UnsupportedShapeCallback callback);
 
   // btConstraintSolver hooks called once per world step.
   void prepareSolve(int numBodies, int numManifolds) override;
