@@ -65,8 +65,13 @@ bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA
                                                  v = toEigen(sb[side]->m_linearVelocity);
                                                  w = toEigen(sb[side]->m_angularVelocity);
                                                });
-    bounce = parts::restitutionVelocity(before[0], st.geometry.gap, dt, cand.restitution,
-                                        double(info.m_restitutionVelocityThreshold));
+    const double pending = st.pendingBounceStep == st.lastSeen - 1 ? st.pendingBounce : 0.0;
+    const parts::Bounce b =
+        parts::restitutionBounce(before[0], st.geometry.gap, dt, cand.restitution,
+                                 double(info.m_restitutionVelocityThreshold), pending);
+    bounce = b.now;
+    st.pendingBounce = b.next;
+    st.pendingBounceStep = st.lastSeen;
   }
   // position error: gap at O (< 0 penetrating) and tilt of the face
   const Vec3 tilt = toEigen(st.geometry.tilt);

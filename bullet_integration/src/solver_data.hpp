@@ -75,7 +75,9 @@ struct PatchState {
   // the faces' kinds when geometry's overlap was last clipped (see overlapPose)
   internal::Face::Kind overlapKinds[2] = {internal::Face::Kind::Polygon,
                                           internal::Face::Kind::Polygon};
-  long pointsWritten = -1;    // step whose patch impulses are on the manifold's points
+  long pointsWritten = -1;     // step whose patch impulses are on the manifold's points
+  double pendingBounce = 0.0;  // owed by a landing in step pendingBounceStep [m/s]
+  long pendingBounceStep = -1;
   long shapeId = 0;           // unique per built `friction`
   double innerRadius2 = 0.0;  // parts::PatchOutlineSummary::innerRadius2 of `friction`
   parts::PressureRecord law;  // the pressure `friction` was last refreshed with

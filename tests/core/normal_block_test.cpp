@@ -214,37 +214,52 @@ TEST(NormalBlock, TargetsCloseAGapAndCorrectPenetration) {
   EXPECT_EQ(t.velocity, Vec3((Vec3(0.001, 0.0, 0.0) + tilt) * 0.8 / dt));
 }
 
-// The bounce is added to the normal velocity target where the faces touch
-// (split impulse or not), replaces the gap's target across a gap, and never
-// enters the tilt rates.
-TEST(NormalBlock, BounceSetsTheNormalTargetOnly) {
+// The bounce is added to the normal velocity target (split impulse or not,
+// across a gap or not), never to the tilt rates.
+TEST(NormalBlock, BounceAddsToTheNormalTargetOnly) {
   const double dt = 0.01, size = 0.05, bounce = 0.7;
   const Vec3 tilt(0.0, 0.002, -0.001);
   for (const double gap : {0.001, -0.001})
     for (const bool split : {true, false}) {
       const NormalTargets plain = normalTargets(gap, gap, tilt, size, dt, split, 0.2, 0.8, 0.0);
       const NormalTargets t = normalTargets(gap, gap, tilt, size, dt, split, 0.2, 0.8, bounce);
-      EXPECT_DOUBLE_EQ(t.velocity[0], gap > 0.0 ? bounce : plain.velocity[0] + bounce);
+      EXPECT_DOUBLE_EQ(t.velocity[0], plain.velocity[0] + bounce);
       EXPECT_EQ(t.velocity.tail<2>(), plain.velocity.tail<2>());
       EXPECT_EQ(t.push, plain.push);
     }
 }
 
 // Bullet's restitution curve: e times the closing speed, none below the
-// velocity threshold, none for a separating contact or a negative e; and
-// none while a gap stays open through the step.
+// velocity threshold, none for a separating contact or a negative e.
 TEST(NormalBlock, RestitutionFollowsBulletsCurve) {
-  const double dt = 0.01;
-  EXPECT_DOUBLE_EQ(restitutionVelocity(-2.0, 0.0, dt, 0.5, 0.2), 1.0);
-  EXPECT_DOUBLE_EQ(restitutionVelocity(-0.2, 0.0, dt, 0.5, 0.2), 0.1);  // at the threshold
-  EXPECT_EQ(restitutionVelocity(-0.19, 0.0, dt, 0.5, 0.2), 0.0);
-  EXPECT_EQ(restitutionVelocity(1.0, 0.0, dt, 0.5, 0.2), 0.0);    // separating
-  EXPECT_EQ(restitutionVelocity(-1.0, 0.0, dt, -0.5, 0.2), 0.0);  // negative coefficient
-  EXPECT_EQ(restitutionVelocity(-1.0, 0.0, dt, 0.0, 0.2), 0.0);
-  // a gap of 1 cm closes in this step at 1 m/s, not at 0.99 m/s
-  EXPECT_DOUBLE_EQ(restitutionVelocity(-1.0, 0.01, dt, 0.5, 0.2), 0.5);
-  EXPECT_EQ(restitutionVelocity(-0.99, 0.01, dt, 0.5, 0.2), 0.0);
-  EXPECT_DOUBLE_EQ(restitutionVelocity(-1.0, -0.01, dt, 0.5, 0.2), 0.5);  // penetrating
+  EXPECT_DOUBLE_EQ(restitutionVelocity(-2.0, 0.5, 0.2), 1.0);
+  EXPECT_DOUBLE_EQ(restitutionVelocity(-0.2, 0.5, 0.2), 0.1);  // at the threshold
+  EXPECT_EQ(restitutionVelocity(-0.19, 0.5, 0.2), 0.0);
+  EXPECT_EQ(restitutionVelocity(1.0, 0.5, 0.2), 0.0);    // separating
+  EXPECT_EQ(restitutionVelocity(-1.0, -0.5, 0.2), 0.0);  // negative coefficient
+  EXPECT_EQ(restitutionVelocity(-1.0, 0.0, 0.2), 0.0);
+}
+
+// Touching: this step's bounce (or the one owed, if larger). Across a gap
+// that closes in this step (1 cm at 1 m/s in 0.01 s): none now, the bounce
+// owed to the next step; a gap that stays open: nothing.
+TEST(NormalBlock, ABounceAcrossAGapComesTheStepAfterTheLanding) {
+  const double dt = 0.01, e = 0.5, th = 0.2;
+  Bounce b = restitutionBounce(-1.0, -0.001, dt, e, th, 0.0);
+  EXPECT_DOUBLE_EQ(b.now, 0.5);
+  EXPECT_EQ(b.next, 0.0);
+  b = restitutionBounce(-1.0, 0.01, dt, e, th, 0.0);  // lands in this step
+  EXPECT_EQ(b.now, 0.0);
+  EXPECT_DOUBLE_EQ(b.next, 0.5);
+  b = restitutionBounce(-0.99, 0.01, dt, e, th, 0.0);  // does not reach the face
+  EXPECT_EQ(b.now, 0.0);
+  EXPECT_EQ(b.next, 0.0);
+  b = restitutionBounce(-0.1, 0.0, dt, e, th, 0.5);  // the step after the landing
+  EXPECT_DOUBLE_EQ(b.now, 0.5);
+  b = restitutionBounce(-0.1, 1e-7, dt, e, th, 0.5);  // a hair above the face
+  EXPECT_DOUBLE_EQ(b.now, 0.5);
+  b = restitutionBounce(-2.0, 0.0, dt, e, th, 0.5);  // a harder hit now: its own bounce
+  EXPECT_DOUBLE_EQ(b.now, 1.0);
 }
 
 }  // namespace

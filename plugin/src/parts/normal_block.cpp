@@ -71,7 +71,7 @@ NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, 
     t.velocity = (Vec3(-gap, 0.0, 0.0) + tiltRate) * erp2 / dt;
   }
   if (gap > 0.0 && splitImpulse) t.push = tiltRate * erp / dt;
-  if (bounce > 0.0) t.velocity[0] = gap > 0.0 ? bounce : t.velocity[0] + bounce;
+  t.velocity[0] += bounce;
   return t;
 }
 

@@ -58,12 +58,10 @@ double innerRadiusSquared(const PatchShape& shape);
 //                   kLowSideSinkRelTol * size past the low side (clearance)
 //   split impulse:  pseudo-velocity target (-gap, tilt) * erp / dt
 //   otherwise:      Baumgarte, (-gap, tilt) * erp2 / dt in the velocity target
-// plus the restitution velocity `bounce` (restitutionVelocity): where the
-// faces touch it is added to the normal velocity target (as Bullet adds its
-// restitution to a row's velocity error); across a gap that closes in this
-// step it replaces the gap's target (the body turns within the gap instead of
-// arriving slowed by gap / dt); the tilt rates get none (a face that lands
-// flat leaves flat: no rocking).
+// plus the restitution velocity `bounce` (restitutionBounce) in the normal
+// velocity target (as Bullet adds its restitution to a row's velocity
+// error); the tilt rates get none (a face that lands flat leaves flat: no
+// rocking).
 struct NormalTargets {
   Vec3 velocity = Vec3::Zero();  // of the iterations [m/s, rad/s, rad/s]
   Vec3 push = Vec3::Zero();      // of the split-impulse iterations
@@ -75,14 +73,34 @@ NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, 
 // a contact closing at `approach` (normal velocity before the step, < 0
 // closing [m/s]) is to separate at restitution * -approach; none when
 // |approach| < threshold (Bullet's m_restitutionVelocityThreshold), nor for a
-// separating contact or a negative coefficient. Unlike Bullet's rows, none
-// while a gap > 0 [m] stays open through the step of length dt at that speed:
-// a patch found across a gap (probed) would otherwise spend the bounce on
-// slowing the approach, step after step (normal_block_test; restitution_test).
-inline double restitutionVelocity(double approach, double gap, double dt, double restitution,
-                                  double threshold) {
-  if (std::abs(approach) < threshold || gap > -approach * dt) return 0.0;
+// separating contact or a negative coefficient (normal_block_test).
+inline double restitutionVelocity(double approach, double restitution, double threshold) {
+  if (std::abs(approach) < threshold) return 0.0;
   return std::max(0.0, restitution * -approach);
+}
+
+// When the bounce happens. Where the faces touch (gap <= 0 [m]) it is this
+// step's: the larger of restitutionVelocity and `pending`, the bounce owed by
+// a landing in the last step. Across a gap the body closes in this step at
+// its approach speed, it lands (the gap's target holds it at the face) and
+// bounces in the next step, off the face, with the speed it landed at; a
+// gap that stays open gives none. (Bullet's row adds its bounce to the gap's
+// target instead: a patch found across a gap would then spend the bounce
+// slowing the approach, step after step; restitution_test.)
+struct Bounce {
+  double now = 0.0;   // restitution velocity of this step's normal target [m/s]
+  double next = 0.0;  // owed to the next step (a landing) [m/s]
+};
+inline Bounce restitutionBounce(double approach, double gap, double dt, double restitution,
+                                double threshold, double pending) {
+  Bounce b;
+  if (gap <= 0.0)
+    b.now = std::max(restitutionVelocity(approach, restitution, threshold), pending);
+  else if (pending > 0.0)
+    b.now = pending;  // landed in the last step, a round-off or a sink allowance above the face
+  else if (gap <= -approach * dt)
+    b.next = restitutionVelocity(approach, restitution, threshold);
+  return b;
 }
 
 struct NormalImpulse {
