@@ -48,11 +48,12 @@ int main() {
     }
     touched = touched || force > 0;
     bounced = bounced || (touched && box.getLinearVelocity().z() > btScalar(0.5));
-    const btMatrix3x3& basis = box.getWorldTransform().getBasis();  // tilt: sin of the z axis' angle
+    const btMatrix3x3& basis =
+        box.getWorldTransform().getBasis();  // tilt: sin of the z axis' angle
     maxTilt = std::fmax(maxTilt, std::hypot(double(basis[0][2]), double(basis[1][2])));
     if (step % 12 == 0 || force > 100)
-      std::printf("t = %.3f s  z = %.4f m  vz = %+.3f m/s  contact force = %8.2f N\n", step * double(dt),
-                  double(box.getCenterOfMassPosition().z()) - 0.05,
+      std::printf("t = %.3f s  z = %.4f m  vz = %+.3f m/s  contact force = %8.2f N\n",
+                  step * double(dt), double(box.getCenterOfMassPosition().z()) - 0.05,
                   double(box.getLinearVelocity().z()), force);
   }
   world.removeRigidBody(&box);

@@ -182,7 +182,9 @@ TEST(ReportedImpulses, ContactCallbacksKeepWorking) {
       b->setCollisionFlags(b->getCollisionFlags() | btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
       if (kind == SolverKind::Patch) scene.solver().enablePatchFriction(b, {Model::Exact});
       for (int i = 0; i < 30; ++i) scene.step(kDt);
-      if (kind == SolverKind::Patch) EXPECT_NE(scene.solver().findPatchReport(b), nullptr);
+      if (kind == SolverKind::Patch) {
+        EXPECT_NE(scene.solver().findPatchReport(b), nullptr);
+      }
     }
     gContactAddedCallback = added;
     gContactProcessedCallback = processed;
