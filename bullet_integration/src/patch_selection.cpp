@@ -247,13 +247,13 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     // the faces must face the contact, and the contact must be on them (two
     // coins side by side touch rim to rim); the angle between the faces
     // last of the cheap tests: acos
-    flat = cosA >= kFacingCos && cosB >= kFacingCos && step_ - st.tipStep > kTipCooldownSteps &&
-           std::acos(c) < tol && contactOnFaces(*m, aIs0, faceA_, faceB_);
-    if (!flat)
-      reason = !(cosA >= kFacingCos && cosB >= kFacingCos) ? &NotPatchedCounts::sideContact
-               : !(step_ - st.tipStep > kTipCooldownSteps) ? &NotPatchedCounts::tipCooldown
-               : !(std::acos(c) < tol)                     ? &NotPatchedCounts::notFlat
-                                                           : &NotPatchedCounts::offFaces;
+    // (the first test that fails is the reason it is not a patch)
+    reason = !(cosA >= kFacingCos && cosB >= kFacingCos) ? &NotPatchedCounts::sideContact
+             : !(step_ - st.tipStep > kTipCooldownSteps) ? &NotPatchedCounts::tipCooldown
+             : !(std::acos(c) < tol)                     ? &NotPatchedCounts::notFlat
+             : !contactOnFaces(*m, aIs0, faceA_, faceB_) ? &NotPatchedCounts::offFaces
+                                                         : nullptr;
+    flat = reason == nullptr;
     // x axis fixed in the moving body: a box spinning on a plane keeps the
     // same outline, and its cached shape, in this frame
     if (flat) {
