@@ -1,8 +1,6 @@
 // Point impulses part (point_impulses.hpp).
 #include <patchspin/parts/point_impulses.hpp>
 
-#include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,9 +12,9 @@ namespace {
 // Relative residual below which an equality counts as met (round-off of a
 // few operations on the points' coordinates).
 constexpr double kRelTol = 1e-12;
-// ... for the tangential sums, which pass through a 3x3 solve whose
-// condition grows as the loaded points close up (1e-9: a twist met to nine
-// digits is met; a twist out of reach misses by its own size).
+// ... for the tangential sums, whose closed form divides by the loaded
+// points' spread and loses digits as they close up (1e-9: a twist met to
+// nine digits is met; a twist out of reach misses by its own size).
 constexpr double kTangentRelTol = 1e-9;
 
 double cross(const Vec2& a, const Vec2& b) {
