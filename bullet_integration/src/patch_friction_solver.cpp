@@ -312,6 +312,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
                                          m_tmpSolverBodyPool[idB], idB, info, pc)) {
         im.patches.pop_back();
         cand.state->flat = false;  // no usable effective mass: Bullet's contact
+        im.selection.countSingular(cand, im.stats);
         im.selection.handBack(m);
         convertContact(m, info);
         continue;

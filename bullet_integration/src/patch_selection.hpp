@@ -29,6 +29,11 @@ class PatchSelection {
     unsupported_ = std::move(callback);
   }
 
+  // A candidate whose constraint could not be set up (singular blocks).
+  void countSingular(const Candidate& c, PatchSolverStats& stats) {
+    countNotPatched(c.A, c.B, &NotPatchedCounts::singularBlocks, stats);
+  }
+
   // Start of step `step` (after the last one's end).
   void beginStep(long step);
   // The manifold becomes a patch (a Candidate appended to `out`) or is left

@@ -94,6 +94,22 @@ TEST(NotPatched, ACoinOnItsFaceLeavesNothing) {
   EXPECT_NE(scene.solver().findPatchReport(coin), nullptr);
 }
 
+// A box whose rotation is locked (setAngularFactor(0)): the patch's tilt and
+// spin DOFs have no effective mass, so the contact stays Bullet's, counted.
+TEST(NotPatched, ABoxWithItsRotationLockedHasSingularBlocks) {
+  Scene scene;
+  scene.addGroundPlane(1.0);
+  btRigidBody* box = scene.addBox(bt(0.05, 0.05, 0.05), 1.0, bt(0, 0, 0.0499), 0.5);
+  box->setAngularFactor(0);
+  scene.solver().enablePatchFriction(box, {Model::Exact});
+  scene.step(kDt);
+  const NotPatchedCounts* c = scene.solver().notPatchedOf(box);
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->singularBlocks, 1);
+  EXPECT_EQ(c->total(), 1);
+  EXPECT_EQ(scene.solver().findPatchReport(box), nullptr);
+}
+
 // A box on a static compound (a table top as a box child): the compound has
 // no faces of its own yet (issue 32), so the contact is an unsupported shape.
 TEST(NotPatched, ABoxOnACompoundIsAnUnsupportedShape) {

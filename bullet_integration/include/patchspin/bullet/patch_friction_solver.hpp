@@ -167,9 +167,11 @@ struct NotPatchedCounts {
   long tipCooldown = 0;       // within kTipCooldownSteps of the patch's tip
   long noOverlap = 0;         // the faces' overlap is empty or degenerate
   long lawRefused = 0;        // the friction law refused the overlap or mu
+  long singularBlocks = 0;    // the patch's effective-mass blocks are singular (a body
+                              // whose rotation is locked, setAngularFactor(0))
   long total() const {
     return unsupportedShape + sideContact + notFlat + offFaces + tipCooldown + noOverlap +
-           lawRefused;
+           lawRefused + singularBlocks;
   }
 };
 
