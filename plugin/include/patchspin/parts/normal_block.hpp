@@ -79,7 +79,7 @@ inline double restitutionVelocity(double approach, double restitution, double th
   return std::max(0.0, restitution * -approach);
 }
 
-// When the bounce happens. Where the faces touch (gap <= 0 [m]) it is this
+// When the bounce happens (S20). Where the faces touch (gap <= 0 [m]) it is this
 // step's: the larger of restitutionVelocity and `pending`, the bounce owed by
 // a landing in the last step. Across a gap the body closes in this step at
 // its approach speed, it lands (the gap's target holds it at the face) and

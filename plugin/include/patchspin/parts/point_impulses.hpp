@@ -7,20 +7,22 @@
 // patch plane, the patch's normal impulse (Lambda_z, Lambda_Tx, Lambda_Ty)
 // (S5) and friction impulse (f_x, f_y, lambda_s), whose couple about n is
 // rho lambda_s (S1):
-//   normal:      p_i >= 0 with  sum p_i = Lambda_z  exactly, and
-//                sum p_i (y_i, -x_i) = (Lambda_Tx, Lambda_Ty)  when the centre
-//                of pressure lies in the points' convex hull; else the
-//                centre of pressure of the p_i is the hull's point nearest to
-//                it. Of those, the p_i with the least sum of squares (the most
-//                even spread).
-//   tangential:  t_i = p_i (a + b perp(r_i)), perp(r) = (-y, x), with
-//                sum t_i = (f_x, f_y) and sum r_i x t_i = rho lambda_s: the
-//                least sum |t_i|^2 / p_i (each point's share follows its
-//                load); a twist the loaded points cannot carry (all on one
-//                point) is met in least squares, the force still exactly.
+//   normal (S21):      p_i >= 0 with  sum p_i = Lambda_z  exactly, and
+//                      sum p_i (y_i, -x_i) = (Lambda_Tx, Lambda_Ty)  when the
+//                      centre of pressure lies in the points' convex hull;
+//                      else the centre of pressure of the p_i is the hull's
+//                      point nearest to it. Of those, the p_i with the least
+//                      sum of squares (the most even spread).
+//   tangential (S22):  t_i = p_i (a + b perp(r_i)), perp(r) = (-y, x), with
+//                      sum t_i = (f_x, f_y) and sum r_i x t_i = rho lambda_s:
+//                      the least sum |t_i|^2 / p_i (each point's share
+//                      follows its load); a twist the loaded points cannot
+//                      carry (all on one point) is not carried, b = 0, and
+//                      the force still exactly.
 // Closed forms (no decomposition, no heap: every patch, every step).
 // Guarded by point_impulses_test (sums, moments, the least-norm property
-// against a brute-force search, the nearest hull point against sampling).
+// against random feasible perturbations, the nearest hull point against
+// random convex combinations).
 #pragma once
 
 #include <patchspin/types.hpp>
