@@ -1,6 +1,8 @@
 // Patch constraint set-up (patch_constraint.hpp).
 #include "patch_constraint.hpp"
 
+#include <BulletCollision/CollisionDispatch/btManifoldResult.h>
+#include <BulletCollision/NarrowPhaseCollision/btPersistentManifold.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
 
 #include <algorithm>
@@ -26,9 +28,37 @@ BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r) {
   return t;
 }
 
-bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA,
-                         const btSolverBody& sbB, int idB, const btContactSolverInfo& info,
-                         PatchConstraint& pc) {
+PointSoftness pointSoftness(const btManifoldPoint* point, const btCollisionObject& A,
+                            const btCollisionObject& B, const btContactSolverInfo& info) {
+  const int flags = point ? point->m_contactPointFlags : 0;
+  double cfm = double(info.m_globalCfm), erp = double(info.m_erp2);
+  double stiffness = 0.0, damping = 0.0;
+  bool springy = false;
+  if (flags & (BT_CONTACT_FLAG_HAS_CONTACT_CFM | BT_CONTACT_FLAG_HAS_CONTACT_ERP)) {
+    if (flags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) cfm = double(point->m_contactCFM);
+    if (flags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) erp = double(point->m_contactERP);
+  } else if (point) {
+    springy = (flags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) != 0;
+    stiffness = double(point->m_combinedContactStiffness1);
+    damping = double(point->m_combinedContactDamping1);
+  } else if ((A.getCollisionFlags() | B.getCollisionFlags()) &
+             btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) {
+    springy = true;
+    stiffness = double(gCalculateCombinedContactStiffnessCallback(&A, &B));
+    damping = double(gCalculateCombinedContactDampingCallback(&A, &B));
+  }
+  const double dt = double(info.m_timeStep);
+  if (springy) {
+    const double denom = std::max(dt * stiffness + damping, double(SIMD_EPSILON));
+    cfm = 1.0 / denom;
+    erp = dt * stiffness / denom;
+  }
+  return {cfm / dt, erp};
+}
+
+bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
+                         const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
+                         const btContactSolverInfo& info, PatchConstraint& pc) {
   PatchState& st = *cand.state;
   const double dt = double(info.m_timeStep);
   pc.state = &st;
@@ -52,9 +82,13 @@ bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA
   pc.ids[1] = idB;
   // effective masses of the 6 DOFs and the friction block's Schur
   // complement (normal block held bilateral)
-  if (!parts::makePatchBlocks(parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho),
-                              pc.k))
-    return false;
+  // a soft contact: the normal block's compliance (S23) added to W
+  const PointSoftness soft = pointSoftness(m.getNumContacts() > 0 ? &m.getContactPoint(0) : nullptr,
+                                           *cand.A, *cand.B, info);
+  pc.compliance = soft.cfm > 0.0 ? parts::patchCompliance(soft.cfm) : 0.0;
+  Mat6 K6 = parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho);
+  K6(0, 0) += pc.compliance;
+  if (!parts::makePatchBlocks(K6, pc.k)) return false;
   // restitution from the normal velocity at O before the step (without the
   // step's external impulses, as Bullet's rows take it)
   double bounce = 0.0;
@@ -75,10 +109,15 @@ bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA
   }
   // position error: gap at O (< 0 penetrating) and tilt of the face
   const Vec3 tilt = toEigen(st.geometry.tilt);
-  const parts::NormalTargets targets = parts::normalTargets(
-      st.geometry.gap, st.geometry.clearance, Vec3(0.0, tilt.dot(ex), tilt.dot(ey)),
-      st.geometry.outline.size(), dt, info.m_splitImpulse != 0, double(info.m_erp),
-      double(info.m_erp2), bounce);
+  const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
+  const parts::NormalTargets targets =
+      pc.compliance > 0.0
+          ? parts::softNormalTargets(st.geometry.gap, st.geometry.clearance, tiltRate,
+                                     st.geometry.outline.size(), dt, info.m_splitImpulse != 0,
+                                     double(info.m_erp), double(info.m_erp2), soft.erp, bounce)
+          : parts::normalTargets(st.geometry.gap, st.geometry.clearance, tiltRate,
+                                 st.geometry.outline.size(), dt, info.m_splitImpulse != 0,
+                                 double(info.m_erp), double(info.m_erp2), bounce);
   pc.targetN = targets.velocity;
   pc.targetPush = targets.push;
   return true;

@@ -16,12 +16,25 @@ namespace patchspin::bullet::internal {
 // in one visit and is then skipped), not Bullet's m_warmstartingFactor.
 constexpr double kPatchWarmStartFactor = 1.0;
 
-// The constraint of `cand` between solver bodies sbA (id idA) and sbB (idB);
-// false if its effective mass has no usable blocks (e.g. a body with locked
-// rotation: the manifold goes to Bullet).
-bool makePatchConstraint(const Candidate& cand, const btSolverBody& sbA, int idA,
-                         const btSolverBody& sbB, int idB, const btContactSolverInfo& info,
-                         PatchConstraint& pc);
+// The constraint of `cand` (manifold m) between solver bodies sbA (id idA)
+// and sbB (idB); false if its effective mass has no usable blocks (e.g. a
+// body with locked rotation: the manifold goes to Bullet).
+bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
+                         const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
+                         const btContactSolverInfo& info, PatchConstraint& pc);
+
+// A contact point's CFM (velocity per impulse, after Bullet's 1/dt) and ERP
+// by Bullet's rule (btSequentialImpulseConstraintSolver::
+// setupContactConstraint): the point's own CFM/ERP if set, else its contact
+// stiffness and damping, else the world's m_globalCfm with m_erp2. For an
+// empty manifold (point null), the bodies' stiffness and damping combined
+// by Bullet's callbacks. Soft when the CFM is positive.
+struct PointSoftness {
+  double cfm = 0.0;
+  double erp = 0.0;
+};
+PointSoftness pointSoftness(const btManifoldPoint* point, const btCollisionObject& A,
+                            const btCollisionObject& B, const btContactSolverInfo& info);
 
 // The warm start of a patch that ended the last step flat (false otherwise
 // or without SOLVER_USE_WARMSTARTING): sets pc.lamN, pc.lamF and the friction

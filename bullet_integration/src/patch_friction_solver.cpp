@@ -94,6 +94,13 @@ void snapshotOf(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBo
   out[3] = b.m_deltaAngularVelocity;
 }
 
+// The target of a compliant normal row, t - (C lambda_z, 0, 0) (S23); t
+// itself on a hard contact.
+inline Vec3 softTarget(const Vec3& target, double compliance, const Vec3& lam) {
+  if (compliance == 0.0) return target;
+  return Vec3(target[0] - compliance * lam[0], target[1], target[2]);
+}
+
 // What a visit needs besides its patch.
 struct VisitContext {
   btAlignedObjectArray<btSolverBody>& pool;
@@ -112,8 +119,10 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup,
   FrictionPatch& friction = *pc.state->friction;
   // normal block (S4)-(S6)
   const Vec6 c = constraintVelocity(pc, cx.pool);
+  // (soft: the compliant row c_n = t_n - C lamN, with (W + C)^-1 in k.Winv (S23))
   const parts::NormalImpulse normal = parts::solveNormalVelocity(
-      k.Winv, pc.lamN, c.head<3>(), pc.targetN, pc.shape, friction.shape());
+      k.Winv, pc.lamN, c.head<3>(), softTarget(pc.targetN, pc.compliance, pc.lamN), pc.shape,
+      friction.shape());
   pc.interior = normal.interior;
   pc.tipping = normal.tipping;
   Vec6 d = Vec6::Zero();
@@ -308,7 +317,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       const int idB = getOrInitSolverBody(*const_cast<btCollisionObject*>(cand.B), info.m_timeStep);
       im.patches.emplace_back();
       PatchConstraint& pc = im.patches.back();
-      if (!internal::makePatchConstraint(cand, m_tmpSolverBodyPool[idA], idA,
+      if (!internal::makePatchConstraint(cand, *m, m_tmpSolverBodyPool[idA], idA,
                                          m_tmpSolverBodyPool[idB], idB, info, pc)) {
         im.patches.pop_back();
         cand.state->flat = false;  // no usable effective mass: Bullet's contact
@@ -339,6 +348,17 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
       im.stackViews.push_back({pc.a.id, pc.b.id, &pc.a.body, &pc.b.body, &pc.F, pc.fb.rho});
     parts::linkStackedPatches(im.stackViews, m_tmpSolverBodyPool.size(), im.otherRows,
                               im.stackLinks, im.holds);
+    // a soft patch is solved on its own: the held blocks fold K6 without
+    // its compliance (SoftContact.StackOfSoftBoxes)
+    for (std::size_t i = 0; i < im.patches.size(); ++i) {
+      parts::StackLinks& l = im.stackLinks[i];
+      if (l.support < 0) continue;
+      parts::StackLinks& s = im.stackLinks[std::size_t(l.support)];
+      if (im.patches[i].compliance == 0.0 && im.patches[std::size_t(l.support)].compliance == 0.0)
+        continue;
+      if (s.load == int(i)) s.load = s.loadHold = -1;
+      l.support = l.hold = -1;
+    }
     for (std::size_t i = 0; i < im.patches.size(); ++i) im.patches[i].stack = im.stackLinks[i];
   }
 }
@@ -418,7 +438,8 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
                        v = internal::toEigen(pool[t.id].m_pushVelocity);
                        w = internal::toEigen(pool[t.id].m_turnVelocity);
                      }).head<3>();
-      const Vec3 lam = parts::solveNormalPosition(pc.k.Winv, pc.lamPush, c, pc.targetPush);
+      const Vec3 lam = parts::solveNormalPosition(
+          pc.k.Winv, pc.lamPush, c, softTarget(pc.targetPush, pc.compliance, pc.lamPush));
       Vec6 d = Vec6::Zero();
       d.head<3>() = lam - pc.lamPush;
       pc.lamPush = lam;

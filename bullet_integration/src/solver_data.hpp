@@ -118,6 +118,9 @@ struct PatchConstraint {
   Vec3 lamN = Vec3::Zero(), targetN = Vec3::Zero(), lamF = Vec3::Zero();
   parts::PatchOutlineSummary shape;
   parts::FrictionBlockState fb;
+  // the normal block's compliance (S23): > 0 for a soft contact, whose
+  // normal row converges to c_n = t_n - compliance Lambda_z; added to K6(0, 0)
+  double compliance = 0.0;
   parts::PatchBlocks k;
   // read outside the iterations only
   Vec3 lamPush = Vec3::Zero(), targetPush = Vec3::Zero();

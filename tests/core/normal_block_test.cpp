@@ -214,6 +214,33 @@ TEST(NormalBlock, TargetsCloseAGapAndCorrectPenetration) {
   EXPECT_EQ(t.velocity, Vec3((Vec3(0.001, 0.0, 0.0) + tilt) * 0.8 / dt));
 }
 
+// A soft patch (S24): its sink is corrected in the normal velocity target
+// with the contact's own ERP (Bullet's soft rows), with nothing pushed
+// along the normal; its tilt, and a gap, as on a hard patch (normalTargets).
+TEST(NormalBlock, SoftTargetsPutTheSinkInTheVelocityAndTheTiltAsHard) {
+  const double dt = 0.01, size = 0.05, softErp = 0.3, bounce = 0.4;
+  const Vec3 tilt(0.0, 0.002, -0.001);
+  for (const double gap : {0.001, -0.001})
+    for (const bool split : {true, false}) {
+      const NormalTargets hard = normalTargets(gap, gap, tilt, size, dt, split, 0.2, 0.8, 0.0);
+      const NormalTargets t =
+          softNormalTargets(gap, gap, tilt, size, dt, split, 0.2, 0.8, softErp, bounce);
+      if (gap > 0.0)
+        EXPECT_DOUBLE_EQ(t.velocity[0], hard.velocity[0] + bounce);
+      else
+        EXPECT_DOUBLE_EQ(t.velocity[0], -gap * softErp / dt + bounce);
+      EXPECT_EQ(t.velocity.tail<2>(), hard.velocity.tail<2>());
+      EXPECT_EQ(t.push.tail<2>(), hard.push.tail<2>());
+      EXPECT_EQ(t.push[0], 0.0);
+    }
+}
+
+// Bullet's contact CFM per point, spread over a full manifold: a quarter.
+TEST(NormalBlock, SoftPatchComplianceIsAFullManifoldInParallel) {
+  EXPECT_EQ(kSoftContactPoints, 4);
+  EXPECT_DOUBLE_EQ(patchCompliance(2.0), 0.5);
+}
+
 // The bounce is added to the normal velocity target (split impulse or not,
 // across a gap or not), never to the tilt rates.
 TEST(NormalBlock, BounceAddsToTheNormalTargetOnly) {

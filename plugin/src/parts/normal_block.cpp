@@ -1,4 +1,4 @@
-// Normal block part (normal_block.hpp; docs/solver.md (S4)-(S6), (S17)-(S19)).
+// Normal block part (normal_block.hpp; docs/solver.md (S4)-(S6), (S17)-(S20), (S23)-(S24)).
 #include <patchspin/parts/normal_block.hpp>
 
 #include <algorithm>
@@ -57,14 +57,20 @@ double innerRadiusSquared(const PatchShape& shape) {
   return r * r;
 }
 
+namespace {
+// (S17): where a is tilted on b, the gap closes only until a's low side is
+// kLowSideSinkRelTol of the patch size into b
+Vec3 gapTarget(double gap, double clearance, double size, double dt) {
+  const double sink = kLowSideSinkRelTol * size;
+  return Vec3(-std::clamp(clearance + sink, 0.0, gap) / dt, 0.0, 0.0);
+}
+}  // namespace
+
 NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
                             double dt, bool splitImpulse, double erp, double erp2, double bounce) {
   NormalTargets t;
   if (gap > 0.0) {
-    // where a is tilted on b, only until its low side is kLowSideSinkRelTol
-    // of the patch size into b (the tilt itself is corrected by the push)
-    const double sink = kLowSideSinkRelTol * size;
-    t.velocity = Vec3(-std::clamp(clearance + sink, 0.0, gap) / dt, 0.0, 0.0);
+    t.velocity = gapTarget(gap, clearance, size, dt);  // (the tilt: corrected by the push)
   } else if (splitImpulse) {
     t.push = (Vec3(-gap, 0.0, 0.0) + tiltRate) * erp / dt;
   } else {
@@ -72,6 +78,18 @@ NormalTargets normalTargets(double gap, double clearance, const Vec3& tiltRate, 
   }
   if (gap > 0.0 && splitImpulse) t.push = tiltRate * erp / dt;
   t.velocity[0] += bounce;
+  return t;
+}
+
+NormalTargets softNormalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
+                                double dt, bool splitImpulse, double erp, double erp2,
+                                double softErp, double bounce) {
+  NormalTargets t =
+      normalTargets(gap, clearance, tiltRate, size, dt, splitImpulse, erp, erp2, bounce);
+  if (gap <= 0.0) {
+    t.velocity[0] = -gap * softErp / dt + bounce;
+    t.push[0] = 0.0;
+  }
   return t;
 }
 

@@ -103,6 +103,33 @@ inline Bounce restitutionBounce(double approach, double gap, double dt, double r
   return b;
 }
 
+// Soft contacts (S23)-(S24). Bullet makes a contact point compliant with a
+// CFM c_p (velocity per impulse, its cfm after the 1/dt) and an ERP e_p: a
+// contact stiffness k and damping d give c_p = 1 / (dt (dt k + d)) and e_p =
+// dt k / (dt k + d), and the point's row converges to
+//   u_n = e_p depth / dt - c_p lambda,
+// an implicit spring-damper (lambda / dt = k depth - (d + dt k) u_n). A soft
+// patch is as compliant along its normal as a full manifold of such points
+// (kSoftContactPoints) in parallel, and held flat as a hard patch is (its
+// tilt rows stay rigid: no rocking on the springs):
+//   c_n = t_n - (c_p / kSoftContactPoints) (Lambda_z, 0, 0)                (S23)
+// so, resting, it sinks m g / (kSoftContactPoints k), as a body on a full
+// manifold does in Bullet (soft_contact_test).
+// Bullet's manifold capacity (MANIFOLD_CACHE_SIZE): a face resting flat
+// fills it.
+constexpr int kSoftContactPoints = 4;
+inline double patchCompliance(double pointCfm) {
+  return pointCfm / kSoftContactPoints;
+}
+
+// The targets of a soft patch: the gap's error in the normal velocity target
+// with e_p (Baumgarte, as Bullet's rows put a soft contact's: its spring is
+// that error); the tilt's as on a hard patch (S18)-(S19); a gap closes as
+// (S17). Plus the restitution velocity `bounce`.                          (S24)
+NormalTargets softNormalTargets(double gap, double clearance, const Vec3& tiltRate, double size,
+                                double dt, bool splitImpulse, double erp, double erp2,
+                                double softErp, double bounce);
+
 struct NormalImpulse {
   Vec3 lamN = Vec3::Zero();  // accumulated (Lambda_z, Lambda_Tx, Lambda_Ty) [N s, N m s]
   bool interior = false;     // centre of pressure on the patch: the block held bilateral
