@@ -1,6 +1,8 @@
 // Patch selection (patch_selection.hpp): manifold -> candidate patch.
 #include "patch_selection.hpp"
 
+#include <patchspin/friction_block.hpp>
+
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
@@ -289,16 +291,6 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     if (!empty && reason) countNotPatched(A, B, reason, stats);
     return false;
   }
-  // Bullet's rows of this manifold are replaced: start them from zero if the
-  // contact goes back to Bullet later (after a step that ended flat they are
-  // zero already)
-  if (!wasFlat) {
-    for (int k = 0; k < m->getNumContacts(); ++k) {
-      btManifoldPoint& p = m->getContactPoint(k);
-      p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
-    }
-  }
-
   if (!kept) st.geometry = std::move(*geo);
   // (Bullet's combined friction of the pair, as its contact points get it)
   const double mu = opt.mu  ? *opt.mu
@@ -318,6 +310,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       st.certs.invalidate();
       st.shapeId = ++shapeCount_;
       st.innerRadius2 = parts::innerRadiusSquared(shape);
+      st.sliver = sliverRatio(shape) > kMaxSliverRatio;
       ++stats.shapeRebuilds;
     } catch (const Error&) {
       st.flat = false;  // degenerate overlap: leave it to Bullet
@@ -336,6 +329,23 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       st.outline.reset();
       if (!empty) countNotPatched(A, B, &NotPatchedCounts::lawRefused, stats);
       return false;
+    }
+  }
+  // a sliver (an edge on a face): the exact law may have no digits on it,
+  // nor the pressure's projection (nearestAdmissibleLoads); decided here,
+  // before either, for both laws (Slivers.*)
+  if (st.sliver) {
+    st.flat = false;
+    if (!empty) countNotPatched(A, B, &NotPatchedCounts::sliver, stats);
+    return false;
+  }
+  // Bullet's rows of this manifold are replaced: start them from zero if the
+  // contact goes back to Bullet later (after a step that ended flat they are
+  // zero already)
+  if (!wasFlat) {
+    for (int k = 0; k < m->getNumContacts(); ++k) {
+      btManifoldPoint& p = m->getContactPoint(k);
+      p.m_appliedImpulse = p.m_appliedImpulseLateral1 = p.m_appliedImpulseLateral2 = 0;
     }
   }
   // (and its combined restitution, alike)

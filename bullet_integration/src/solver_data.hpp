@@ -80,6 +80,7 @@ struct PatchState {
   long pendingBounceStep = -1;
   long shapeId = 0;           // unique per built `friction`
   double innerRadius2 = 0.0;  // parts::PatchOutlineSummary::innerRadius2 of `friction`
+  bool sliver = false;        // `friction`'s shape is beyond kMaxSliverRatio
   parts::PressureRecord law;  // the pressure `friction` was last refreshed with
   // warm start in world axes (the patch frame turns with the body): normal
   // impulse, tilt couple, tangential friction impulse and slip, spin parts

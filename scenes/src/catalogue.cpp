@@ -201,6 +201,25 @@ std::vector<btRigidBody*> addBlocks(Scene& scene, const std::vector<btVector3>& 
   return blocks;
 }
 
+std::vector<btRigidBody*> addBasicExample(Scene& scene, Friction f) {
+  scene.world().setGravity(bt(0, 0, -10));
+  scene.addStaticBox(bt(50, 50, 50), bt(0, 0, -50), 0.5);
+  btCollisionShape* shape = scene.addShape(std::make_unique<btBoxShape>(bt(0.1, 0.1, 0.1)));
+  btVector3 inertia;
+  shape->calculateLocalInertia(1, inertia);
+  std::vector<btRigidBody*> boxes;
+  for (int k = 0; k < 5; ++k)
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) {
+        btTransform start;
+        start.setIdentity();
+        start.setOrigin(bt(0.2 * i, 0.2 * j, 2 + 0.2 * k));
+        boxes.push_back(scene.addBody(shape, 1.0, inertia, start, 0.5));
+        optIn(scene, boxes.back(), f);
+      }
+  return boxes;
+}
+
 btRigidBody* addIncline(Scene& scene, double alpha, double g, Friction f, const BlockSpec& s) {
   scene.world().setGravity(bt(g * std::sin(alpha), 0, -g * std::cos(alpha)));
   scene.addGroundPlane(1.0);
@@ -394,6 +413,14 @@ std::vector<CatalogueEntry> makeCatalogue() {
                1.0 / 240.0, 1.0, [](Friction f) {
                  auto s = std::make_unique<Scene>(kG);
                  addIncline(*s, std::atan(BlockSpec{}.mu) + M_PI / 180.0, kG, f);
+                 return s;
+               }});
+  c.push_back({"basic-example",
+               "Bullet's BasicExample: 125 boxes (0.2 m) dropped in a 5 x 5 x 5 block, faces "
+               "touching",
+               1.0 / 60.0, 2.0, [](Friction f) {
+                 auto s = std::make_unique<Scene>(10.0);
+                 addBasicExample(*s, f);
                  return s;
                }});
   c.push_back({"pour", "100 coins poured into a box (one layer, seed 12345, lengths in metres)",

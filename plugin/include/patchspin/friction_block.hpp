@@ -59,6 +59,22 @@ struct FrictionBlockResult {
   Vec3 gaugeValue = Vec3::Zero();  // exact law: q(gaugeSlip), a point of E's boundary; else zero
 };
 
+// Slivers (an edge resting on a face). With O at the patch's centroid, a
+// linear pressure p >= 0 has |grad p| <= 3 p0 / w (the centroid lies at
+// least w / 3 from every supporting line; w the least width, A <= d w), so
+// the exact law's terms A (|p0| + (|cx| + |cy|) max|r|) / Pz stay below
+// 1 + 3 sqrt(2) d^2 / A, and its round-off model above below 1e-6 while
+// s = d^2 / A <= kMaxSliverRatio (64 eps s (1 + 3 sqrt(2) s) = 1e-6 at
+// s = 4074). A patch beyond it may lose the exact law's digits under an
+// admissible pressure (and the pressure's projection, nearestAdmissibleLoads,
+// its digits: measured at d^2 / A = 3e6): adapters leave it to point
+// contacts before either (FrictionBlockSlivers.*).
+constexpr double kMaxSliverRatio = 4000.0;
+// d^2 / A of a shape [-] (4 / pi for a disk, 2 for a square).
+inline double sliverRatio(const PatchShape& shape) {
+  return shape.diameter() / shape.area() * shape.diameter();
+}
+
 // Solves the block (1)-(4) for `patch` (its Pi or its exact law; its Pz only
 // sets the scale of q) with the law `model`. Homogeneous in (K, b, L): far
 // from unit scale it is solved at |K| ~ |b| ~ 1 (powers of two, exact).

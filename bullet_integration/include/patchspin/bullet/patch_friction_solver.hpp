@@ -167,11 +167,13 @@ struct NotPatchedCounts {
   long tipCooldown = 0;       // within kTipCooldownSteps of the patch's tip
   long noOverlap = 0;         // the faces' overlap is empty or degenerate
   long lawRefused = 0;        // the friction law refused the overlap or mu
+  long sliver = 0;            // the overlap is a sliver (an edge on a face:
+                              // diameter^2 / area > kMaxSliverRatio)
   long singularBlocks = 0;    // the patch's effective-mass blocks are singular (a body
                               // whose rotation is locked, setAngularFactor(0))
   long total() const {
     return unsupportedShape + sideContact + notFlat + offFaces + tipCooldown + noOverlap +
-           lawRefused + singularBlocks;
+           lawRefused + sliver + singularBlocks;
   }
 };
 

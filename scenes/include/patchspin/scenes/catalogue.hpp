@@ -180,6 +180,14 @@ std::vector<BodyState> pileRain(int n, unsigned seed);
 // the bodies (coins at even indices).
 std::vector<btRigidBody*> addPile(Scene& scene, const std::vector<BodyState>& states, Friction f);
 
+// ---- Bullet's BasicExample -------------------------------------------------------------
+// Bullet's own example (examples/BasicDemo/BasicExample.cpp), z up: 125
+// boxes of 0.2 m (1 kg, Bullet's default margin and friction 0.5) released
+// in a 5 x 5 x 5 block with their faces touching, 2 m above a static ground
+// box of 100 m, g = 10 m/s^2, stepped at 1/60 s. The boxes' faces meet
+// their diagonal neighbours' along an edge: sliver overlaps.
+std::vector<btRigidBody*> addBasicExample(Scene& scene, Friction f);
+
 // ---- the named catalogue -------------------------------------------------------------------
 // One scene of the catalogue as one world: `build` makes it under the law f
 // (the coin trio's entry is one coin: the trio is three such worlds).
