@@ -674,6 +674,71 @@ TEST(BadInput, RemovingOptedInBodiesInsideAStep) {
   expectWitnessesUnaffected(r, "removed inside a step");
 }
 
+// ---- non-finite state, zero mass, absurd sizes, bad steps ---------------------------
+// An opted-in body far away whose state turns non-finite mid-run (a NaN or
+// infinite velocity, spin or position, as a user's bug would set it), whose
+// mass is set to zero, or whose size is absurd: the witnesses run bit for
+// bit as without it and the exact coin keeps its patch. (The bad body
+// itself is Bullet's: a non-finite one leaves the simulation with Bullet's
+// "Overflow in AABB" warning.)
+TEST(BadInput, NonFiniteZeroMassOrAbsurdBodiesStayAlone) {
+  struct Case {
+    const char* name;
+    std::function<void(btRigidBody&)> spoil;  // before step 30
+    double half = 0.05;                       // the cube's half size [m]
+    double mass = 1.0;                        // [kg]
+  };
+  const std::vector<Case> cases = {
+      {"NaN velocity", [](btRigidBody& b) { b.setLinearVelocity(bt(kNaN, 0, 0)); }},
+      {"infinite spin", [](btRigidBody& b) { b.setAngularVelocity(bt(0, 0, kInf)); }},
+      {"NaN position", [](btRigidBody& b) { b.getWorldTransform().setOrigin(bt(kNaN, 0, 0.05)); }},
+      {"infinite position",
+       [](btRigidBody& b) { b.getWorldTransform().setOrigin(bt(0, kInf, 0.05)); }},
+      {"zero mass", [](btRigidBody& b) { b.setMassProps(0, bt(0, 0, 0)); }},
+      {"1 um, 1 ng cube", [](btRigidBody&) {}, 5e-7, 1e-12},
+      {"1 km, 1e12 kg cube", [](btRigidBody&) {}, 500.0, 1e12},
+  };
+  for (const Case& c : cases) {
+    btRigidBody* bad = nullptr;
+    Hooks h;
+    h.setup = [&](Scene& scene) {
+      const double a = 2 * c.half;
+      // (the kilometre cube stands far enough not to reach the witnesses)
+      bad =
+          addFarBox(scene, bt(c.half, c.half, c.half), c.mass, scenes::boxInertia(c.mass, a, a, a));
+      bad->getWorldTransform().setOrigin(bt(c.half > 1 ? 1e4 : 10, 0, c.half));
+      bad->setLinearVelocity(bt(0.3, 0, 0));
+      bad->setAngularVelocity(bt(0, 0, 5));
+      scene.solver().enablePatchFriction(bad, {Model::Exact});
+    };
+    h.before = [&](Scene&, int k) {
+      if (k == 30) c.spoil(*bad);
+    };
+    expectWitnessesUnaffected(run(h), c.name);
+  }
+}
+
+// A step of zero or negative length (Bullet steps a negative one
+// backwards): no exception, every body stays finite, and the exact coin has
+// its patch again once it is back on the plane. (Measured: ten steps of
+// -dt integrate gravity backwards, 0.41 m/s up, and sink the coin 4 mm;
+// back on positive steps it leaves the plane, flies 7 mm high and lands
+// at step 63.)
+TEST(BadInput, ZeroAndNegativeStepsKeepTheWorldFinite) {
+  Scene scene(kG, 10);
+  scene.addGroundPlane(1.0);
+  const Witnesses w = addWitnesses(scene);
+  for (int k = 0; k < 120; ++k) {
+    const double dt = k >= 30 && k < 40 ? 0.0 : k >= 40 && k < 50 ? -kDt : kDt;
+    EXPECT_NO_THROW(scene.step(dt)) << "step " << k;
+    for (const btRigidBody* b : {w.coin, w.block, w.sphere})
+      ASSERT_TRUE(isFinite(b)) << "step " << k;
+    if (k >= 70) {
+      EXPECT_NE(scene.solver().findPatchReport(w.coin), nullptr) << "step " << k;
+    }
+  }
+}
+
 // ---- no flat face ---------------------------------------------------------------------
 // A sphere opted in has no flat face: stock Bullet handles it exactly as if
 // it had never been opted in (kSameTrajectoryTol), and it gets no patch.
