@@ -201,6 +201,18 @@ std::vector<btRigidBody*> addBlocks(Scene& scene, const std::vector<btVector3>& 
   return blocks;
 }
 
+HeavyOnLight makeHeavyOnLight(double ratio, Friction f) {
+  HeavyOnLight h;
+  h.scene = std::make_unique<Scene>(9.81, 10,
+                                    f == Friction::Stock ? SolverKind::Stock : SolverKind::Patch);
+  h.scene->addGroundPlane(1.0);
+  h.light = h.scene->addBox(bt(0.02, 0.05, 0.1), 1.0, bt(0, 0, 0.1), 1.0);
+  h.heavy = h.scene->addBox(bt(0.05, 0.05, 0.05), ratio, bt(0, 0, 0.25), 0.5);
+  optIn(*h.scene, h.light, f);
+  optIn(*h.scene, h.heavy, f);
+  return h;
+}
+
 std::vector<btRigidBody*> addBasicExample(Scene& scene, Friction f) {
   scene.world().setGravity(bt(0, 0, -10));
   scene.addStaticBox(bt(50, 50, 50), bt(0, 0, -50), 0.5);

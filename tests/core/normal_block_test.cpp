@@ -117,11 +117,28 @@ TEST(NormalBlock, AgreesWithTheCornerContactLcp) {
     } else if (!n.interior) {
       ++tipping;
       EXPECT_TRUE(someSolutionLiftsACorner(W, c, G)) << "trial " << trial;
-      // the clamped impulse's centre of pressure is on the patch (no
-      // impulse at all where y_z <= 0)
+      // the clamped impulse's centre of pressure is on the patch's
+      // boundary (no impulse at all where y_z <= 0), and it is the LCP's
+      // impulse at its active corners: their normal velocity stopped, each
+      // pushing (the corners it acts through: the ends of the edge it lies
+      // on, or the corner it is at)
       if (n.lamN[0] > 0.0) {
         const Vec2 cop(-n.lamN[2] / n.lamN[0], n.lamN[1] / n.lamN[0]);
         EXPECT_LE((nearestPointOn(rect, cop) - cop).norm(), 1e-12);
+        const Vec4 g = G.transpose() * (c + W * n.lamN);  // corners' normal velocity
+        // active corners: the one cop is at, else the two ends of its edge
+        std::vector<int> active;
+        for (int i = 0; i < 4; ++i)
+          if ((cop - rect.vertices()[std::size_t(i)]).norm() <= 1e-9) active = {i};
+        for (int i = 0; i < 4 && active.empty(); ++i) {
+          const Vec2 p1 = rect.vertices()[std::size_t(i)];
+          const Vec2 e = rect.vertices()[std::size_t((i + 1) % 4)] - p1;
+          const double t = (cop - p1).dot(e) / e.squaredNorm();
+          if (t > 0.0 && t < 1.0 && (cop - p1 - t * e).norm() <= 1e-9) active = {i, (i + 1) % 4};
+        }
+        for (const int i : active)
+          EXPECT_LT(std::abs(g[i]), kSolveTol * c.norm()) << "trial " << trial << " corner " << i;
+        EXPECT_FALSE(active.empty()) << "trial " << trial;
       } else {
         EXPECT_EQ(n.lamN, Vec3::Zero());
       }

@@ -1,6 +1,8 @@
 // Normal block part (normal_block.hpp; docs/solver.md (S4)-(S6), (S17)-(S20), (S23)-(S24)).
 #include <patchspin/parts/normal_block.hpp>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -93,11 +95,44 @@ NormalTargets softNormalTargets(double gap, double clearance, const Vec3& tiltRa
   return t;
 }
 
-void clampNormalImpulse(const Vec3& y, const Vec2& cop, const PatchOutlineSummary& outline,
-                        const PatchShape& shape, NormalImpulse& out) {
+void clampNormalImpulse(const Mat3& Winv, const Vec3& lamN, const Vec3& residual, const Vec2& cop,
+                        const PatchOutlineSummary& outline, const PatchShape& shape,
+                        NormalImpulse& out) {
   const Vec2 clamped = nearestPointOn(shape, cop);
-  out.lamN = Vec3(y[0], y[0] * clamped.y(), -y[0] * clamped.x());
   out.tipping = (cop - clamped).norm() > kTipRelTol * outline.diameter;
+  const Mat3 W = Winv.inverse();
+  // a point p's row: the normal velocity there is row(p) . c_n, and a force
+  // P at p is the impulse P row(p); the rows' impulses must bring row . c_n
+  // to row . target: row^T W lamN' = row^T (residual + W lamN)
+  const Vec3 rhs = residual + W * lamN;
+  auto row = [](const Vec2& p) { return Vec3(1.0, p.y(), -p.x()); };
+  auto single = [&](const Vec2& p) {
+    const Vec3 a = row(p);
+    out.lamN = std::max(0.0, a.dot(rhs) / a.dot(W * a)) * a;
+  };
+  if (!shape.isDisk()) {
+    // the edge whose segment holds the clamped point (not at a vertex)
+    const std::vector<Vec2>& v = shape.vertices();
+    const double tol = 1e-9 * outline.diameter;
+    for (std::size_t e = 0; e < v.size(); ++e) {
+      const Vec2& p1 = v[e];
+      const Vec2& p2 = v[(e + 1) % v.size()];
+      const Vec2 d = p2 - p1;
+      const double t = (clamped - p1).dot(d) / d.squaredNorm();
+      if (!(t > 0.0 && t < 1.0) || (p1 + t * d - clamped).norm() > tol) continue;
+      const Vec3 a1 = row(p1), a2 = row(p2);
+      Eigen::Matrix2d A;
+      A << a1.dot(W * a1), a1.dot(W * a2), a2.dot(W * a1), a2.dot(W * a2);
+      const Vec2 P = A.inverse() * Vec2(a1.dot(rhs), a2.dot(rhs));
+      if (P.allFinite() && P[0] >= 0.0 && P[1] >= 0.0) {
+        out.lamN = P[0] * a1 + P[1] * a2;
+        return;
+      }
+      single(P[0] > P[1] ? p1 : p2);  // the corner that pushes (or nothing)
+      return;
+    }
+  }
+  single(clamped);
 }
 
 }  // namespace patchspin::parts

@@ -136,10 +136,19 @@ struct NormalImpulse {
   bool tipping = false;      // clamped by more than kTipRelTol of the diameter
 };
 // The clamp of solveNormalVelocity: y's centre of pressure cop is off the
-// patch; out gets y's normal impulse with the nearest point of the patch as
-// its centre of pressure, and whether that is tipping.
-void clampNormalImpulse(const Vec3& y, const Vec2& cop, const PatchOutlineSummary& outline,
-                        const PatchShape& shape, NormalImpulse& out);
+// patch, so the body pivots on the patch's boundary. out gets the impulse
+// of the point contacts there that stop their normal velocity (the
+// velocity condition of (S4) on those points alone, W = Winv^-1 the normal
+// DOFs' velocity per impulse, residual = target - c_n before this visit):
+// the two corners of the polygon edge nearest to cop, both pushing; else
+// the one nearest point (a vertex, a disk's rim, or the corner of that edge
+// that pushes), pushing or nothing; and whether that is tipping (cop more
+// than kTipRelTol of the diameter off). Keeping y's normal force at the
+// nearest point instead over-pushed a pivoting body's edge: a heavy box
+// pushing a light one over spun it up (normal_block_test).
+void clampNormalImpulse(const Mat3& Winv, const Vec3& lamN, const Vec3& residual, const Vec2& cop,
+                        const PatchOutlineSummary& outline, const PatchShape& shape,
+                        NormalImpulse& out);
 // One velocity solve:                                                     (S4)-(S6)
 //   y = lamN - W^-1 (c_n - target),  accepted while y_z > 0 and its centre of
 //   pressure (-y2 / y0, y1 / y0) is on the patch; else clamped onto it.
@@ -160,7 +169,7 @@ inline NormalImpulse solveNormalVelocity(const Mat3& Winv, const Vec3& lamN, con
       out.lamN = y;
       out.interior = true;
     } else {
-      clampNormalImpulse(y, cop, outline, shape, out);
+      clampNormalImpulse(Winv, lamN, target - cn, cop, outline, shape, out);
     }
   }
   return out;

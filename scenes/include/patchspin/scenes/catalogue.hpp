@@ -180,6 +180,18 @@ std::vector<BodyState> pileRain(int n, unsigned seed);
 // the bodies (coins at even indices).
 std::vector<btRigidBody*> addPile(Scene& scene, const std::vector<BodyState>& states, Friction f);
 
+// ---- heavy on light ---------------------------------------------------------------------
+// The hand-back scene (issue 31): a tall light box (0.04 x 0.1 x 0.2 m,
+// 1 kg, friction 1 with the ground plane) under a 10 cm cube of `ratio` kg
+// (friction 0.5), both under f; a caller pushes the cube along x until the
+// light box tips over its edge, and its ground patch goes back to Bullet.
+struct HeavyOnLight {
+  std::unique_ptr<Scene> scene;
+  btRigidBody* light = nullptr;
+  btRigidBody* heavy = nullptr;
+};
+HeavyOnLight makeHeavyOnLight(double ratio, Friction f);
+
 // ---- Bullet's BasicExample -------------------------------------------------------------
 // Bullet's own example (examples/BasicDemo/BasicExample.cpp), z up: 125
 // boxes of 0.2 m (1 kg, Bullet's default margin and friction 0.5) released
