@@ -44,6 +44,11 @@
 
 namespace patchspin::bullet {
 
+class PatchSolverPoolMt;
+namespace internal {
+struct PatchSolverShared;
+}
+
 // The largest PatchOptions::flatnessTolerance [rad], pi/8: a patch ends at
 // twice the tolerance (hysteresis), which then stays within the 45 degrees
 // beyond which the selection never takes a face for the contact's anyway,
@@ -300,6 +305,11 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
                                          const btContactSolverInfo& info) override;
 
  private:
+  friend class PatchSolverPoolMt;
+  static std::shared_ptr<internal::PatchSolverShared> makeShared();
+  // A solver of a PatchSolverPoolMt: options, states, settings, stats and
+  // reports are the pool's (`shared`), its island scratch its own.
+  explicit PatchFrictionSolver(std::shared_ptr<internal::PatchSolverShared> shared);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
