@@ -5,13 +5,14 @@
 // islands' stats and reports in its own Member, merged at the end of the
 // step (endStep).
 //
-// Invariant of a shared state (MultithreadedWorld.*): the islands of one
-// step touch disjoint manifolds and dynamic bodies, so a PatchState, a
-// manifold's points and a body's per-body counts are written by one solver
-// only; what several solvers reach (the selection's maps, filters, caches,
-// the unsupported-shape callback) is used under `selectionMutex` (stage 1,
-// and a patch's hand-back in stage 2), and every other write goes to the
+// Invariant of a shared state: the islands of one step touch disjoint
+// manifolds and dynamic bodies, so a PatchState, a manifold's points and a
+// body's per-body counts are written by one solver only; what several
+// solvers reach (the selection's maps, filters, caches, the
+// unsupported-shape callback) is used under `selectionMutex` (stage 1, and
+// a patch's hand-back in stage 2), and every other write goes to the
 // solver's own Member. A lone solver takes no lock.
+// (MultithreadedWorld.TwoThreadsSolveDisjointIslandsAsOneThread)
 #pragma once
 
 #include "patch_reports.hpp"

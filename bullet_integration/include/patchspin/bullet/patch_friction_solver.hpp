@@ -27,6 +27,9 @@
 // patch bodies interact with joints, other contacts and stacks. Everything
 // else (other bodies, non-flat contacts, tipping bodies) goes through stock
 // Bullet untouched.
+// In btDiscreteDynamicsWorldMt, use PatchSolverPoolMt
+// (patch_solver_pool_mt.hpp), whose solvers are PatchFrictionSolvers
+// sharing one state.
 #pragma once
 
 #include <patchspin/models.hpp>
