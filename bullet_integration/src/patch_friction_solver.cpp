@@ -379,16 +379,17 @@ btScalar PatchFrictionSolver::solveSingleIteration(
       debugDrawer);
   if (iteration >= info.m_numIterations) return residual;
   Impl& im = *impl_;
-  VisitContext cx{m_tmpSolverBodyPool, im.shared->settings, im.shared->friction, *im.stats};
+  PatchSolverStats& stats = *im.stats;  // (held across the visits, not reloaded)
+  VisitContext cx{m_tmpSolverBodyPool, im.shared->settings, im.shared->friction, stats};
   double worst = 0.0;
   for (PatchConstraint& pc : im.patches) {
-    ++im.stats->visits;
+    ++stats.visits;
     if (pc.settled) {
       btVector3 now[4];
       snapshotOf(pc, m_tmpSolverBodyPool, now);
       if (now[0] == pc.snapshot[0] && now[1] == pc.snapshot[1] && now[2] == pc.snapshot[2] &&
           now[3] == pc.snapshot[3]) {
-        ++im.stats->skippedVisits;
+        ++stats.skippedVisits;
         continue;  // same input, same (zero) change
       }
       pc.settled = false;
