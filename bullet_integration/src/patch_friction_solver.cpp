@@ -5,6 +5,8 @@
 //
 //   1 select        manifolds of opted-in bodies -> candidate patches
 //                   (PatchSelection); all others go to Bullet's rows
+//                   (in a PatchSolverPoolMt, under the pool's lock:
+//                   patch_solver_shared.hpp)
 //   2 set up        per patch: bodies, frame, effective-mass blocks,
 //                   position targets (makePatchConstraint), warm start
 //   3 link stacks   a patch on a body that stands on a patch of its own is
@@ -27,6 +29,7 @@
 #include "patch_constraint.hpp"
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
+#include "patch_solver_shared.hpp"
 
 #include <algorithm>
 #include <string>
@@ -168,8 +171,18 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup,
 }  // namespace
 
 struct PatchFrictionSolver::Impl {
-  internal::PatchSelection selection;
-  internal::PatchReports reports;
+  explicit Impl(std::shared_ptr<internal::PatchSolverShared> s)
+      : shared(std::move(s)),
+        selection(shared->selection),
+        reports(&shared->reports),
+        stats(&shared->stats) {}
+  // options, states, settings, step: the solver's own, or its pool's
+  std::shared_ptr<internal::PatchSolverShared> shared;
+  internal::PatchSelection& selection;  // shared->selection
+  // where this solver records its islands: the shared records (a lone
+  // solver), or its own in a pool (merged by PatchSolverShared::endStep)
+  internal::PatchReports* reports;
+  PatchSolverStats* stats;
   std::vector<internal::Candidate> candidates;    // of the chunk in hand
   std::vector<PatchConstraint> patches;           // of the island
   std::vector<parts::StackHold> holds;            // of the island's stacked patches
@@ -178,13 +191,23 @@ struct PatchFrictionSolver::Impl {
   std::vector<char> otherRows;                    // by solver body id: in one of Bullet's rows
   PatchConstraint retry;                          // a stacked patch's state before its visit
   std::vector<btRigidBody*> flushBodies;          // bodies of the island's patches
-  PatchSolverSettings settings;
-  parts::FrictionPartSettings friction = frictionSettings(PatchSolverSettings());
-  PatchSolverStats stats;
-  long step = 0;
 };
 
-PatchFrictionSolver::PatchFrictionSolver() : impl_(std::make_unique<Impl>()) {}
+std::shared_ptr<internal::PatchSolverShared> PatchFrictionSolver::makeShared() {
+  auto shared = std::make_shared<internal::PatchSolverShared>();
+  shared->friction = frictionSettings(shared->settings);
+  return shared;
+}
+
+PatchFrictionSolver::PatchFrictionSolver() : impl_(std::make_unique<Impl>(makeShared())) {}
+
+PatchFrictionSolver::PatchFrictionSolver(std::shared_ptr<internal::PatchSolverShared> shared)
+    : impl_(std::make_unique<Impl>(std::move(shared))) {
+  internal::PatchSolverShared::Member& member = impl_->shared->members.emplace_back();
+  impl_->reports = &member.reports;
+  impl_->stats = &member.stats;
+}
+
 PatchFrictionSolver::~PatchFrictionSolver() = default;
 
 void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOptions& options) {
@@ -226,11 +249,11 @@ bool PatchFrictionSolver::isPatchFrictionEnabled(const btCollisionObject* body) 
 }
 
 const std::vector<PatchReport>& PatchFrictionSolver::patchReports() const {
-  return impl_->reports.reports();
+  return impl_->shared->reports.reports();
 }
 
 const PatchReport* PatchFrictionSolver::findPatchReport(const btCollisionObject* body) const {
-  return impl_->reports.find(body);
+  return impl_->shared->reports.find(body);
 }
 
 const NotPatchedCounts* PatchFrictionSolver::notPatchedOf(const btCollisionObject* body) const {
@@ -242,7 +265,7 @@ void PatchFrictionSolver::setUnsupportedShapeCallback(UnsupportedShapeCallback c
 }
 
 std::optional<PatchReport> PatchFrictionSolver::patchReportOf(const btCollisionObject* body) const {
-  const PatchReport* r = impl_->reports.find(body);
+  const PatchReport* r = impl_->shared->reports.find(body);
   return r ? std::optional<PatchReport>(*r) : std::nullopt;
 }
 
@@ -257,28 +280,24 @@ void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
       throw Error(std::string("PatchSolverSettings::") + name + " must be >= 0: got " +
                   formatDouble(value));
   }
-  impl_->settings = settings;
-  impl_->friction = frictionSettings(settings);
+  impl_->shared->settings = settings;
+  impl_->shared->friction = frictionSettings(settings);
 }
 const PatchSolverSettings& PatchFrictionSolver::settings() const {
-  return impl_->settings;
+  return impl_->shared->settings;
 }
 const PatchSolverStats& PatchFrictionSolver::stats() const {
-  return impl_->stats;
+  return impl_->shared->stats;
 }
 
 void PatchFrictionSolver::prepareSolve(int numBodies, int numManifolds) {
   btSequentialImpulseConstraintSolver::prepareSolve(numBodies, numManifolds);
-  ++impl_->step;
-  impl_->selection.beginStep(impl_->step);
-  impl_->reports.beginStep();
-  impl_->stats = PatchSolverStats();
+  impl_->shared->beginStep();
 }
 
 void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
   btSequentialImpulseConstraintSolver::allSolved(info, debugDrawer);
-  impl_->reports.endStep();
-  impl_->selection.endStep(impl_->step);
+  impl_->shared->endStep();
 }
 
 // Stages 1-3.
@@ -299,16 +318,20 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
   constexpr int kChunk = 256;
   for (int begin = 0; begin < numManifolds; begin += kChunk) {
     const int end = std::min(numManifolds, begin + kChunk);
-    // 1 select
+    // 1 select (the rest handed back to Bullet's rows)
     im.candidates.clear();
-    for (int i = begin; i < end; ++i)
-      im.selection.select(manifolds[i], i, double(info.m_timeStep), im.stats, im.candidates);
+    {
+      const std::unique_lock<std::mutex> lock = im.shared->lockSelection();
+      for (int i = begin; i < end; ++i)
+        if (!im.selection.select(manifolds[i], i, double(info.m_timeStep), *im.stats,
+                                 im.candidates))
+          im.selection.handBack(manifolds[i]);
+    }
     // 2 set up (Bullet's contacts for the rest, in order)
     std::size_t next = 0;
     for (int i = begin; i < end; ++i) {
       btPersistentManifold* m = manifolds[i];
       if (next == im.candidates.size() || im.candidates[next].index != i) {
-        im.selection.handBack(m);
         convertContact(m, info);
         continue;
       }
@@ -321,8 +344,11 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
                                          m_tmpSolverBodyPool[idB], idB, info, pc)) {
         im.patches.pop_back();
         cand.state->flat = false;  // no usable effective mass: Bullet's contact
-        im.selection.countSingular(cand, im.stats);
-        im.selection.handBack(m);
+        {
+          const std::unique_lock<std::mutex> lock = im.shared->lockSelection();
+          im.selection.countSingular(cand, *im.stats);
+          im.selection.handBack(m);
+        }
         convertContact(m, info);
         continue;
       }
@@ -332,7 +358,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     }
   }
   // 3 link stacks
-  if (im.settings.supportedStacks &&
+  if (im.shared->settings.supportedStacks &&
       std::any_of(im.patches.begin(), im.patches.end(),
                   [](const PatchConstraint& pc) { return pc.b.body.dynamic; })) {
     // the bodies in Bullet's rows (joints are converted before the contacts)
@@ -373,16 +399,17 @@ btScalar PatchFrictionSolver::solveSingleIteration(
       debugDrawer);
   if (iteration >= info.m_numIterations) return residual;
   Impl& im = *impl_;
-  VisitContext cx{m_tmpSolverBodyPool, im.settings, im.friction, im.stats};
+  PatchSolverStats& stats = *im.stats;  // (held across the visits, not reloaded)
+  VisitContext cx{m_tmpSolverBodyPool, im.shared->settings, im.shared->friction, stats};
   double worst = 0.0;
   for (PatchConstraint& pc : im.patches) {
-    ++im.stats.visits;
+    ++stats.visits;
     if (pc.settled) {
       btVector3 now[4];
       snapshotOf(pc, m_tmpSolverBodyPool, now);
       if (now[0] == pc.snapshot[0] && now[1] == pc.snapshot[1] && now[2] == pc.snapshot[2] &&
           now[3] == pc.snapshot[3]) {
-        ++im.stats.skippedVisits;
+        ++stats.skippedVisits;
         continue;  // same input, same (zero) change
       }
       pc.settled = false;
@@ -458,21 +485,22 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
                                                             int numBodies,
                                                             const btContactSolverInfo& info) {
   Impl& im = *impl_;
-  im.stats.patches += long(im.patches.size());
+  PatchSolverStats& stats = *im.stats;
+  stats.patches += long(im.patches.size());
   for (PatchConstraint& pc : im.patches) {
-    im.stats.stackHolds += pc.stack.hold >= 0 || pc.stack.loadHold >= 0;
+    stats.stackHolds += pc.stack.hold >= 0 || pc.stack.loadHold >= 0;
     const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
-    internal::storePatchState(pc, c, im.step);
-    im.reports.record(pc, c);
+    internal::storePatchState(pc, c, im.shared->step);
+    im.reports->record(pc, c);
     if (internal::writeManifoldImpulses(pc, *pc.manifold))
       im.selection.markWritten(*pc.state);
     else
-      ++im.stats.patchesWithoutPoints;
+      ++stats.patchesWithoutPoints;
     const PatchLoads l = parts::toLoads(pc.lamN);
     if (l.Pz > 0.0 && pc.fb.mu > 0.0) {
       const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
-      im.stats.maxPressureLag = std::max(im.stats.maxPressureLag,
-                                         (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
+      stats.maxPressureLag =
+          std::max(stats.maxPressureLag, (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
     }
   }
   im.flushBodies.clear();

@@ -1,6 +1,10 @@
 // Patch reports (patch_reports.hpp).
 #include "patch_reports.hpp"
 
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+
+#include <algorithm>
+
 namespace patchspin::bullet::internal {
 
 void PatchReports::beginStep() {
@@ -21,6 +25,24 @@ void PatchReports::record(const PatchConstraint& pc, const Vec6& c) {
   r.lamN = pc.lamN;
   r.lamF = pc.lamF;
   r.slip = c.tail<3>();
+}
+
+void PatchReports::append(const PatchReports& other) {
+  if (sources_.size() < count_ + other.count_) sources_.resize(count_ + other.count_);
+  std::copy(other.sources_.begin(), other.sources_.begin() + std::ptrdiff_t(other.count_),
+            sources_.begin() + std::ptrdiff_t(count_));
+  count_ += other.count_;
+}
+
+void PatchReports::orderByBodies() {
+  std::stable_sort(sources_.begin(), sources_.begin() + std::ptrdiff_t(count_),
+                   [](const ReportSource& x, const ReportSource& y) {
+                     const int bx = x.state->body->getWorldArrayIndex();
+                     const int by = y.state->body->getWorldArrayIndex();
+                     if (bx != by) return bx < by;
+                     return x.state->other->getWorldArrayIndex() <
+                            y.state->other->getWorldArrayIndex();
+                   });
 }
 
 const std::vector<PatchReport>& PatchReports::reports() {

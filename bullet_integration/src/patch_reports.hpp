@@ -15,6 +15,13 @@ class PatchReports {
   void endStep() { inStep_ = false; }
   // The patch's report source; c is its final DOF velocity.
   void record(const PatchConstraint& pc, const Vec6& c);
+  // The sources `other` recorded in this step, appended (a pool's members).
+  void append(const PatchReports& other);
+  // The sources ordered by their bodies' world array indices, then their
+  // others': one order whichever solver of a pool, on whichever thread,
+  // recorded them (a body's patches are all in its island, recorded by one
+  // solver in its manifolds' order, which the stable sort keeps).
+  void orderByBodies();
   // The reports of the last step (filled once per step; in place, without
   // allocation once the storage has grown).
   const std::vector<PatchReport>& reports();

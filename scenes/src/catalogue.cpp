@@ -161,8 +161,8 @@ btRigidBody* addRowBody(Scene& scene, const RowBody& d, double mu, Friction f) {
 }
 
 std::unique_ptr<Scene> makeBlocksRow(const BlocksRowSpec& spec, Friction f,
-                                     std::vector<btRigidBody*>* bodies) {
-  auto scene = std::make_unique<Scene>(spec.g);
+                                     std::vector<btRigidBody*>* bodies, SolverKind kind) {
+  auto scene = std::make_unique<Scene>(spec.g, 10, kind);
   scene->addGroundPlane(1.0);
   for (const RowBody& d : blocksRow(spec)) {
     btRigidBody* b = addRowBody(*scene, d, spec.mu, f);
@@ -304,10 +304,10 @@ void Pour::pourLayer(double z0, Friction f) {
 }
 
 std::unique_ptr<Scene> makePour(const PourSpec& spec, Friction f, std::vector<btRigidBody*>* coins,
-                                double g) {
+                                double g, SolverKind kind) {
   // the pour tests' first layer: kDropHeight above the empty floor
   constexpr double kDropHeight = 0.03;
-  auto scene = std::make_unique<Scene>(g * spec.unit, 10);
+  auto scene = std::make_unique<Scene>(g * spec.unit, 10, kind);
   if (spec.hull) scene->world().getDispatchInfo().m_enableSatConvex = true;
   Pour pour(*scene, spec);
   pour.pourLayer(kDropHeight, f);
@@ -391,7 +391,7 @@ std::vector<btRigidBody*> addPile(Scene& scene, const std::vector<BodyState>& st
                                              kCoinGroup | kBoxGroup | kFloorGroup | kWallGroup);
     body->setLinearVelocity(states[std::size_t(i)].v);
     body->setAngularVelocity(states[std::size_t(i)].w);
-    if (scene.kind() == SolverKind::Patch) optIn(scene, body, f);
+    if (scene.kind() != SolverKind::Stock) optIn(scene, body, f);
     bodies.push_back(body);
   }
   return bodies;

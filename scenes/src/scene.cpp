@@ -5,8 +5,13 @@
 namespace patchspin::scenes {
 namespace {
 std::unique_ptr<btSequentialImpulseConstraintSolver> makeSolver(SolverKind kind) {
+  if (kind == SolverKind::PatchPoolMt) return nullptr;
   if (kind == SolverKind::Stock) return std::make_unique<btSequentialImpulseConstraintSolver>();
   return std::make_unique<bullet::PatchFrictionSolver>();
+}
+std::unique_ptr<bullet::PatchSolverPoolMt> makePool(SolverKind kind) {
+  if (kind != SolverKind::PatchPoolMt) return nullptr;
+  return std::make_unique<bullet::PatchSolverPoolMt>(kPoolSolvers);
 }
 }  // namespace
 
@@ -16,8 +21,13 @@ Scene::Scene(double g, int iterations, SolverKind kind)
       dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(makeSolver(kind)),
-      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                       solver_.get(), config_.get())) {
+      pool_(makePool(kind)) {
+  if (pool_)
+    world_ = std::make_unique<btDiscreteDynamicsWorldMt>(dispatcher_.get(), broadphase_.get(),
+                                                         pool_.get(), nullptr, config_.get());
+  else
+    world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                       solver_.get(), config_.get());
   world_->setGravity(bt(0, 0, -g));
   world_->getSolverInfo().m_numIterations = iterations;
 }
@@ -28,9 +38,14 @@ Scene::~Scene() {
 }
 
 bullet::PatchFrictionSolver& Scene::solver() {
-  if (kind_ != SolverKind::Patch)
+  if (kind_ == SolverKind::Stock)
     throw Error("Scene::solver: this scene steps with stock Bullet's solver");
+  if (pool_) return pool_->solver(0);
   return static_cast<bullet::PatchFrictionSolver&>(*solver_);
+}
+bullet::PatchSolverPoolMt& Scene::pool() {
+  if (!pool_) throw Error("Scene::pool: this scene steps a btDiscreteDynamicsWorld");
+  return *pool_;
 }
 const bullet::PatchFrictionSolver& Scene::solver() const {
   return const_cast<Scene*>(this)->solver();

@@ -27,6 +27,9 @@
 // patch bodies interact with joints, other contacts and stacks. Everything
 // else (other bodies, non-flat contacts, tipping bodies) goes through stock
 // Bullet untouched.
+// In btDiscreteDynamicsWorldMt, use PatchSolverPoolMt
+// (patch_solver_pool_mt.hpp), whose solvers are PatchFrictionSolvers
+// sharing one state.
 #pragma once
 
 #include <patchspin/models.hpp>
@@ -43,6 +46,11 @@
 #include <vector>
 
 namespace patchspin::bullet {
+
+class PatchSolverPoolMt;
+namespace internal {
+struct PatchSolverShared;
+}
 
 // The largest PatchOptions::flatnessTolerance [rad], pi/8: a patch ends at
 // twice the tolerance (hysteresis), which then stays within the 45 degrees
@@ -302,6 +310,11 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
                                          const btContactSolverInfo& info) override;
 
  private:
+  friend class PatchSolverPoolMt;
+  static std::shared_ptr<internal::PatchSolverShared> makeShared();
+  // A solver of a PatchSolverPoolMt: options, states, settings, stats and
+  // reports are the pool's (`shared`), its island scratch its own.
+  explicit PatchFrictionSolver(std::shared_ptr<internal::PatchSolverShared> shared);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -89,7 +89,8 @@ std::vector<RowBody> blocksRow(const BlocksRowSpec& spec);
 btRigidBody* addRowBody(Scene& scene, const RowBody& body, double mu, Friction f);
 // A world holding the ground plane and the row under f; the bodies in row order.
 std::unique_ptr<Scene> makeBlocksRow(const BlocksRowSpec& spec, Friction f,
-                                     std::vector<btRigidBody*>* bodies);
+                                     std::vector<btRigidBody*>* bodies,
+                                     SolverKind kind = SolverKind::Patch);
 
 // ---- blocks: stack, pyramid, incline ----------------------------------------------
 // Blocks a x a x 2 halfH [m], mass [kg], friction mu, on the ground plane
@@ -154,7 +155,7 @@ class Pour {
 // (10 solver iterations, Bullet's SAT for hull coins), the box, and one
 // layer 3 cm above the empty floor under f; the coins in the order poured.
 std::unique_ptr<Scene> makePour(const PourSpec& spec, Friction f, std::vector<btRigidBody*>* coins,
-                                double g = 9.81);
+                                double g = 9.81, SolverKind kind = SolverKind::Patch);
 
 // ---- pile ---------------------------------------------------------------------------------
 // The scale benchmark's pile (bench/bench_bullet_scale.cpp): n bodies,

@@ -11,14 +11,18 @@
 #include <Eigen/Geometry>
 #include <memory>
 #include <patchspin/bullet/patch_friction_solver.hpp>
+#include <patchspin/bullet/patch_solver_pool_mt.hpp>
 #include <vector>
 
 namespace patchspin::scenes {
 
 // Which constraint solver the world steps with. Patch: PatchFrictionSolver
 // (bodies opted in get patch friction, the others Bullet's own); Stock:
-// Bullet's btSequentialImpulseConstraintSolver.
-enum class SolverKind { Patch, Stock };
+// Bullet's btSequentialImpulseConstraintSolver; PatchPoolMt: a
+// btDiscreteDynamicsWorldMt with a PatchSolverPoolMt of kPoolSolvers
+// solvers (islands solved as the task scheduler in place dispatches them).
+enum class SolverKind { Patch, Stock, PatchPoolMt };
+constexpr int kPoolSolvers = 2;
 
 constexpr bool kDoublePrecision = sizeof(btScalar) == sizeof(double);
 // "float" or "double": the precision of this build's btScalar.
@@ -54,9 +58,12 @@ class Scene {
   btDiscreteDynamicsWorld& world() { return *world_; }
   const btDiscreteDynamicsWorld& world() const { return *world_; }
   SolverKind kind() const { return kind_; }
-  // The patch solver; throws Error in a Stock scene.
+  // The patch solver (PatchPoolMt: the pool's first, whose per-body API,
+  // stats and reports are the pool's); throws Error in a Stock scene.
   bullet::PatchFrictionSolver& solver();
   const bullet::PatchFrictionSolver& solver() const;
+  // The solver pool; throws Error unless PatchPoolMt.
+  bullet::PatchSolverPoolMt& pool();
 
   // Static plane z = 0 with the given friction (Bullet multiplies the two
   // bodies' frictions: 1 leaves the body's own).
@@ -98,7 +105,8 @@ class Scene {
   std::unique_ptr<btDefaultCollisionConfiguration> config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btDbvtBroadphase> broadphase_;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;  // Patch, Stock
+  std::unique_ptr<bullet::PatchSolverPoolMt> pool_;              // PatchPoolMt
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
