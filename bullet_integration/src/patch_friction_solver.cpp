@@ -300,6 +300,20 @@ void PatchFrictionSolver::allSolved(const btContactSolverInfo& info, btIDebugDra
   impl_->shared->endStep();
 }
 
+btScalar PatchFrictionSolver::solveGroup(btCollisionObject** bodies, int numBodies,
+                                         btPersistentManifold** manifolds, int numManifolds,
+                                         btTypedConstraint** constraints, int numConstraints,
+                                         const btContactSolverInfo& info, btIDebugDraw* debugDrawer,
+                                         btDispatcher* dispatcher) {
+  {
+    const std::unique_lock<std::mutex> lock = impl_->shared->lockSelection();
+    impl_->selection.enterWorld(dispatcher);
+  }
+  return btSequentialImpulseConstraintSolver::solveGroup(bodies, numBodies, manifolds, numManifolds,
+                                                         constraints, numConstraints, info,
+                                                         debugDrawer, dispatcher);
+}
+
 // Stages 1-3.
 void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int numManifolds,
                                           const btContactSolverInfo& info) {
@@ -490,7 +504,7 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
   for (PatchConstraint& pc : im.patches) {
     stats.stackHolds += pc.stack.hold >= 0 || pc.stack.loadHold >= 0;
     const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
-    internal::storePatchState(pc, c, im.shared->step);
+    internal::storePatchState(pc, c, im.selection.step());
     im.reports->record(pc, c);
     if (internal::writeManifoldImpulses(pc, *pc.manifold))
       im.selection.markWritten(*pc.state);

@@ -117,10 +117,33 @@ void PatchSelection::countNotPatched(const btCollisionObject* A, const btCollisi
   unsupported_(A, B);
 }
 
-void PatchSelection::beginStep(long step) {
-  step_ = step;
+void PatchSelection::beginStep() {
   notPatched_.clear();
-  clearFlatFilter(int(step & 1));
+  begun_ = false;
+}
+
+void PatchSelection::beginWorldStep() {
+  ++step_;
+  clearFlatFilter(int(step_ & 1));
+  begun_ = true;
+}
+
+void PatchSelection::swapWorld(const void* world) {
+  auto swapWith = [&](WorldRecord& r) {
+    std::swap(r.states, states_);
+    std::swap(r.step, step_);
+    for (int k = 0; k < 2; ++k) {
+      std::swap(r.flatFilter[k], flatFilter_[k]);
+      std::swap(r.flatWords[k], flatWords_[k]);
+    }
+  };
+  swapWith(worlds_[world_]);  // the world in hand put away
+  WorldRecord& next = worlds_[world];
+  for (int k = 0; k < 2; ++k)
+    if (next.flatFilter[k].empty())
+      next.flatFilter[k].assign(std::size_t(1) << (kFlatFilterLog2 - 6), 0);
+  swapWith(next);
+  world_ = world;
 }
 
 void PatchSelection::clearWrittenImpulses(btPersistentManifold* m) {
@@ -132,10 +155,10 @@ void PatchSelection::clearWrittenImpulses(btPersistentManifold* m) {
   }
 }
 
-void PatchSelection::endStep(long step) {
-  if (step % kSweepSteps != 0) return;
+void PatchSelection::endStep() {
+  if (!begun_ || step_ % kSweepSteps != 0) return;
   for (auto it = states_.begin(); it != states_.end();) {
-    if (isStale(it->second, step))
+    if (isStale(it->second, step_))
       it = states_.erase(it);
     else
       ++it;

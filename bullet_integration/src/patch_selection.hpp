@@ -34,8 +34,20 @@ class PatchSelection {
     countNotPatched(c.A, c.B, &NotPatchedCounts::singularBlocks, stats);
   }
 
-  // Start of step `step` (after the last one's end).
-  void beginStep(long step);
+  // Start of a world step (after the last one's end); the world is known
+  // at its first island solve (enterWorld).
+  void beginStep();
+  // The world (its dispatcher) whose step this is, at each island solve: a
+  // solver that steps several worlds keeps each world's manifold states,
+  // step count and flat filter apart, swapped in when its world steps (one
+  // world: never swapped). The first call of a step counts the world's step.
+  // (SharedSolver.*)
+  void enterWorld(const void* world) {
+    if (world != world_) swapWorld(world);
+    if (!begun_) beginWorldStep();
+  }
+  // The step count of the world in hand.
+  long step() const { return step_; }
   // The manifold becomes a patch (a Candidate appended to `out`) or is left
   // to Bullet (false). `dt` [s] is the step.
   // (Inline: the pile's many empty manifolds, which had no patch in the last
@@ -57,8 +69,8 @@ class PatchSelection {
   // The step's patch impulses were written onto m's points (stage 6).
   void markWritten(PatchState& st) { st.pointsWritten = step_; }
   // Forgets manifolds not seen for a while (they may have been deleted);
-  // every kSweepSteps steps.
-  void endStep(long step);
+  // every kSweepSteps steps of the world in hand.
+  void endStep();
 
  private:
   void clearWrittenImpulses(btPersistentManifold* m);
@@ -100,6 +112,8 @@ class PatchSelection {
     return (flatFilter_[(step_ - 1) & 1][bit >> 6] >> (bit & 63)) & 1;
   }
   void clearFlatFilter(int k);
+  void swapWorld(const void* world);
+  void beginWorldStep();
 
   PatchOptIns optIns_;
   std::unordered_map<const btPersistentManifold*, PatchState> states_;
@@ -109,6 +123,16 @@ class PatchSelection {
   std::vector<std::pair<int, int>> reportedShapePairs_;  // told to unsupported_ already
   std::vector<std::uint64_t> flatFilter_[2];
   std::vector<std::size_t> flatWords_[2];  // the words of flatFilter_[k] that are not zero
+  // the other worlds' states_, step_ and flat filter (swapWorld)
+  struct WorldRecord {
+    std::unordered_map<const btPersistentManifold*, PatchState> states;
+    long step = 0;
+    std::vector<std::uint64_t> flatFilter[2];
+    std::vector<std::size_t> flatWords[2];
+  };
+  std::unordered_map<const void*, WorldRecord> worlds_;
+  const void* world_ = nullptr;  // whose states are in hand
+  bool begun_ = false;           // the world in hand has begun this step
   // the two faces of the manifold in hand, kept for their vertex storage
   internal::Face faceA_, faceB_;
   // disk shapes already built, by radius (a pile of equal coins builds one)

@@ -14,6 +14,7 @@ void addNotPatched(NotPatchedCounts& sum, const NotPatchedCounts& s) {
   sum.tipCooldown += s.tipCooldown;
   sum.noOverlap += s.noOverlap;
   sum.lawRefused += s.lawRefused;
+  sum.sliver += s.sliver;
   sum.singularBlocks += s.singularBlocks;
 }
 
@@ -21,9 +22,9 @@ void addNotPatched(NotPatchedCounts& sum, const NotPatchedCounts& s) {
 
 // (a field added to the stats must be merged here: the sizes below count
 // the fields, 8 bytes each)
-static_assert(sizeof(NotPatchedCounts) == 8 * 8);
+static_assert(sizeof(NotPatchedCounts) == 9 * 8);
 static_assert(sizeof(parts::FrictionPartCounters) == 5 * 8);
-static_assert(sizeof(PatchSolverStats) == (5 + 7 + 8) * 8);
+static_assert(sizeof(PatchSolverStats) == (5 + 7 + 9) * 8);
 void addStats(PatchSolverStats& sum, const PatchSolverStats& s) {
   sum.blockSolves += s.blockSolves;
   sum.pressureRefreshes += s.pressureRefreshes;
@@ -42,7 +43,7 @@ void addStats(PatchSolverStats& sum, const PatchSolverStats& s) {
 
 void PatchSolverShared::beginStep() {
   ++step;
-  selection.beginStep(step);
+  selection.beginStep();
   reports.beginStep();
   stats = PatchSolverStats();
   for (Member& m : members) {
@@ -61,7 +62,7 @@ void PatchSolverShared::endStep() {
     reports.orderByBodies();
   }
   reports.endStep();
-  selection.endStep(step);
+  selection.endStep();
 }
 
 }  // namespace patchspin::bullet::internal

@@ -32,6 +32,18 @@ Scene::Scene(double g, int iterations, SolverKind kind)
   world_->getSolverInfo().m_numIterations = iterations;
 }
 
+Scene::Scene(double g, int iterations, bullet::PatchFrictionSolver& shared)
+    : kind_(SolverKind::Patch),
+      config_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()),
+      shared_(&shared),
+      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                       &shared, config_.get())) {
+  world_->setGravity(bt(0, 0, -g));
+  world_->getSolverInfo().m_numIterations = iterations;
+}
+
 Scene::~Scene() {
   for (auto& b : bodies_)
     if (b->isInWorld()) world_->removeRigidBody(b.get());
@@ -41,6 +53,7 @@ bullet::PatchFrictionSolver& Scene::solver() {
   if (kind_ == SolverKind::Stock)
     throw Error("Scene::solver: this scene steps with stock Bullet's solver");
   if (pool_) return pool_->solver(0);
+  if (shared_) return *shared_;
   return static_cast<bullet::PatchFrictionSolver&>(*solver_);
 }
 bullet::PatchSolverPoolMt& Scene::pool() {

@@ -293,6 +293,15 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   // btConstraintSolver hooks called once per world step.
   void prepareSolve(int numBodies, int numManifolds) override;
   void allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override;
+  // Each island solve: the patch states of its world (by its dispatcher)
+  // are the ones in hand. One solver may step several worlds, one after
+  // the other (not at once): each world moves as with a solver of its own,
+  // and the reports and stats are those of the last world step
+  // (SharedSolver.*).
+  btScalar solveGroup(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+                      int numManifolds, btTypedConstraint** constraints, int numConstraints,
+                      const btContactSolverInfo& info, btIDebugDraw* debugDrawer,
+                      btDispatcher* dispatcher) override;
 
  protected:
   void convertContacts(btPersistentManifold** manifolds, int numManifolds,

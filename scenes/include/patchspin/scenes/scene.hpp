@@ -51,6 +51,9 @@ class Scene {
  public:
   // Gravity -g z [m/s^2]; `iterations` solver iterations per step.
   explicit Scene(double g = 9.81, int iterations = 10, SolverKind kind = SolverKind::Patch);
+  // A Patch scene whose world steps with `shared`, a solver owned by the
+  // caller that may step other worlds too (it must outlive the scene).
+  Scene(double g, int iterations, bullet::PatchFrictionSolver& shared);
   ~Scene();
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
@@ -107,6 +110,7 @@ class Scene {
   std::unique_ptr<btDbvtBroadphase> broadphase_;
   std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;  // Patch, Stock
   std::unique_ptr<bullet::PatchSolverPoolMt> pool_;              // PatchPoolMt
+  bullet::PatchFrictionSolver* shared_ = nullptr;                // a caller's solver
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
