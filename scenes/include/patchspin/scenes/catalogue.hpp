@@ -198,7 +198,8 @@ HeavyOnLight makeHeavyOnLight(double ratio, Friction f);
 // boxes of 0.2 m (1 kg, Bullet's default margin and friction 0.5) released
 // in a 5 x 5 x 5 block with their faces touching, 2 m above a static ground
 // box of 100 m, g = 10 m/s^2, stepped at 1/60 s. The boxes' faces meet
-// their diagonal neighbours' along an edge: sliver overlaps.
+// their diagonal neighbours' along an edge: in float, sliver overlaps
+// ~1e-7 m wide (in double, none).
 std::vector<btRigidBody*> addBasicExample(Scene& scene, Friction f);
 
 // ---- the named catalogue -------------------------------------------------------------------
