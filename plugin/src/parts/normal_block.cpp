@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace patchspin::parts {
 
@@ -20,15 +21,16 @@ PatchOutlineSummary summarizeOutline(const PatchShape& shape) {
   return s;
 }
 
-Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
-  if (shape.isDisk()) {
-    const Vec2 d = p - shape.centre();
-    const double n = d.norm();
-    return n <= shape.radius() ? p : Vec2(shape.centre() + d * (shape.radius() / n));
-  }
-  if (shape.contains(p)) return p;
-  const auto& v = shape.vertices();
-  Vec2 best = v[0];
+namespace {
+// The point of a polygon's boundary nearest to p: on edge `edge` (from
+// vertex edge to the next) at parameter t in [0, 1] (0, 1: a vertex).
+struct BoundaryPoint {
+  Vec2 point;
+  std::size_t edge = 0;
+  double t = 0.0;
+};
+BoundaryPoint nearestOnEdges(const std::vector<Vec2>& v, const Vec2& p) {
+  BoundaryPoint best{v[0]};
   double bestDist = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < v.size(); ++i) {
     const Vec2 a = v[i], e = v[(i + 1) % v.size()] - a;
@@ -36,10 +38,21 @@ Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
     const Vec2 q = a + t * e;
     if ((q - p).norm() < bestDist) {
       bestDist = (q - p).norm();
-      best = q;
+      best = {q, i, t};
     }
   }
   return best;
+}
+}  // namespace
+
+Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
+  if (shape.isDisk()) {
+    const Vec2 d = p - shape.centre();
+    const double n = d.norm();
+    return n <= shape.radius() ? p : Vec2(shape.centre() + d * (shape.radius() / n));
+  }
+  if (shape.contains(p)) return p;
+  return nearestOnEdges(shape.vertices(), p).point;
 }
 
 double innerRadiusSquared(const PatchShape& shape) {
@@ -98,8 +111,10 @@ NormalTargets softNormalTargets(double gap, double clearance, const Vec3& tiltRa
 void clampNormalImpulse(const Mat3& Winv, const Vec3& lamN, const Vec3& residual, const Vec2& cop,
                         const PatchOutlineSummary& outline, const PatchShape& shape,
                         NormalImpulse& out) {
-  const Vec2 clamped = nearestPointOn(shape, cop);
-  out.tipping = (cop - clamped).norm() > kTipRelTol * outline.diameter;
+  // (cop is off the patch: a polygon's nearest point is on its boundary)
+  const BoundaryPoint nearest = shape.isDisk() ? BoundaryPoint{nearestPointOn(shape, cop)}
+                                               : nearestOnEdges(shape.vertices(), cop);
+  out.tipping = (cop - nearest.point).norm() > kTipRelTol * outline.diameter;
   const Mat3 W = Winv.inverse();
   // a point p's row: the normal velocity there is row(p) . c_n, and a force
   // P at p is the impulse P row(p); the rows' impulses must bring row . c_n
@@ -110,29 +125,23 @@ void clampNormalImpulse(const Mat3& Winv, const Vec3& lamN, const Vec3& residual
     const Vec3 a = row(p);
     out.lamN = std::max(0.0, a.dot(rhs) / a.dot(W * a)) * a;
   };
-  if (!shape.isDisk()) {
-    // the edge whose segment holds the clamped point (not at a vertex)
+  if (!shape.isDisk() && nearest.t > 0.0 && nearest.t < 1.0) {
+    // inside an edge: its two corners
     const std::vector<Vec2>& v = shape.vertices();
-    const double tol = 1e-9 * outline.diameter;
-    for (std::size_t e = 0; e < v.size(); ++e) {
-      const Vec2& p1 = v[e];
-      const Vec2& p2 = v[(e + 1) % v.size()];
-      const Vec2 d = p2 - p1;
-      const double t = (clamped - p1).dot(d) / d.squaredNorm();
-      if (!(t > 0.0 && t < 1.0) || (p1 + t * d - clamped).norm() > tol) continue;
-      const Vec3 a1 = row(p1), a2 = row(p2);
-      Eigen::Matrix2d A;
-      A << a1.dot(W * a1), a1.dot(W * a2), a2.dot(W * a1), a2.dot(W * a2);
-      const Vec2 P = A.inverse() * Vec2(a1.dot(rhs), a2.dot(rhs));
-      if (P.allFinite() && P[0] >= 0.0 && P[1] >= 0.0) {
-        out.lamN = P[0] * a1 + P[1] * a2;
-        return;
-      }
-      single(P[0] > P[1] ? p1 : p2);  // the corner that pushes (or nothing)
+    const Vec2& p1 = v[nearest.edge];
+    const Vec2& p2 = v[(nearest.edge + 1) % v.size()];
+    const Vec3 a1 = row(p1), a2 = row(p2);
+    Eigen::Matrix2d A;
+    A << a1.dot(W * a1), a1.dot(W * a2), a2.dot(W * a1), a2.dot(W * a2);
+    const Vec2 P = A.inverse() * Vec2(a1.dot(rhs), a2.dot(rhs));
+    if (P.allFinite() && P[0] >= 0.0 && P[1] >= 0.0) {
+      out.lamN = P[0] * a1 + P[1] * a2;
       return;
     }
+    single(P[0] > P[1] ? p1 : p2);  // the corner that pushes (or nothing)
+    return;
   }
-  single(clamped);
+  single(nearest.point);
 }
 
 }  // namespace patchspin::parts
