@@ -42,7 +42,6 @@ void addStats(PatchSolverStats& sum, const PatchSolverStats& s) {
 }
 
 void PatchSolverShared::beginStep() {
-  ++step;
   selection.beginStep();
   reports.beginStep();
   stats = PatchSolverStats();

@@ -1,6 +1,7 @@
 // The state of a PatchFrictionSolver that outlives an island solve
-// (internal): per-body options, per-manifold states, settings, the step
-// counter, and the last step's stats and report sources. A lone solver owns
+// (internal): per-body options, per-manifold states and step counts (per
+// world, PatchSelection), settings, and the last step's stats and report
+// sources. A lone solver owns
 // one; the solvers of a PatchSolverPoolMt share one, each recording its
 // islands' stats and reports in its own Member, merged at the end of the
 // step (endStep).
@@ -27,7 +28,6 @@ struct PatchSolverShared {
   PatchSelection selection;
   PatchSolverSettings settings;
   parts::FrictionPartSettings friction;
-  long step = 0;
   PatchSolverStats stats;  // of the last step, all islands
   PatchReports reports;    // of the last step, all islands
   // a pool's solvers' records of the step in hand (none for a lone solver)

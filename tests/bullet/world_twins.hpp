@@ -58,6 +58,7 @@ inline void expectSameCounts(const NotPatchedCounts& a, const NotPatchedCounts& 
   EXPECT_EQ(a.tipCooldown, b.tipCooldown);
   EXPECT_EQ(a.noOverlap, b.noOverlap);
   EXPECT_EQ(a.lawRefused, b.lawRefused);
+  EXPECT_EQ(a.sliver, b.sliver);
   EXPECT_EQ(a.singularBlocks, b.singularBlocks);
 }
 
