@@ -135,7 +135,7 @@ struct NormalImpulse {
   bool interior = false;     // centre of pressure on the patch: the block held bilateral
   bool tipping = false;      // clamped by more than kTipRelTol of the diameter
 };
-// The clamp of solveNormalVelocity: y's centre of pressure cop is off the
+// The clamp of solveNormalVelocity (S6): y's centre of pressure cop is off the
 // patch, so the body pivots on the patch's boundary. out gets the impulse
 // of the point contacts there that stop their normal velocity (the
 // velocity condition of (S4) on those points alone, W = Winv^-1 the normal
