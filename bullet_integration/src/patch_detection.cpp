@@ -106,8 +106,8 @@ Buffers& buffers() {
   return b;
 }
 
-// Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
-// (both counter-clockwise), in place (`out`: a buffer).
+}  // namespace
+
 void clipConvex(std::vector<Vec2>& subject, const std::vector<Vec2>& clip, std::vector<Vec2>& out) {
   if (subject.empty()) return;
   // a circle (centre m, radius rMax) around the subject; it also holds every
@@ -158,6 +158,8 @@ void clipConvex(std::vector<Vec2>& subject, const std::vector<Vec2>& clip, std::
     subject.swap(out);
   }
 }
+
+namespace {
 
 // True if the disk (centre, radius) lies inside the convex CCW polygon.
 bool diskInsidePolygon(const Vec2& centre, double radius, const std::vector<Vec2>& poly) {

@@ -55,6 +55,10 @@ bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, 
 bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& support,
                       btVector3* normal, double* clearance, btVector3* lowest);
 
+// Sutherland-Hodgman: the part of convex `subject` inside convex `clip`
+// (both counter-clockwise), in place (`out`: a buffer).
+void clipConvex(std::vector<Vec2>& subject, const std::vector<Vec2>& clip, std::vector<Vec2>& out);
+
 // Outline of a patch in its frame (about O), cheap to build and compare;
 // the PatchShape (moment tables) is built from it only when it changes.
 struct PatchOutline {

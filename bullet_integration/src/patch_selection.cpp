@@ -1,6 +1,8 @@
 // Patch selection (patch_selection.hpp): manifold -> candidate patch.
 #include "patch_selection.hpp"
 
+#include "concave_support.hpp"
+
 #include <patchspin/friction_block.hpp>
 
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
@@ -40,6 +42,11 @@ constexpr double kOutlineRelTol = 1e-4;
 // clipped keep that overlap (outline and O; ten times below kOutlineRelTol);
 // the frame, gap and tilt are recomputed every step.
 constexpr double kOverlapRelTol = 1e-5;
+// The triangle under a contact point is looked for within the summed
+// margins and the contact's depth, plus this [m]: with zero margins and a
+// contact exactly on the triangle, Bullet's point is within float round-off
+// of its plane (1e-6 m is ~100 ulps at 1 m).
+constexpr double kTriangleSearchFloor = 1e-6;
 
 // Every point of the manifold lies on both faces (A's point on A's face
 // plane, B's on B's) to within kOnFaceMargins times the summed margins: a
@@ -243,10 +250,6 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
   const btCollisionObject* A = aIs0 ? o0 : o1;
   const btCollisionObject* B = aIs0 ? o1 : o0;
-  const btVector3 nIntoA = persisting ? persisting->geometry.normal
-                           : probed   ? probeNormal
-                           : aIs0     ? m->getContactPoint(0).m_normalWorldOnB
-                                      : -m->getContactPoint(0).m_normalWorldOnB;
   PatchState& st = states_[m];
   if (st.body != A || st.other != B || isStale(st, step_ - 1)) {
     st = PatchState();
@@ -255,13 +258,61 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   }
   const bool wasFlat = st.flat && st.lastSeen >= step_ - 1;
   st.lastSeen = step_;
+  // On triangles Bullet's contact normals and points are those of single
+  // triangles, their edges included (normals sideways or reversed while a
+  // coin slides across a 1 cm grid): a patch of the last step keeps its
+  // normal, and the faces must touch by their clearance, not by the points
+  // (TriangleSupports.*).
+  const bool onTriangles = internal::isTriangleSupport(*B->getCollisionShape());
+  btVector3 nIntoA = persisting               ? persisting->geometry.normal
+                     : onTriangles && wasFlat ? st.geometry.normal
+                     : probed                 ? probeNormal
+                     : aIs0                   ? m->getContactPoint(0).m_normalWorldOnB
+                                              : -m->getContactPoint(0).m_normalWorldOnB;
+  // a new contact on triangles: the normal of the triangle under Bullet's
+  // first point (within the summed margins plus the contact's depth)
+  if (onTriangles && !wasFlat && !persisting && !empty) {
+    const btManifoldPoint& p = m->getContactPoint(0);
+    const double tol =
+        double(A->getCollisionShape()->getMargin() + B->getCollisionShape()->getMargin()) +
+        std::abs(double(p.getDistance())) + kTriangleSearchFloor;
+    btVector3 n;
+    if (internal::triangleNormalAt(*B->getCollisionShape(), B->getWorldTransform(),
+                                   aIs0 ? p.m_positionWorldOnB : p.m_positionWorldOnA,
+                                   A->getWorldTransform().getOrigin(), tol, &n))
+      nIntoA = n;
+  }
+  if (onTriangles && !empty) reach = double(m->getContactBreakingThreshold());
 
   // faces and flatness, with hysteresis (B's face is looked up whenever A
   // has one: for a convex hull that builds the polyhedral features Bullet's
   // own contact clipping then uses)
   double cosA = 0.0, cosB = 0.0;
-  const bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_) &&
-                         internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
+  bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_);
+  // on a triangle mesh or heightfield the support is the plane of the
+  // triangles under A's facing face (concave_support.hpp), or a reason
+  long NotPatchedCounts::*supportReason = nullptr;
+  if (haveFaces && internal::isTriangleSupport(*B->getCollisionShape())) {
+    cosB = 1.0;  // the plane's normal is A's face's, up to the flatness test
+    if (cosA >= kFacingCos) {
+      const double slack = double(m->getContactBreakingThreshold());
+      switch (internal::findSupportPlane(*B->getCollisionShape(), B->getWorldTransform(), faceA_,
+                                         slack, faceB_)) {
+        case internal::SupportPlane::Found:
+          cosB = double(faceB_.normal.dot(nIntoA));
+          break;
+        case internal::SupportPlane::BadMesh:
+          supportReason = &NotPatchedCounts::badMesh;
+          break;
+        case internal::SupportPlane::Crease:
+        case internal::SupportPlane::NoTriangle:
+          supportReason = &NotPatchedCounts::crease;
+          break;
+      }
+    }
+  } else if (haveFaces) {
+    haveFaces = internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
+  }
   bool flat = false;
   long NotPatchedCounts::*reason = haveFaces ? nullptr : &NotPatchedCounts::unsupportedShape;
   std::optional<internal::DetectedPatch> geo;
@@ -275,9 +326,11 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     // (the first test that fails is the reason it is not a patch)
     reason = !(cosA >= kFacingCos && cosB >= kFacingCos) ? &NotPatchedCounts::sideContact
              : !(step_ - st.tipStep > kTipCooldownSteps) ? &NotPatchedCounts::tipCooldown
+             : supportReason                             ? supportReason
              : !(std::acos(c) < tol)                     ? &NotPatchedCounts::notFlat
-             : !contactOnFaces(*m, aIs0, faceA_, faceB_) ? &NotPatchedCounts::offFaces
-                                                         : nullptr;
+             : !(onTriangles || contactOnFaces(*m, aIs0, faceA_, faceB_))
+                 ? &NotPatchedCounts::offFaces
+                 : nullptr;
     flat = reason == nullptr;
     // x axis fixed in the moving body: a box spinning on a plane keeps the
     // same outline, and its cached shape, in this frame
@@ -308,8 +361,11 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   }
   st.flat = flat && (kept || geo.has_value());
   if (flat && !st.flat) reason = &NotPatchedCounts::noOverlap;
-  // without Bullet's contact, the faces themselves must touch
-  if (st.flat && empty && !((kept ? st.geometry : *geo).clearance <= reach)) st.flat = false;
+  // without Bullet's contact, or on triangles, the faces themselves must touch
+  if (st.flat && (empty || onTriangles) && !((kept ? st.geometry : *geo).clearance <= reach)) {
+    st.flat = false;
+    reason = &NotPatchedCounts::offFaces;
+  }
   if (!st.flat) {
     if (!empty && reason) countNotPatched(A, B, reason, stats);
     return false;

@@ -16,15 +16,17 @@ void addNotPatched(NotPatchedCounts& sum, const NotPatchedCounts& s) {
   sum.lawRefused += s.lawRefused;
   sum.sliver += s.sliver;
   sum.singularBlocks += s.singularBlocks;
+  sum.crease += s.crease;
+  sum.badMesh += s.badMesh;
 }
 
 }  // namespace
 
 // (a field added to the stats must be merged here: the sizes below count
 // the fields, 8 bytes each)
-static_assert(sizeof(NotPatchedCounts) == 9 * 8);
+static_assert(sizeof(NotPatchedCounts) == 11 * 8);
 static_assert(sizeof(parts::FrictionPartCounters) == 5 * 8);
-static_assert(sizeof(PatchSolverStats) == (5 + 7 + 9) * 8);
+static_assert(sizeof(PatchSolverStats) == (5 + 7 + 11) * 8);
 void addStats(PatchSolverStats& sum, const PatchSolverStats& s) {
   sum.blockSolves += s.blockSolves;
   sum.pressureRefreshes += s.pressureRefreshes;

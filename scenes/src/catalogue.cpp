@@ -29,7 +29,7 @@ std::unique_ptr<Scene> makeCoin(const CoinSpec& a, Friction f, btRigidBody** coi
   // simulate() does (the patch uses the real faces anyway)
   constexpr double kMargin = 1e-3;
   auto scene = std::make_unique<Scene>(a.g);
-  scene->addGroundPlane(1.0);  // combined friction = the coin's mu
+  addGround(*scene, a.ground, 1.0);  // combined friction = the coin's mu
   const double halfHeight = 0.5 * a.height;
   const double margin = std::min(kMargin, 0.1 * std::min(a.radius, halfHeight));
   btRigidBody* body =

@@ -60,6 +60,8 @@ inline void expectSameCounts(const NotPatchedCounts& a, const NotPatchedCounts& 
   EXPECT_EQ(a.lawRefused, b.lawRefused);
   EXPECT_EQ(a.sliver, b.sliver);
   EXPECT_EQ(a.singularBlocks, b.singularBlocks);
+  EXPECT_EQ(a.crease, b.crease);
+  EXPECT_EQ(a.badMesh, b.badMesh);
 }
 
 inline void expectSameStats(const PatchSolverStats& a, const PatchSolverStats& b) {

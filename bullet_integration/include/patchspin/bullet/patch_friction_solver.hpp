@@ -166,8 +166,8 @@ struct PatchSolverSettings {
 // Contacts of opted-in bodies (manifolds with Bullet's points) that did not
 // become patches, by reason; they went to Bullet's point contacts.
 struct NotPatchedCounts {
-  long unsupportedShape = 0;  // a shape without flat faces: sphere, capsule, compound,
-                              // triangle mesh, heightfield (either body)
+  long unsupportedShape = 0;  // a shape without flat faces: sphere, capsule, compound
+                              // (either body); a triangle mesh or heightfield as the body
   long sideContact = 0;       // the contact normal is more than 45 degrees off both faces
                               // (a rim, an edge, a side)
   long notFlat = 0;           // faces further apart than the flatness tolerance
@@ -179,9 +179,14 @@ struct NotPatchedCounts {
                               // diameter^2 / area > kMaxSliverRatio)
   long singularBlocks = 0;    // the patch's effective-mass blocks are singular (a body
                               // whose rotation is locked, setAngularFactor(0))
+  long crease = 0;            // on a triangle mesh or heightfield, the face is not on one
+                              // plane of triangles: it hangs over a crease or the mesh's
+                              // edge, or a triangle rises under it
+  long badMesh = 0;           // a non-finite vertex or overlapping coplanar triangles
+                              // under the face
   long total() const {
     return unsupportedShape + sideContact + notFlat + offFaces + tipCooldown + noOverlap +
-           lawRefused + sliver + singularBlocks;
+           lawRefused + sliver + singularBlocks + crease + badMesh;
   }
 };
 

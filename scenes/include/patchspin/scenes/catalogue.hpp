@@ -14,6 +14,7 @@
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 
 #include <patchspin/scenes/scene.hpp>
+#include <patchspin/scenes/terrain.hpp>
 #include <patchspin/types.hpp>
 
 #include <functional>
@@ -43,8 +44,9 @@ struct CoinSpec {
   double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3;  // [m], [m], [kg], [-]
   double v0 = 0.5, omega0 = 20.0;                               // [m/s], [rad/s]
   double g = 9.81;                                              // [m/s^2]
+  GroundSpec ground;  // the plane z = 0, or a mesh or heightfield of that surface
 };
-// A world holding the ground plane and one coin under the law f.
+// A world holding the ground and one coin under the law f.
 std::unique_ptr<Scene> makeCoin(const CoinSpec& spec, Friction f, btRigidBody** coin);
 // The trio's laws in the demo's order (left to right).
 constexpr Friction kCoinTrio[3] = {Friction::Exact, Friction::Ellipsoidal, Friction::Stock};

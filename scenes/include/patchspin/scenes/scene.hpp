@@ -84,6 +84,14 @@ class Scene {
 
   // A shape owned by the scene, to be shared by several bodies.
   btCollisionShape* addShape(std::unique_ptr<btCollisionShape> shape);
+  // Data the scene keeps until its shapes are gone (a triangle mesh's
+  // vertices, a heightfield's heights).
+  template <class T>
+  T* keep(std::unique_ptr<T> data) {
+    T* raw = data.get();
+    kept_.emplace_back(std::move(data));
+    return raw;
+  }
   // Any body: the given shape, mass [kg] (0: static), inertia [kg m^2],
   // start transform and friction; no restitution, no rolling or spinning
   // friction, dynamic bodies never deactivated (the runs decide themselves
@@ -112,6 +120,7 @@ class Scene {
   std::unique_ptr<bullet::PatchSolverPoolMt> pool_;              // PatchPoolMt
   bullet::PatchFrictionSolver* shared_ = nullptr;                // a caller's solver
   std::unique_ptr<btDiscreteDynamicsWorld> world_;
+  std::vector<std::shared_ptr<void>> kept_;  // (destroyed after the shapes)
   std::vector<std::unique_ptr<btCollisionShape>> shapes_;
   std::vector<std::unique_ptr<btRigidBody>> bodies_;
   std::vector<btRigidBody*> bodyList_;
