@@ -6,6 +6,7 @@
 #include <patchspin/bullet/patch_friction_solver.hpp>
 #include <patchspin/scenes/inertia.hpp>
 #include <patchspin/scenes/scene.hpp>
+#include <patchspin/scenes/terrain.hpp>
 
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
@@ -34,6 +35,9 @@ struct SceneOptions {
   bool allowSleep = false;    // Bullet may put resting coins to sleep
   double exactFraction = -1;  // >= 0: this fraction exact, the rest ellipsoidal
   patchspin::bullet::PatchSolverSettings settings;
+  // the ground: the plane, or a triangle mesh or heightfield of it (5 cm
+  // grid, under the coins' square, which is then centred on the origin)
+  patchspin::scenes::Ground ground = patchspin::scenes::Ground::Plane;
 };
 
 constexpr double kDt = 1.0 / 240.0;
@@ -52,20 +56,30 @@ struct World {
                                     variant == kStock ? SolverKind::Stock : SolverKind::Patch);
     world = &scene->world();
     // ground friction: Bullet's default 0.5 (combined with the coins' 0.3)
-    scene->addGroundPlane(0.5);
+    const int side = int(std::ceil(std::sqrt(double(n))));
+    double offset = 0.0;  // of the coins' square
+    if (opt.ground == patchspin::scenes::Ground::Plane) {
+      scene->addGroundPlane(0.5);
+    } else {
+      patchspin::scenes::GroundSpec g;
+      g.kind = opt.ground;
+      g.spacing = 0.05;
+      g.halfSize = 0.25 * side + 0.5;
+      offset = -0.25 * (side - 1);
+      patchspin::scenes::addGround(*scene, g, 0.5);
+    }
     btCollisionShape* coinShape = scene->addShape(std::make_unique<btCylinderShapeZ>(
         btVector3(btScalar(kR), btScalar(kR), btScalar(kH / 2))));
     coinShape->setMargin(btScalar(1e-3));
     // coins on a grid 0.5 m apart, seeded random slide and spin
     std::mt19937 rng(12345);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    const int side = int(std::ceil(std::sqrt(double(n))));
     const btVector3 inertia = patchspin::scenes::cylinderInertia(1.0, kR, kH);
     for (int i = 0; i < n; ++i) {
       btTransform tr;
       tr.setIdentity();
-      tr.setOrigin(
-          btVector3(btScalar(0.5 * (i % side)), btScalar(0.5 * (i / side)), btScalar(kH / 2)));
+      tr.setOrigin(btVector3(btScalar(offset + 0.5 * (i % side)),
+                             btScalar(offset + 0.5 * (i / side)), btScalar(kH / 2)));
       btRigidBody* coin = scene->addBody(coinShape, 1.0, inertia, tr, 0.3);
       if (opt.allowSleep) coin->forceActivationState(ACTIVE_TAG);
       start.push_back(tr);
@@ -136,6 +150,42 @@ void BM_BulletWorldStep(benchmark::State& state) {
 constexpr int kWorldStepRepetitions = 5;
 BENCHMARK(BM_BulletWorldStep)
     ->ArgsProduct({{10, 100, 1000}, {kStock, kNoneOptedIn, kEllipsoidal, kExact}})
+    ->Repetitions(kWorldStepRepetitions)
+    ->ComputeStatistics("min",
+                        [](const std::vector<double>& v) {
+                          return *std::min_element(v.begin(), v.end());
+                        })
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+
+// The same sliding, spinning coins on a triangle mesh and on a heightfield
+// of the plane (5 cm grid; issue 32: finding the coplanar triangles under a
+// face must not cost more than Bullet's own narrowphase for the pair): N =
+// 100, 1000; stock, ellipsoidal, exact; arg 2: 1 mesh, 2 heightfield.
+void BM_CoinsOnTriangles(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Variant variant = Variant(state.range(1));
+  SceneOptions opt;
+  opt.ground = state.range(2) == 1 ? patchspin::scenes::Ground::TriangleMesh
+                                   : patchspin::scenes::Ground::Heightfield;
+  World w(n, variant, opt);
+  long k = 0;
+  for (auto _ : state) {
+    if (++k % 24 == 0) w.reset();
+    w.world->stepSimulation(btScalar(kDt), 0);
+  }
+  state.counters["bodies"] = n;
+  if (variant == kEllipsoidal || variant == kExact) {
+    addSolverCounters(state, *w.patchSolver());
+    state.counters["not_patched"] = double(w.patchSolver()->stats().notPatched.total());
+  }
+  state.SetLabel(std::string(variant == kEllipsoidal ? "patch ellipsoidal"
+                             : variant == kExact     ? "patch exact"
+                                                     : "stock Bullet") +
+                 (state.range(2) == 1 ? ", mesh" : ", heightfield"));
+}
+BENCHMARK(BM_CoinsOnTriangles)
+    ->ArgsProduct({{100, 1000}, {kStock, kEllipsoidal, kExact}, {1, 2}})
     ->Repetitions(kWorldStepRepetitions)
     ->ComputeStatistics("min",
                         [](const std::vector<double>& v) {

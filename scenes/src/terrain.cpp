@@ -2,6 +2,7 @@
 #include <patchspin/scenes/terrain.hpp>
 
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+#include <BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleMesh.h>
 
 #include <cmath>
@@ -50,7 +51,7 @@ btRigidBody* addMesh(Scene& scene, const GroundSpec& s, int cells, double fricti
       std::make_unique<btTriangleMesh>(/*use32bitIndices=*/true, /*use4componentVertices=*/true);
   auto vertex = [&](int i, int j) {
     const double x = -s.halfSize + i * s.spacing, y = -s.halfSize + j * s.spacing;
-    return bt(x, y, heightAt(s, x));
+    return bt(x / s.meshScale, y / s.meshScale, heightAt(s, x) / s.meshScale);
   };
   const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
   int triangle = 0;
@@ -72,7 +73,12 @@ btRigidBody* addMesh(Scene& scene, const GroundSpec& s, int cells, double fricti
   }
   btTriangleMesh* kept = scene.keep(std::move(mesh));
   auto shape = std::make_unique<btBvhTriangleMeshShape>(kept, /*useQuantizedAabbCompression=*/true);
-  return scene.addBody(std::move(shape), 0, btVector3(0, 0, 0), groundTransform(s), friction);
+  if (s.meshScale == 1.0)
+    return scene.addBody(std::move(shape), 0, btVector3(0, 0, 0), groundTransform(s), friction);
+  auto* unscaled = static_cast<btBvhTriangleMeshShape*>(scene.addShape(std::move(shape)));
+  auto scaled = std::make_unique<btScaledBvhTriangleMeshShape>(
+      unscaled, bt(s.meshScale, s.meshScale, s.meshScale));
+  return scene.addBody(std::move(scaled), 0, btVector3(0, 0, 0), groundTransform(s), friction);
 }
 
 btRigidBody* addHeightfield(Scene& scene, const GroundSpec& s, int cells, double friction) {
@@ -101,6 +107,9 @@ btRigidBody* addGround(Scene& scene, const GroundSpec& s, double friction) {
   if (!(s.halfSize > 0) || !(s.spacing > 0) || !std::isfinite(s.halfSize / s.spacing))
     throw Error("addGround: halfSize and spacing must be positive");
   if (!(std::abs(s.slope) < M_PI / 2)) throw Error("addGround: slope outside (-pi/2, pi/2)");
+  if (!(s.meshScale > 0) || !std::isfinite(s.meshScale) ||
+      (s.meshScale != 1.0 && s.kind != Ground::TriangleMesh))
+    throw Error("addGround: meshScale must be positive, and 1 but for a triangle mesh");
   if (s.crease && (s.slope == 0.0 || s.slopeInTransform))
     throw Error("addGround: a crease needs a slope made by the heights");
   const double cellsD = std::round(2.0 * s.halfSize / s.spacing);

@@ -99,15 +99,22 @@ TEST(TriangleSupports, CoinStopsOnATriangleMeshAndAHeightfieldAsOnThePlane) {
   mesh.kind = Ground::TriangleMesh;
   GroundSpec field;
   field.kind = Ground::Heightfield;
-  const CoinRun onMesh = runCoin(mesh), onField = runCoin(field);
+  GroundSpec scaled = mesh;
+  scaled.meshScale = 2.5;
+  GroundSpec fine = mesh;  // ~2,500 triangles under the coin
+  fine.spacing = 0.0025;
+  const CoinRun onMesh = runCoin(mesh), onField = runCoin(field), onScaled = runCoin(scaled),
+                onFine = runCoin(fine);
   const CoinRun stock = runCoin(mesh, Friction::Stock);
   std::printf("exact law, coin R 5 cm at 0.5 m/s and 20 rad/s (%s):\n", scenes::precisionName());
   print("plane", plane);
   print("mesh (1 cm grid, 5000 tri.)", onMesh);
   print("heightfield (1 cm grid)", onField);
+  print("scaled mesh (x 2.5)", onScaled);
+  print("mesh, 2.5 mm grid (80k tri.)", onFine);
   print("stock Bullet on the mesh", stock);
   ASSERT_GT(plane.tStop, 0.0);
-  for (const CoinRun* r : {&onMesh, &onField}) {
+  for (const CoinRun* r : {&onMesh, &onField, &onScaled, &onFine}) {
     ASSERT_TRUE(r->finite);
     ASSERT_GT(r->tStop, 0.0);
     EXPECT_NEAR(r->tStop, plane.tStop, kSameAsPlane * plane.tStop);
@@ -117,6 +124,63 @@ TEST(TriangleSupports, CoinStopsOnATriangleMeshAndAHeightfieldAsOnThePlane) {
     // a patch in every step, nothing left to Bullet
     EXPECT_EQ(r->stepsWithPatch, r->steps);
     EXPECT_EQ(r->notPatched.crease + r->notPatched.badMesh + r->notPatched.unsupportedShape, 0);
+  }
+}
+
+// ---- a block's face: a polygon on the triangles ------------------------------------------
+// A 10 x 6 x 4 cm block (1 kg, mu 0.3) launched at (0.4, 0.1) m/s spinning
+// at 10 rad/s on the ground, exact law, until it stops (|v| < 1e-5 m/s and
+// |w| < 1e-4 rad/s): stop time, travel and final yaw as on the plane.
+struct BlockRun {
+  double tStop = -1.0, travel = 0.0, yaw = 0.0;
+  long steps = 0, stepsWithPatch = 0;
+};
+
+BlockRun runBlock(const GroundSpec& ground) {
+  Scene scene(kG);
+  scenes::addGround(scene, ground, 1.0);
+  btRigidBody* block = scene.addBox(btVector3(0.05f, 0.03f, 0.02f), 1.0,
+                                    btVector3(0, 0, btScalar(0.02 - 1e-5)), 0.3);
+  scenes::optIn(scene, block, Friction::Exact);
+  block->setLinearVelocity(btVector3(0.4f, 0.1f, 0));
+  block->setAngularVelocity(btVector3(0, 0, 10));
+  const btVector3 start = block->getWorldTransform().getOrigin();
+  BlockRun run;
+  for (double t = kDt; t <= 1.0; t += kDt) {
+    scene.step(kDt);
+    ++run.steps;
+    if (scene.solver().findPatchReport(block)) ++run.stepsWithPatch;
+    if (block->getLinearVelocity().length() < 1e-5 && block->getAngularVelocity().length() < 1e-4) {
+      run.tStop = t;
+      break;
+    }
+  }
+  const btTransform& tr = block->getWorldTransform();
+  run.travel = double((tr.getOrigin() - start).length());
+  const btVector3 x = tr.getBasis().getColumn(0);
+  run.yaw = std::atan2(double(x.y()), double(x.x()));
+  return run;
+}
+
+TEST(TriangleSupports, BlockSlidesAndSpinsToRestOnTrianglesAsOnThePlane) {
+  const BlockRun plane = runBlock({});
+  GroundSpec mesh;
+  mesh.kind = Ground::TriangleMesh;
+  GroundSpec field;
+  field.kind = Ground::Heightfield;
+  std::printf("block 10 x 6 x 4 cm, exact law (%s):\n", scenes::precisionName());
+  std::printf("  plane        t_stop %.4f s travel %.5f m yaw %.5f rad\n", plane.tStop,
+              plane.travel, plane.yaw);
+  ASSERT_GT(plane.tStop, 0.0);
+  for (const GroundSpec* g : {&mesh, &field}) {
+    const BlockRun r = runBlock(*g);
+    std::printf("  %-12s t_stop %.4f s travel %.5f m yaw %.5f rad patched %ld/%ld\n",
+                g == &mesh ? "mesh" : "heightfield", r.tStop, r.travel, r.yaw, r.stepsWithPatch,
+                r.steps);
+    EXPECT_NEAR(r.tStop, plane.tStop, kSameAsPlane * plane.tStop);
+    EXPECT_NEAR(r.travel, plane.travel, kSameAsPlane * plane.travel);
+    EXPECT_NEAR(r.yaw, plane.yaw, kSameAsPlane * std::abs(plane.yaw));
+    EXPECT_EQ(r.stepsWithPatch, r.steps);
   }
 }
 

@@ -38,6 +38,9 @@ struct GroundSpec {
   // instead of by the heights: a level grid, tilted
   bool slopeInTransform = false;
   MeshDefect defect = MeshDefect::None;
+  // TriangleMesh only: != 1: the mesh is built `meshScale` times smaller and
+  // drawn at full size by a btScaledBvhTriangleMeshShape (the same surface)
+  double meshScale = 1.0;
 };
 
 // The ground of `spec` as a static body of the given friction (Bullet
