@@ -258,17 +258,18 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   }
   const bool wasFlat = st.flat && st.lastSeen >= step_ - 1;
   st.lastSeen = step_;
-  // On triangles Bullet's contact normals and points are those of single
-  // triangles, their edges included (normals sideways or reversed while a
-  // coin slides across a 1 cm grid): a patch of the last step keeps its
-  // normal, and the faces must touch by their clearance, not by the points
-  // (TriangleSupports.*).
+  // A patch of the last step keeps its normal: Bullet's contact normal may
+  // be spurious for a step (double hull on hull: one point with a sideways
+  // normal, SupportMatrix.*; on triangles, a single triangle's edge: normals
+  // sideways or reversed while a coin slides across a 1 cm grid). On
+  // triangles the faces must also touch by their clearance, not by the
+  // points (TriangleSupports.*).
   const bool onTriangles = internal::isTriangleSupport(*B->getCollisionShape());
-  btVector3 nIntoA = persisting               ? persisting->geometry.normal
-                     : onTriangles && wasFlat ? st.geometry.normal
-                     : probed                 ? probeNormal
-                     : aIs0                   ? m->getContactPoint(0).m_normalWorldOnB
-                                              : -m->getContactPoint(0).m_normalWorldOnB;
+  btVector3 nIntoA = persisting ? persisting->geometry.normal
+                     : wasFlat  ? st.geometry.normal
+                     : probed   ? probeNormal
+                     : aIs0     ? m->getContactPoint(0).m_normalWorldOnB
+                                : -m->getContactPoint(0).m_normalWorldOnB;
   // a new contact on triangles: the normal of the triangle under Bullet's
   // first point (within the summed margins plus the contact's depth)
   if (onTriangles && !wasFlat && !persisting && !empty) {

@@ -29,9 +29,9 @@ const std::vector<BodyShape>& allBodyShapes() {
 
 const std::vector<SupportShape>& allSupportShapes() {
   static const std::vector<SupportShape> all = {
-      SupportShape::Plane,        SupportShape::Box,          SupportShape::CylinderCap,
-      SupportShape::ConvexHull,   SupportShape::DynamicBox,   SupportShape::TriangleMesh,
-      SupportShape::ScaledMesh,   SupportShape::Heightfield};
+      SupportShape::Plane,      SupportShape::Box,        SupportShape::CylinderCap,
+      SupportShape::ConvexHull, SupportShape::DynamicBox, SupportShape::TriangleMesh,
+      SupportShape::ScaledMesh, SupportShape::Heightfield};
   return all;
 }
 
