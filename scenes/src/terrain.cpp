@@ -66,6 +66,8 @@ btRigidBody* addMesh(Scene& scene, const GroundSpec& s, int cells, double fricti
       btVector3 p00 = vertex(i, j);
       const btVector3 p10 = vertex(i + 1, j), p01 = vertex(i, j + 1), p11 = vertex(i + 1, j + 1);
       if (s.defect == MeshDefect::NaNVertex && i == 0 && j == 0) p00.setX(nan);
+      if (s.defect == MeshDefect::NaNVertexAtOrigin && i == cells / 2 && j == cells / 2)
+        p00.setX(nan);
       add(p00, p10, p11);  // counter-clockwise seen from above
       add(p00, p11, p01);
       if (s.defect == MeshDefect::Degenerate) add(p00, p11, btScalar(0.5) * (p00 + p11));

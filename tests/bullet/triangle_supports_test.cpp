@@ -326,8 +326,13 @@ TEST(TriangleSupports, BadMeshesAreTakenOrCountedNeverANaN) {
   nan.kind = Ground::TriangleMesh;
   nan.defect = MeshDefect::NaNVertex;
   const CoinRun n = runCoin(nan);
-  print("a NaN vertex", n);
+  print("a NaN vertex, far", n);
   EXPECT_TRUE(n.finite);
+  nan.defect = MeshDefect::NaNVertexAtOrigin;
+  const CoinRun under = runCoin(nan);
+  print("a NaN vertex under the coin", under);
+  EXPECT_TRUE(under.finite);
+  EXPECT_GT(under.notPatched.badMesh, 0);
 }
 
 }  // namespace

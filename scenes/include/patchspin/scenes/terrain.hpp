@@ -21,7 +21,8 @@ enum class MeshDefect {
   AlternateWinding,  // every other triangle wound clockwise (normal down)
   Degenerate,        // a zero-area triangle along every grid cell's diagonal
   Duplicate,         // every triangle listed twice
-  NaNVertex          // one vertex NaN, at the grid's corner (x, y) = (-h, -h)
+  NaNVertex,         // one vertex NaN, at the grid's corner (x, y) = (-h, -h)
+  NaNVertexAtOrigin  // one vertex NaN, the grid's vertex nearest the origin
 };
 
 struct GroundSpec {
