@@ -273,8 +273,13 @@ bool probeSupportFace(const btCollisionObject& body, const btCollisionObject& su
 
 bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
                    Face& face) {
-  const btCollisionShape* shape = object.getCollisionShape();
-  const btTransform& tr = object.getWorldTransform();
+  return findFaceAlong(*object.getCollisionShape(), object.getWorldTransform(), direction, cosine,
+                       face);
+}
+
+bool findFaceAlong(const btCollisionShape& leaf, const btTransform& tr, const btVector3& direction,
+                   double* cosine, Face& face) {
+  const btCollisionShape* shape = &leaf;
   const btVector3 localDir = tr.getBasis().transpose() * direction;
   switch (shape->getShapeType()) {
     case STATIC_PLANE_PROXYTYPE: {

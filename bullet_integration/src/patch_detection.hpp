@@ -14,6 +14,7 @@
 #include <vector>
 
 class btCollisionObject;
+class btCollisionShape;
 
 namespace patchspin::bullet::internal {
 
@@ -37,10 +38,15 @@ struct Face {
   int boxU = 0, boxV = 0;                          // the face's in-plane axes (box frame)
 };
 
-// The face of `object` whose outward normal is closest to `direction`
-// (unit), with its cosine, written to `face` (every field; its vertex
-// storage is reused: the solver asks twice per touching manifold and step);
-// false for shapes without flat faces (`face` then unspecified).
+// The face of `shape` at world pose `transform` whose outward normal is
+// closest to `direction` (unit), with its cosine, written to `face` (every
+// field; its vertex storage is reused: the solver asks twice per touching
+// manifold and step); false for shapes without flat faces (`face` then
+// unspecified). A compound is not a leaf: its children are
+// (compound_children.hpp).
+bool findFaceAlong(const btCollisionShape& shape, const btTransform& transform,
+                   const btVector3& direction, double* cosine, Face& face);
+// The same for `object`'s own shape at its world transform.
 bool findFaceAlong(const btCollisionObject& object, const btVector3& direction, double* cosine,
                    Face& face);
 

@@ -72,6 +72,8 @@ void PatchReports::fill() {
     PatchReport& r = reports_[slot];
     r.body = st.body;
     r.other = st.other;
+    r.bodyChild = st.bodyChild;
+    r.otherChild = st.otherChild;
     r.origin = st.geometry.origin;
     r.normal = st.geometry.normal;
     r.xAxis = st.geometry.xAxis;

@@ -1,6 +1,7 @@
 // Patch selection (patch_selection.hpp): manifold -> candidate patch.
 #include "patch_selection.hpp"
 
+#include "compound_children.hpp"
 #include "concave_support.hpp"
 
 #include <patchspin/friction_block.hpp>
@@ -49,12 +50,12 @@ constexpr double kOverlapRelTol = 1e-5;
 constexpr double kTriangleSearchFloor = 1e-6;
 
 // Every point of the manifold lies on both faces (A's point on A's face
-// plane, B's on B's) to within kOnFaceMargins times the summed margins: a
-// contact anywhere else (a rim, a side) is not the faces touching.
+// plane, B's on B's) to within kOnFaceMargins times the summed margins of
+// the two leaf shapes: a contact anywhere else (a rim, a side) is not the
+// faces touching.
 bool contactOnFaces(const btPersistentManifold& m, bool aIs0, const internal::Face& faceA,
-                    const internal::Face& faceB) {
-  const btScalar tol = btScalar(kOnFaceMargins) * (m.getBody0()->getCollisionShape()->getMargin() +
-                                                   m.getBody1()->getCollisionShape()->getMargin());
+                    const internal::Face& faceB, btScalar margins) {
+  const btScalar tol = btScalar(kOnFaceMargins) * margins;
   const btScalar ulps = btScalar(kOnFaceRoundOffUlps) * SIMD_EPSILON;
   for (int k = 0; k < m.getNumContacts(); ++k) {
     const btManifoldPoint& p = m.getContactPoint(k);
@@ -111,12 +112,14 @@ const NotPatchedCounts* PatchSelection::notPatchedOf(const btCollisionObject* bo
 }
 
 void PatchSelection::countNotPatched(const btCollisionObject* A, const btCollisionObject* B,
-                                     long NotPatchedCounts::*reason, PatchSolverStats& stats) {
+                                     long NotPatchedCounts::*reason, PatchSolverStats& stats,
+                                     const btCollisionShape* shapeA,
+                                     const btCollisionShape* shapeB) {
   ++(stats.notPatched.*reason);
   ++(notPatched_[A].*reason);
   if (reason != &NotPatchedCounts::unsupportedShape || !unsupported_) return;
-  const std::pair<int, int> types(A->getCollisionShape()->getShapeType(),
-                                  B->getCollisionShape()->getShapeType());
+  const std::pair<int, int> types((shapeA ? shapeA : A->getCollisionShape())->getShapeType(),
+                                  (shapeB ? shapeB : B->getCollisionShape())->getShapeType());
   if (std::find(reportedShapePairs_.begin(), reportedShapePairs_.end(), types) !=
       reportedShapePairs_.end())
     return;
@@ -250,11 +253,22 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   const PatchOptions& opt = aIs0 ? *opt0 : *opt1;
   const btCollisionObject* A = aIs0 ? o0 : o1;
   const btCollisionObject* B = aIs0 ? o1 : o0;
+  // the compound children that touch: tagged on the points, or, without
+  // points, those of the persisting patch (-1: not a compound)
+  const int childA = persisting                 ? persisting->bodyChild
+                     : internal::isCompound(*A) ? internal::taggedChild(*m, aIs0)
+                                                : -1;
+  const int childB = persisting                 ? persisting->otherChild
+                     : internal::isCompound(*B) ? internal::taggedChild(*m, !aIs0)
+                                                : -1;
   PatchState& st = states_[m];
-  if (st.body != A || st.other != B || isStale(st, step_ - 1)) {
+  if (st.body != A || st.other != B || st.bodyChild != childA || st.otherChild != childB ||
+      isStale(st, step_ - 1)) {
     st = PatchState();
     st.body = A;
     st.other = B;
+    st.bodyChild = childA;
+    st.otherChild = childB;
   }
   const bool wasFlat = st.flat && st.lastSeen >= step_ - 1;
   st.lastSeen = step_;
@@ -288,17 +302,21 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   // faces and flatness, with hysteresis (B's face is looked up whenever A
   // has one: for a convex hull that builds the polyhedral features Bullet's
   // own contact clipping then uses)
+  // (a compound's faces are its touching child's, at object x child pose)
   double cosA = 0.0, cosB = 0.0;
-  bool haveFaces = internal::findFaceAlong(*A, -nIntoA, &cosA, faceA_);
+  internal::LeafShape leafA, leafB;
+  const bool haveLeaves =
+      internal::resolveLeaf(*A, childA, leafA) && internal::resolveLeaf(*B, childB, leafB);
+  bool haveFaces =
+      haveLeaves && internal::findFaceAlong(*leafA.shape, leafA.transform, -nIntoA, &cosA, faceA_);
   // on a triangle mesh or heightfield the support is the plane of the
   // triangles under A's facing face (concave_support.hpp), or a reason
   long NotPatchedCounts::*supportReason = nullptr;
-  if (haveFaces && internal::isTriangleSupport(*B->getCollisionShape())) {
+  if (haveFaces && onTriangles) {
     cosB = 1.0;  // the plane's normal is A's face's, up to the flatness test
     if (cosA >= kFacingCos) {
       const double slack = double(m->getContactBreakingThreshold());
-      switch (internal::findSupportPlane(*B->getCollisionShape(), B->getWorldTransform(), faceA_,
-                                         slack, faceB_)) {
+      switch (internal::findSupportPlane(*leafB.shape, leafB.transform, faceA_, slack, faceB_)) {
         case internal::SupportPlane::Found:
           cosB = double(faceB_.normal.dot(nIntoA));
           break;
@@ -312,7 +330,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       }
     }
   } else if (haveFaces) {
-    haveFaces = internal::findFaceAlong(*B, nIntoA, &cosB, faceB_);
+    haveFaces = internal::findFaceAlong(*leafB.shape, leafB.transform, nIntoA, &cosB, faceB_);
   }
   bool flat = false;
   long NotPatchedCounts::*reason = haveFaces ? nullptr : &NotPatchedCounts::unsupportedShape;
@@ -329,14 +347,15 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
              : !(step_ - st.tipStep > kTipCooldownSteps) ? &NotPatchedCounts::tipCooldown
              : supportReason                             ? supportReason
              : !(std::acos(c) < tol)                     ? &NotPatchedCounts::notFlat
-             : !(onTriangles || contactOnFaces(*m, aIs0, faceA_, faceB_))
+             : !(onTriangles || contactOnFaces(*m, aIs0, faceA_, faceB_,
+                                               leafA.shape->getMargin() + leafB.shape->getMargin()))
                  ? &NotPatchedCounts::offFaces
                  : nullptr;
     flat = reason == nullptr;
     // x axis fixed in the moving body: a box spinning on a plane keeps the
     // same outline, and its cached shape, in this frame
     if (flat) {
-      const btTransform rel = A->getWorldTransform().inverseTimes(B->getWorldTransform());
+      const btTransform rel = leafA.transform.inverseTimes(leafB.transform);
       bool keep = wasFlat && st.overlapValid && faceA_.kind == st.overlapKinds[0] &&
                   faceB_.kind == st.overlapKinds[1] &&
                   double((rel.getOrigin() - st.overlapPose.getOrigin()).length()) <=
@@ -368,7 +387,9 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     reason = &NotPatchedCounts::offFaces;
   }
   if (!st.flat) {
-    if (!empty && reason) countNotPatched(A, B, reason, stats);
+    if (!empty && reason)
+      countNotPatched(A, B, reason, stats, haveLeaves ? leafA.shape : nullptr,
+                      haveLeaves ? leafB.shape : nullptr);
     return false;
   }
   if (!kept) st.geometry = std::move(*geo);

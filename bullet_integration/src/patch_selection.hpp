@@ -74,9 +74,13 @@ class PatchSelection {
 
  private:
   void clearWrittenImpulses(btPersistentManifold* m);
-  // A contact of A (opted in) with B left to Bullet for `reason`.
+  // A contact of A (opted in) with B left to Bullet for `reason`; the shapes
+  // that touch (a compound's child) name the pair of types told to the
+  // unsupported-shape callback (null: the objects' own).
   void countNotPatched(const btCollisionObject* A, const btCollisionObject* B,
-                       long NotPatchedCounts::*reason, PatchSolverStats& stats);
+                       long NotPatchedCounts::*reason, PatchSolverStats& stats,
+                       const btCollisionShape* shapeA = nullptr,
+                       const btCollisionShape* shapeB = nullptr);
   bool selectCandidate(btPersistentManifold* m, int index, double dt, PatchSolverStats& stats,
                        std::vector<Candidate>& out);
   // An empty manifold between a dynamic body and a static or kinematic plane,

@@ -67,6 +67,10 @@ BodyTerms makeBodyTerms(const btSolverBody& sb, int id, const Vec3& r);
 struct PatchState {
   const btCollisionObject* body = nullptr;
   const btCollisionObject* other = nullptr;
+  // the compound children of body and other whose faces make the patch
+  // (-1: not a compound); an empty manifold's persisting patch keeps them,
+  // as its manifold has no points to tag them (compound_children.hpp)
+  int bodyChild = -1, otherChild = -1;
   long lastSeen = std::numeric_limits<long>::min() / 2;
   long tipStep = std::numeric_limits<long>::min() / 2;
   bool flat = false;
@@ -86,8 +90,9 @@ struct PatchState {
   // impulse, tilt couple, tangential friction impulse and slip, spin parts
   double normal = 0.0, frictionSpin = 0.0, slipSpin = 0.0;
   Vec3 couple = Vec3::Zero(), frictionT = Vec3::Zero(), slipT = Vec3::Zero();
-  // relative pose of the bodies (B in A's frame) when geometry's overlap was
-  // last clipped
+  // relative pose of the touching shapes (B's leaf in A's leaf's frame: the
+  // bodies', or their compound children's) when geometry's overlap was last
+  // clipped
   btTransform overlapPose = btTransform::getIdentity();
   internal::DetectedPatch geometry;               // this step's patch
   std::optional<internal::PatchOutline> outline;  // shape of `friction`

@@ -136,6 +136,44 @@ btRigidBody* Scene::addStaticBox(const btVector3& half, const btVector3& positio
   return addBody(std::make_unique<btBoxShape>(half), 0, btVector3(0, 0, 0), at(position), friction);
 }
 
+btRigidBody* Scene::addCompound(std::vector<CompoundPart> parts, const btTransform& start,
+                                double friction) {
+  // centre of mass (double)
+  double mass = 0.0;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  auto toE = [](const btVector3& v) {
+    return Eigen::Vector3d(double(v.x()), double(v.y()), double(v.z()));
+  };
+  for (const CompoundPart& p : parts) {
+    if (!(p.mass >= 0.0)) throw Error("Scene::addCompound: a part's mass must be >= 0");
+    mass += p.mass;
+    c += p.mass * toE(p.pose.getOrigin());
+  }
+  if (mass > 0.0) c /= mass;
+  // inertia about c in the compound's axes (parallel-axis theorem)
+  Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+  for (const CompoundPart& p : parts) {
+    const Eigen::Matrix3d R = toIsometry(p.pose).linear();
+    const Eigen::Vector3d d = toE(p.pose.getOrigin()) - c;
+    J += R * toE(p.inertia).asDiagonal() * R.transpose() +
+         p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+  }
+  const Eigen::Matrix3d off = J - Eigen::Matrix3d(J.diagonal().asDiagonal());
+  if (off.cwiseAbs().maxCoeff() > 1e-9 * J.trace())
+    throw Error("Scene::addCompound: the compound's axes are not principal");
+  // the children, shifted so that the body's origin is c
+  auto compound = std::make_unique<btCompoundShape>();
+  const btVector3 shift = bt(c.x(), c.y(), c.z());
+  for (CompoundPart& p : parts) {
+    btTransform pose = p.pose;
+    pose.setOrigin(pose.getOrigin() - shift);
+    compound->addChildShape(pose, addShape(std::move(p.shape)));
+  }
+  btTransform at = start;
+  at.setOrigin(start * shift);
+  return addBody(std::move(compound), mass, bt(J(0, 0), J(1, 1), J(2, 2)), at, friction);
+}
+
 void Scene::step(double dt) {
   world_->stepSimulation(btScalar(dt), 0);
 }

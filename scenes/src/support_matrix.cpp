@@ -21,17 +21,17 @@ btTransform at(double x, double y, double z) {
 }  // namespace
 
 const std::vector<BodyShape>& allBodyShapes() {
-  static const std::vector<BodyShape> all = {BodyShape::Box, BodyShape::Cylinder,
-                                             BodyShape::ConvexHull, BodyShape::Sphere,
-                                             BodyShape::Capsule};
+  static const std::vector<BodyShape> all = {BodyShape::Box,        BodyShape::Cylinder,
+                                             BodyShape::ConvexHull, BodyShape::Compound,
+                                             BodyShape::Sphere,     BodyShape::Capsule};
   return all;
 }
 
 const std::vector<SupportShape>& allSupportShapes() {
   static const std::vector<SupportShape> all = {
-      SupportShape::Plane,      SupportShape::Box,        SupportShape::CylinderCap,
-      SupportShape::ConvexHull, SupportShape::DynamicBox, SupportShape::TriangleMesh,
-      SupportShape::ScaledMesh, SupportShape::Heightfield};
+      SupportShape::Plane,      SupportShape::Box,         SupportShape::CylinderCap,
+      SupportShape::ConvexHull, SupportShape::DynamicBox,  SupportShape::TriangleMesh,
+      SupportShape::ScaledMesh, SupportShape::Heightfield, SupportShape::Compound};
   return all;
 }
 
@@ -43,6 +43,8 @@ std::string toString(BodyShape b) {
       return "cylinder";
     case BodyShape::ConvexHull:
       return "convex hull";
+    case BodyShape::Compound:
+      return "compound";
     case BodyShape::Sphere:
       return "sphere";
     case BodyShape::Capsule:
@@ -69,6 +71,8 @@ std::string toString(SupportShape s) {
       return "scaled mesh";
     case SupportShape::Heightfield:
       return "heightfield";
+    case SupportShape::Compound:
+      return "compound";
   }
   return "?";
 }
@@ -107,6 +111,14 @@ btRigidBody* addSupport(Scene& scene, SupportShape s) {
       if (s == SupportShape::ScaledMesh) g.meshScale = 2.5;
       return addGround(scene, g, 1.0);
     }
+    case SupportShape::Compound: {
+      std::vector<CompoundPart> parts(2);
+      for (int i = 0; i < 2; ++i) {
+        parts[std::size_t(i)].shape = std::make_unique<btBoxShape>(half);
+        parts[std::size_t(i)].pose.setOrigin(bt(2.0 * i, 0, 0));
+      }
+      return scene.addCompound(std::move(parts), at(0, 0, -0.05), 1.0);
+    }
   }
   throw Error("addSupport: unknown support shape");
 }
@@ -129,6 +141,25 @@ btRigidBody* addBodyOnTop(Scene& scene, BodyShape b) {
       }
       return scene.addBody(std::move(hull), 1.0, hexagonalPrismInertia(1.0, a, h),
                            at(0, 0, h / 2 - kSetDown), 0.3);
+    }
+    case BodyShape::Compound: {
+      // box 10 x 10 x 3 cm (0.8 kg) from z = 0 to 0.03, post R 2 cm, 6 cm
+      // high (0.2 kg) on it; the compound frame at the base's bottom centre
+      std::vector<CompoundPart> parts(2);
+      auto box = std::make_unique<btBoxShape>(bt(0.05, 0.05, 0.015));
+      box->setMargin(btScalar(1e-3));
+      parts[0].shape = std::move(box);
+      parts[0].pose.setOrigin(bt(0, 0, 0.015));
+      parts[0].mass = 0.8;
+      parts[0].inertia = boxInertia(0.8, 0.1, 0.1, 0.03);
+      auto post = std::make_unique<btCylinderShapeZ>(bt(0.02, 0.02, 0.03));
+      post->setMargin(btScalar(1e-3));
+      parts[1].shape = std::move(post);
+      parts[1].pose.setOrigin(bt(0, 0, 0.06));
+      parts[1].mass = 0.2;
+      parts[1].inertia = cylinderInertia(0.2, 0.02, 0.06);
+      btRigidBody* b = scene.addCompound(std::move(parts), at(0, 0, -kSetDown), 0.3);
+      return b;
     }
     case BodyShape::Sphere:
       return scene.addSphere(0.05, 1.0, bt(0, 0, 0.05 - kSetDown), 0.3);

@@ -98,12 +98,16 @@ struct PatchOptions {
 struct PatchReport {
   const btCollisionObject* body = nullptr;   // opted-in body (z points into it)
   const btCollisionObject* other = nullptr;  // body it stands on
-  btVector3 origin{0, 0, 0};                 // O, world [m]
-  btVector3 normal{0, 0, 1};                 // z axis, world
-  btVector3 xAxis{1, 0, 0};                  // x axis, world
-  btVector3 yAxis{0, 1, 0};                  // y axis, world
-  std::optional<PatchShape> shape;           // overlap of the two faces, patch frame [m]
-                                             // (always set in a report)
+  // the child of body's / other's btCompoundShape whose face the patch is
+  // on (-1: the shape is not a compound); a body standing on several faces
+  // has one report per face
+  int bodyChild = -1, otherChild = -1;
+  btVector3 origin{0, 0, 0};        // O, world [m]
+  btVector3 normal{0, 0, 1};        // z axis, world
+  btVector3 xAxis{1, 0, 0};         // x axis, world
+  btVector3 yAxis{0, 1, 0};         // y axis, world
+  std::optional<PatchShape> shape;  // overlap of the two faces, patch frame [m]
+                                    // (always set in a report)
   Model model = Model::Ellipsoidal;
   double mu = 0.0;           // [-]
   double rho = 0.0;          // [m]
@@ -166,8 +170,9 @@ struct PatchSolverSettings {
 // Contacts of opted-in bodies (manifolds with Bullet's points) that did not
 // become patches, by reason; they went to Bullet's point contacts.
 struct NotPatchedCounts {
-  long unsupportedShape = 0;  // a shape without flat faces: sphere, capsule, compound
-                              // (either body); a triangle mesh or heightfield as the body
+  long unsupportedShape = 0;  // a shape without flat faces: sphere, capsule (either body;
+                              // for a compound, the touching child), a triangle mesh or
+                              // heightfield as the body, or a compound with a compound child
   long sideContact = 0;       // the contact normal is more than 45 degrees off both faces
                               // (a rim, an edge, a side)
   long notFlat = 0;           // faces further apart than the flatness tolerance
@@ -219,9 +224,9 @@ struct PatchSolverStats : parts::FrictionPartCounters {
   NotPatchedCounts notPatched;
 };
 
-// Called once per pair of shape types (the opted-in body's, the other's)
-// for which a contact could not become a patch because a shape has no flat
-// faces (setUnsupportedShapeCallback).
+// Called once per pair of shape types (the opted-in body's, the other's;
+// for a compound, the touching child's) for which a contact could not become a patch because a
+// shape has no flat faces (setUnsupportedShapeCallback).
 using UnsupportedShapeCallback =
     std::function<void(const btCollisionObject* body, const btCollisionObject* other)>;
 
@@ -281,7 +286,9 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   // (PatchReports.*)
   const std::vector<PatchReport>& patchReports() const;
   // The report of the patch under `body` in the last step, or null; valid
-  // until the next step, as above.
+  // until the next step, as above. A body on several faces (a table on its
+  // legs, a compound's children) has several reports: this is the first in
+  // patchReports()' order; the others follow it there.
   const PatchReport* findPatchReport(const btCollisionObject* body) const;
   // The same report by value (a copy, its own for as long as it is kept),
   // or none.
@@ -291,8 +298,9 @@ class PatchFrictionSolver : public btSequentialImpulseConstraintSolver {
   // by reason, or null if there were none; valid until the next step.
   const NotPatchedCounts* notPatchedOf(const btCollisionObject* body) const;
   // Told once per pair of shape types that cannot make a patch (a sphere, a
-  // compound, a mesh...), the first time an opted-in body touches one;
-  // nothing is reported without a callback (null: none).
+  // mesh...; for a compound, its touching child's type), the first time an
+  // opted-in body touches one; nothing is reported without a callback
+  // (null: none).
   void setUnsupportedShapeCallback(UnsupportedShapeCallback callback);
 
   // btConstraintSolver hooks called once per world step.

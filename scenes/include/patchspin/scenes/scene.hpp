@@ -34,6 +34,16 @@ inline btVector3 bt(double x, double y, double z) {
   return btVector3(btScalar(x), btScalar(y), btScalar(z));
 }
 
+// One part of a compound body (Scene::addCompound): its shape, its pose in
+// the compound's frame, its mass [kg] and its principal moments of inertia
+// about its own centre, in its own axes [kg m^2] (inertia.hpp).
+struct CompoundPart {
+  std::unique_ptr<btCollisionShape> shape;
+  btTransform pose = btTransform::getIdentity();
+  double mass = 0.0;
+  btVector3 inertia{0, 0, 0};
+};
+
 // A Bullet transform as an Eigen isometry (rotation from its normalised
 // quaternion), for drawing and for the core's plain structs.
 inline Eigen::Isometry3d toIsometry(const btTransform& tr) {
@@ -81,6 +91,18 @@ class Scene {
   btRigidBody* addSphere(double radius, double mass, const btVector3& position, double friction);
   // A static box (mass 0).
   btRigidBody* addStaticBox(const btVector3& half, const btVector3& position, double friction);
+  // A btCompoundShape body of `parts` (each a child), whose compound frame
+  // (the frame of the parts' poses) is placed at `start`. All masses 0: a
+  // static body, the poses as given. Otherwise a dynamic body whose origin
+  // is the parts' centre of mass c = sum m_i t_i / m (Bullet turns a body
+  // about its origin): every pose is shifted by -c and the body placed at
+  // start * (I, c); its inertia is the parts' by the parallel-axis theorem,
+  //   J = sum R_i diag(J_i) R_i^T + m_i (|d_i|^2 I - d_i d_i^T),  d_i = t_i - c,
+  // which must be diagonal in the compound's axes (products of inertia
+  // within 1e-9 of the trace; otherwise Error: turn the parts so that the
+  // compound's axes are principal). Margins are the parts' own.
+  btRigidBody* addCompound(std::vector<CompoundPart> parts, const btTransform& start,
+                           double friction);
 
   // A shape owned by the scene, to be shared by several bodies.
   btCollisionShape* addShape(std::unique_ptr<btCollisionShape> shape);
