@@ -31,6 +31,8 @@
 #include "patch_selection.hpp"
 #include "patch_solver_shared.hpp"
 
+#include <patchspin/parts/load_sharing.hpp>
+
 #include <algorithm>
 #include <string>
 
@@ -168,6 +170,65 @@ bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup,
   return true;
 }
 
+// Patches whose normals agree within this angle [rad] share a plane for
+// the load sharing (S25): a body on faces of one floor or of boxes of one
+// height (both exactly parallel); tilted faces keep their own split.
+constexpr double kShareParallel = 1e-3;
+
+// The groups of (S25): per dynamic body, its hard patches on static or
+// kinematic supports with no stack hold, parallel to the body's first such
+// patch; groups of one are dropped. (A patch's loads are shared only while
+// its impulses leave the support's velocity unchanged.)
+void groupSharedPatches(const std::vector<PatchConstraint>& patches,
+                        std::vector<std::vector<int>>& groups) {
+  groups.clear();
+  const double cosParallel = std::cos(kShareParallel);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const PatchConstraint& pc = patches[i];
+    if (pc.b.body.dynamic || pc.compliance != 0.0 || pc.stack.hold >= 0 || pc.stack.loadHold >= 0)
+      continue;
+    auto g = std::find_if(groups.begin(), groups.end(), [&](const std::vector<int>& grp) {
+      return patches[std::size_t(grp[0])].a.id == pc.a.id;
+    });
+    if (g == groups.end()) {
+      groups.push_back({int(i)});
+    } else if (patches[std::size_t((*g)[0])].F.col(2).dot(pc.F.col(2)) >= cosParallel) {
+      g->push_back(int(i));
+    }
+  }
+  groups.erase(std::remove_if(groups.begin(), groups.end(),
+                              [](const std::vector<int>& grp) { return grp.size() < 2; }),
+               groups.end());
+}
+
+// (S25) for one group, in the frame of its first patch; a patch whose
+// loads change is visited again and its friction block re-solved.
+void shareGroupLoads(std::vector<PatchConstraint>& patches, const std::vector<int>& group,
+                     std::vector<parts::SharedPatch>& buf) {
+  const PatchConstraint& ref = patches[std::size_t(group[0])];
+  const btVector3& o = ref.state->geometry.origin;
+  const Vec3 ex = ref.F.col(0), ey = ref.F.col(1);
+  buf.resize(group.size());
+  for (std::size_t k = 0; k < group.size(); ++k) {
+    const PatchConstraint& pc = patches[std::size_t(group[k])];
+    const btVector3 d = pc.state->geometry.origin - o;
+    const Vec3 dv(double(d.x()), double(d.y()), double(d.z()));
+    parts::SharedPatch& sp = buf[k];
+    sp.origin = Vec2(dv.dot(ex), dv.dot(ey));
+    sp.R << pc.F.col(0).dot(ex), pc.F.col(1).dot(ex), pc.F.col(0).dot(ey), pc.F.col(1).dot(ey);
+    sp.shape = &pc.state->friction->shape();
+    sp.lamN = pc.lamN;
+  }
+  if (!parts::shareLoads(buf)) return;
+  for (std::size_t k = 0; k < group.size(); ++k) {
+    PatchConstraint& pc = patches[std::size_t(group[k])];
+    if (buf[k].lamN == pc.lamN) continue;
+    pc.lamN = buf[k].lamN;
+    pc.settled = false;
+    pc.fb.haveLast = false;
+  }
+}
+
 }  // namespace
 
 struct PatchFrictionSolver::Impl {
@@ -189,8 +250,12 @@ struct PatchFrictionSolver::Impl {
   std::vector<parts::StackPatchView> stackViews;  // scratch of stage 3 (link stacks)
   std::vector<parts::StackLinks> stackLinks;      // scratch of stage 3 (link stacks)
   std::vector<char> otherRows;                    // by solver body id: in one of Bullet's rows
-  PatchConstraint retry;                          // a stacked patch's state before its visit
-  std::vector<btRigidBody*> flushBodies;          // bodies of the island's patches
+  // stage 3b: one body's hard, unstacked patches on static supports in one
+  // plane, their loads shared after every iteration (S25); indices in patches
+  std::vector<std::vector<int>> shareGroups;
+  std::vector<parts::SharedPatch> shareBuf;  // scratch
+  PatchConstraint retry;                     // a stacked patch's state before its visit
+  std::vector<btRigidBody*> flushBodies;     // bodies of the island's patches
 };
 
 std::shared_ptr<internal::PatchSolverShared> PatchFrictionSolver::makeShared() {
@@ -319,6 +384,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
                                           const btContactSolverInfo& info) {
   Impl& im = *impl_;
   im.patches.clear();
+  im.shareGroups.clear();
   im.holds.clear();
   // no opted-in body: stock Bullet, stock cost
   if (!im.selection.optIns().any()) {
@@ -401,6 +467,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     }
     for (std::size_t i = 0; i < im.patches.size(); ++i) im.patches[i].stack = im.stackLinks[i];
   }
+  // 3b share loads (S25)
+  groupSharedPatches(im.patches, im.shareGroups);
 }
 
 // Stage 5, after Bullet's rows in each iteration.
@@ -457,6 +525,8 @@ btScalar PatchFrictionSolver::solveSingleIteration(
       visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
     }
   }
+  for (const std::vector<int>& group : im.shareGroups)
+    shareGroupLoads(im.patches, group, im.shareBuf);
   return std::max(residual, btScalar(worst));
 }
 
@@ -522,6 +592,7 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
     if (btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(pc.state->body)))
       im.flushBodies.push_back(body);
   im.patches.clear();
+  im.shareGroups.clear();
   const btScalar out =
       btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
   for (btRigidBody* body : im.flushBodies) internal::flushCrumbs(*body);

@@ -204,14 +204,12 @@ TEST(CompoundShapes, BlockBridgingTwoChildrenMovesAsOnTwoBoxes) {
   EXPECT_EQ(end[0], end[1]);
 }
 
-// Disabled: the patch solver splits a body's load between several patches
-// as its Gauss-Seidel visits leave it (here 3:1 between the two, with
-// couples at the faces' edges), the block turns, and the exact law's
-// spin-slip coupling lets it slide 2 degrees below the friction angle
-// (0.21 m in 2 s) and 23 % too far above it (0.1485 m against 0.1205 m;
-// stock Bullet: 0.1205 m). The same with two separate boxes
-// (BlockBridgingTwoChildrenMovesAsOnTwoBoxes): not a compound matter.
-TEST(CompoundShapes, DISABLED_BlockBridgingTwoChildrenHoldsBelowTheFrictionAngle) {
+// 2 degrees below the friction angle the block holds. Its two patches share
+// its load as one linear pressure (S25): Gauss-Seidel alone left 6.67 :
+// 2.25 N with each centre of pressure at its face's edge, the block turned
+// and the exact law let it creep 0.21 m in 2 s (the same on two separate
+// boxes).
+TEST(CompoundShapes, BlockBridgingTwoChildrenHoldsBelowTheFrictionAngle) {
   const double alpha = std::atan(kBlockMu) - 2.0 * M_PI / 180.0;
   Scene scene(kG);
   btRigidBody* block = addBridge(scene, alpha, Bridge::Compound);
@@ -223,8 +221,8 @@ TEST(CompoundShapes, DISABLED_BlockBridgingTwoChildrenHoldsBelowTheFrictionAngle
 // Above the friction angle the block slides down with a = g (sin alpha -
 // mu cos alpha), on the two children as on one box. Bullet's integrator
 // (v then x) gives after n steps y_n = a dt^2 n (n + 1) / 2 exactly.
-// (Disabled: see above.)
-TEST(CompoundShapes, DISABLED_BlockBridgingTwoChildrenSlidesAsOnOneBox) {
+// (Without the shared loads: 0.1485 m, the block spinning up to 2.5 rad/s.)
+TEST(CompoundShapes, BlockBridgingTwoChildrenSlidesAsOnOneBox) {
   const double alpha = std::atan(kBlockMu) + 5.0 * M_PI / 180.0;
   const double a = kG * (std::sin(alpha) - kBlockMu * std::cos(alpha));
   constexpr int kSteps = 120;
@@ -322,11 +320,10 @@ TEST(CompoundShapes, TableSlidesToRestOnItsFourLegs) {
 // Spun without sliding about its centre of mass, each foot carries m g / 4
 // (no net friction force, so no load moves between the feet) with uniform
 // pressure, and the exact law's torque is mu (m g / 4) times the four feet's
-// mean distance rbar: omega falls at mu m g rbar / J_z. Disabled: the
-// patches' loads split unevenly (11.3 to 13.1 N) with couples that put each
-// foot's centre of pressure at its edge (see the bridge above), and the
-// table stops 1.6 % late (0.3013 s against 0.2967 s).
-TEST(CompoundShapes, DISABLED_TableSpinsToRestOnItsFourLegs) {
+// mean distance rbar: omega falls at mu m g rbar / J_z. (Without the shared
+// loads (S25) the feet carried 11.3 to 13.1 N, each centre of pressure at
+// its edge, and the table stopped 1.6 % late.)
+TEST(CompoundShapes, TableSpinsToRestOnItsFourLegs) {
   const double omega0 = 5.0, rbar = footMeanDistance();
   double Jz = 0.0;
   const Stop patch = runTable(SolverKind::Patch, 0.0, omega0, rbar, true, &Jz);
@@ -338,7 +335,7 @@ TEST(CompoundShapes, DISABLED_TableSpinsToRestOnItsFourLegs) {
 
 // Slid and spun at once: it stops, and friction never adds energy. Stock
 // Bullet's figures are printed beside. (Not asserted: a patch on every foot
-// at rest; in double one foot ends tipped, as in the disabled tests.)
+// at rest: in double one foot ended tipped before the shared loads.)
 TEST(CompoundShapes, TableSlidesAndSpinsToRestOnItsFourLegs) {
   const double rbar = footMeanDistance();
   const Stop patch = runTable(SolverKind::Patch, 0.5, 5.0, rbar, false);
@@ -389,11 +386,10 @@ TEST(CompoundShapes, BlockOnATableStandsOnItsTop) {
   standBlockOnTable(0.0, 0.0);
 }
 
-// Disabled: off the centre, the table's feet tip in turn (2 to 4 of the 4 in
-// their tip cooldown at any time): the load that the Gauss-Seidel visits
-// split between the feet puts a foot's centre of pressure outside it (see
-// the bridge above), and the block creeps (4e-5 m in 1 s).
-TEST(CompoundShapes, DISABLED_BlockOffCentreOnATableStandsOnItsTop) {
+// Off the centre: the table's feet stand (before the shared loads (S25) they
+// tipped in turn, 2 to 4 of the 4 in their tip cooldown at any time, and the
+// block crept 4e-5 m in 1 s).
+TEST(CompoundShapes, BlockOffCentreOnATableStandsOnItsTop) {
   standBlockOnTable(0.1, 0.05);
 }
 
