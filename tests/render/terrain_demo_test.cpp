@@ -41,8 +41,8 @@ constexpr int kMinChangedPixels = 50;
 constexpr int kChangeThreshold = 8;
 // A face on coplanar level triangles gets the patch of the plane z = 0: the
 // mesh's vertices have z = 0 exactly, so its normal is (0, 0, 1) exactly and
-// the run is the plane's (measured in float: equal to all 17 printed
-// digits). 1e-6 (relative, absolute below 1) leaves room for round-off
+// the run is the plane's (measured: equal to all 17 printed digits, float
+// and double). 1e-6 (relative, absolute below 1) leaves room for round-off
 // only; the issue asks 1 %.
 constexpr double kPlaneTol = 1e-6;
 // The exact law's stopping ratio v/(R omega) of a uniformly pressed thin
