@@ -1,11 +1,14 @@
 // Shared machinery of the scene demos (see demo_common.hpp).
 #include "demo_common.hpp"
 
+#include <btBulletDynamicsCommon.h>
+
 #include <patchspin/analysis.hpp>
 #include <patchspin/geometry.hpp>
 #include <patchspin/render/plot.hpp>
 #include <patchspin/render/renderer.hpp>
 #include <patchspin/scenes/simulate.hpp>
+#include <patchspin/types.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -267,6 +270,121 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
   std::printf("%s: %d frames, summary.json%s in %s\n", config.name.c_str(), writer.count(),
               a.plot ? ", sphere_*.png" : "", a.out.c_str());
   return 0;
+}
+
+namespace {
+// Collects every triangle a concave shape reports, moved by `tr`.
+class TriangleCollector : public btTriangleCallback {
+ public:
+  TriangleCollector(const btTransform& tr, render::SceneMesh& mesh) : tr_(tr), mesh_(mesh) {}
+  void processTriangle(btVector3* v, int, int) override {
+    const int base = int(mesh_.vertices.size());
+    for (int i = 0; i < 3; ++i) {
+      const btVector3 p = tr_ * v[i];
+      mesh_.vertices.emplace_back(double(p.x()), double(p.y()), double(p.z()));
+    }
+    mesh_.triangles.push_back({base, base + 1, base + 2});
+  }
+
+ private:
+  btTransform tr_;
+  render::SceneMesh& mesh_;
+};
+}  // namespace
+
+render::SceneMesh concaveMesh(const btRigidBody& ground) {
+  render::SceneMesh mesh;
+  const auto* shape = dynamic_cast<const btConcaveShape*>(ground.getCollisionShape());
+  if (!shape) throw Error("concaveMesh: the body is not a triangle mesh or heightfield");
+  TriangleCollector collect(ground.getWorldTransform(), mesh);
+  const btScalar big = btScalar(1e6);
+  shape->processAllTriangles(&collect, btVector3(-big, -big, -big), btVector3(big, big, big));
+  return mesh;
+}
+
+// fitSceneCamera, addCorners, rowColour: see demo_common.hpp.
+render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg,
+                              double elevationDeg, double aspect, double fitTop, double fovYDeg) {
+  const double pi = std::acos(-1.0);
+  const double az = azimuthDeg * pi / 180.0, el = elevationDeg * pi / 180.0;
+  const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                 std::sin(el));  // target -> eye
+  const Vec3 fwd = -dir;
+  const Vec3 right = fwd.cross(Vec3::UnitZ()).normalized();
+  const Vec3 up = right.cross(fwd);
+  const double tanY = std::tan(0.5 * fovYDeg * pi / 180.0), tanX = aspect * tanY;
+  Vec3 lo = points.front(), hi = points.front();
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 centre = 0.5 * (lo + hi);
+  const double size = (hi - lo).norm();
+  // projected range of the points for a camera at distance D, target shifted by s
+  auto range = [&](double D, double s, double& xMax, double& yMin, double& yMax) {
+    const Vec3 target = centre + s * up, eye = target + D * dir;
+    xMax = 0.0;
+    yMin = 1e300;
+    yMax = -1e300;
+    for (const Vec3& p : points) {
+      const Vec3 q = p - eye;
+      const double depth = q.dot(fwd);
+      xMax = std::max(xMax, std::abs(q.dot(right) / (depth * tanX)));
+      yMin = std::min(yMin, q.dot(up) / (depth * tanY));
+      yMax = std::max(yMax, q.dot(up) / (depth * tanY));
+    }
+  };
+  // for a distance, the shift that centres the points in the window
+  auto centredShift = [&](double D) {
+    double a = -size, b = size;
+    for (int i = 0; i < 60; ++i) {
+      const double m = 0.5 * (a + b);
+      double xMax, yMin, yMax;
+      range(D, m, xMax, yMin, yMax);
+      // raising the target moves the points down the frame
+      if (0.5 * (yMin + yMax) > 0.5 * (fitTop + kFitBottom))
+        a = m;
+      else
+        b = m;
+    }
+    return 0.5 * (a + b);
+  };
+  double dLo = 0.5 * size, dHi = 50.0 * size;
+  for (int i = 0; i < 60; ++i) {
+    const double D = 0.5 * (dLo + dHi);
+    double xMax, yMin, yMax;
+    range(D, centredShift(D), xMax, yMin, yMax);
+    if (xMax <= kFitX && yMax - yMin <= fitTop - kFitBottom)
+      dHi = D;
+    else
+      dLo = D;
+  }
+  render::Camera cam;
+  cam.target = centre + centredShift(dHi) * up;
+  cam.eye = cam.target + dHi * dir;
+  cam.up = Vec3::UnitZ();
+  cam.fovYDeg = fovYDeg;
+  return cam;
+}
+
+void addCorners(const render::SceneBody& b, std::vector<Vec3>& out) {
+  const Vec3 h = b.kind == render::SceneBody::Cylinder
+                     ? Vec3(b.dimensions.x(), b.dimensions.y(), 0.5 * b.dimensions.z())
+                 : b.kind == render::SceneBody::Box ? Vec3(0.5 * b.dimensions)
+                                                    : Vec3::Zero();
+  if (b.kind == render::SceneBody::ConvexHull) {
+    for (const Vec3& p : b.hullPoints) out.push_back(b.pose * p);
+    return;
+  }
+  for (int i = 0; i < 8; ++i)
+    out.push_back(b.pose * Vec3((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
+                                (i & 4 ? 1 : -1) * h.z()));
+}
+
+render::Rgb rowColour(const std::string& model) {
+  if (model == "exact") return {0.90, 0.60, 0.15};
+  if (model == "ellipsoidal") return {0.25, 0.50, 0.90};
+  return {0.60, 0.60, 0.62};
 }
 
 void parseSize(const std::string& size, int& width, int& height) {

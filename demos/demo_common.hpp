@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+class btRigidBody;
+
 namespace patchspin::demos {
 
 // One body of a demo, in its own Bullet world, drawn side by side.
@@ -61,6 +63,26 @@ void validateCommonArgs(const CommonArgs& args);
 
 // Runs, renders and writes everything; returns the exit code.
 int runDemo(const DemoConfig& config, const CommonArgs& args);
+
+// Camera from the given azimuth and elevation (as render::fitCamera) that
+// fits `points` into the frame window x_ndc in [-kFitX, kFitX], y_ndc in
+// [kFitBottom, fitTop] (the overlay panel covers the top): the distance by
+// bisection, the target shifted along the camera's up vector so that the
+// scene is centred in the window (wide, flat scenes: a bounding sphere would
+// waste most of the frame). Used by blocks and terrain.
+constexpr double kFitX = 0.94, kFitBottom = -0.86;
+render::Camera fitSceneCamera(const std::vector<Vec3>& points, double azimuthDeg,
+                              double elevationDeg, double aspect, double fitTop,
+                              double fovYDeg = 35.0);
+// Appends the corners of the drawn body (its bounding box) in the world.
+void addCorners(const render::SceneBody& b, std::vector<Vec3>& out);
+// Colour of a law's row or body: exact warm, ellipsoidal blue, stock grey.
+render::Rgb rowColour(const std::string& model);
+
+// Every triangle of a static triangle mesh or heightfield body (any
+// btConcaveShape), in world coordinates, for drawing; throws Error for
+// another shape.
+render::SceneMesh concaveMesh(const btRigidBody& body);
 
 // "WxH" -> width, height in [16, 8192]; throws CLI::ValidationError.
 void parseSize(const std::string& size, int& width, int& height);

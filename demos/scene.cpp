@@ -9,8 +9,9 @@
 // seconds (default: the entry's suggested duration), a frame every k steps
 // so that the video runs --slowmo times slower than the simulation at --fps.
 // Boxes, cylinders and convex hulls are drawn as they are; spheres as hulls
-// of 42 points; planes and the static walls of the pour and the pile are not
-// drawn (the floor is the renderer's ground). Writes <out>/frame_NNNNN.png.
+// of 42 points; static triangle meshes and heightfields as meshes; planes
+// and the static walls of the pour and the pile are not drawn (the floor is
+// the renderer's ground). Writes <out>/frame_NNNNN.png.
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 
 #include <CLI/CLI.hpp>
@@ -134,6 +135,11 @@ int run(const Args& a) {
   // camera: fitted to the scene as built
   const render::Camera camera =
       render::fitCamera(drawables(*scene), -60.0, 35.0, double(width) / height, 1.3);
+  // static meshes and heightfields: drawn as they are (they never move)
+  std::vector<render::SceneMesh> meshes;
+  for (const btRigidBody* b : scene->bodies())
+    if (b->getInvMass() == 0 && b->getCollisionShape()->isConcave())
+      meshes.push_back(patchspin::demos::concaveMesh(*b));
   const std::string title = entry.name + ": " + entry.description;
   if (a.progress) patchspin::demos::printProgress("scene", 0, a.frames);
   long step = 0;
@@ -141,6 +147,7 @@ int run(const Args& a) {
     render::Scene frame;
     frame.camera = camera;
     frame.bodies = drawables(*scene);
+    frame.meshes = meshes;
     frame.overlay.time = double(step) * dt;
     frame.overlay.title = title;
     frame.overlay.model = a.model == "stock" ? "stock Bullet" : a.model + " law";

@@ -1,6 +1,6 @@
 // Scene drawing with legacy fixed-function OpenGL (OSMesa's compatibility
 // profile). Pass order, each a plain loop:
-//   sky gradient -> ground + grid -> shadows, trails (ground decals) ->
+//   sky gradient -> ground + grid -> meshes -> shadows, trails (decals) ->
 //   bodies -> arrows -> read back, downsample -> text overlay.
 #include <GL/gl.h>
 
@@ -253,6 +253,54 @@ void drawBoxMarker(const SceneBody& body) {
     drawDisk(Vec3(0.0, 0.55 * h.y(), z), 0.12 * std::min(h.x(), h.y()), nz);
   }
   glPolygonOffset(1.0f, 1.0f);
+}
+
+// A static mesh: flat-shaded triangles, each normal turned towards the eye
+// (both sides lit), then the edges in a darker shade. Faces are pushed back
+// by polygon offset so their own edges win the depth test.
+void drawMesh(const SceneMesh& mesh, const Vec3& eye) {
+  const int n = static_cast<int>(mesh.vertices.size());
+  for (const std::array<int, 3>& t : mesh.triangles)
+    for (int i : t)
+      if (i < 0 || i >= n)
+        throw RenderError("mesh triangle index " + std::to_string(i) + " outside 0.." +
+                          std::to_string(n - 1));
+  auto finite = [&](const std::array<int, 3>& t) {
+    for (int i : t)
+      if (!mesh.vertices[static_cast<std::size_t>(i)].allFinite()) return false;
+    return true;
+  };
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 1.0f);
+  colour(mesh.colour);
+  glBegin(GL_TRIANGLES);
+  for (const std::array<int, 3>& t : mesh.triangles) {
+    if (!finite(t)) continue;
+    const Vec3 &a = mesh.vertices[static_cast<std::size_t>(t[0])],
+               &b = mesh.vertices[static_cast<std::size_t>(t[1])],
+               &c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    Vec3 nrm = (b - a).cross(c - a);
+    if (nrm.dot(eye - a) < 0.0) nrm = -nrm;
+    normal(nrm.norm() > 0.0 ? nrm : Vec3::UnitZ());
+    vertex(a);
+    vertex(b);
+    vertex(c);
+  }
+  glEnd();
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  if (mesh.edgeAlpha <= 0.0) return;
+  glDisable(GL_LIGHTING);
+  colour(scaled(mesh.colour, 0.55), std::min(mesh.edgeAlpha, 1.0));
+  glBegin(GL_LINES);
+  for (const std::array<int, 3>& t : mesh.triangles) {
+    if (!finite(t)) continue;
+    for (int k = 0; k < 3; ++k) {
+      vertex(mesh.vertices[static_cast<std::size_t>(t[k])]);
+      vertex(mesh.vertices[static_cast<std::size_t>(t[(k + 1) % 3])]);
+    }
+  }
+  glEnd();
+  glEnable(GL_LIGHTING);
 }
 
 // Hull faces of recently drawn point sets: a hull is built once, not in
@@ -603,6 +651,18 @@ Image Renderer::render(const Scene& scene) {
           line(Vec3(c.x() - reach, iy * step, h), Vec3(c.x() + reach, iy * step, h));
         }
       }
+    }
+    // meshes: over the ground (its depth cleared), depth-tested among
+    // themselves, fogged like it
+    if (!scene.meshes.empty()) {
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LEQUAL);
+      glEnable(GL_LIGHTING);
+      glLineWidth(static_cast<GLfloat>(ss));
+      for (const SceneMesh& mesh : scene.meshes) drawMesh(mesh, cam.eye);
+      glDisable(GL_LIGHTING);
+      glDisable(GL_DEPTH_TEST);
     }
     glDisable(GL_FOG);
   }

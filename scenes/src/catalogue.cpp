@@ -171,6 +171,123 @@ std::unique_ptr<Scene> makeBlocksRow(const BlocksRowSpec& spec, Friction f,
   return scene;
 }
 
+// ---- terrain ------------------------------------------------------------------------
+GroundSpec TerrainSpec::defaultGround() {
+  GroundSpec g;
+  g.kind = Ground::TriangleMesh;
+  g.halfSize = 0.3;
+  g.spacing = 0.01;
+  g.slope = 8.0 * M_PI / 180.0;
+  g.crease = true;
+  g.creaseX = 0.0;
+  return g;
+}
+
+std::vector<TerrainBody> terrainBodies(const TerrainSpec& a) {
+  const GroundSpec& gr = a.ground;
+  if (gr.kind == Ground::Plane || !gr.crease || gr.slopeInTransform)
+    throw Error("terrain: the ground must be a mesh or heightfield with a crease");
+  if (!(gr.slope > 0.0 && std::tan(gr.slope) < a.mu))
+    throw Error("terrain: the slope must rise at less than the friction angle atan(mu)");
+  if (!(a.mu > 0.0 && a.g > 0.0)) throw Error("terrain: mu and g must be positive");
+  const double c = gr.creaseX, h = gr.halfSize, tanA = std::tan(gr.slope);
+  const Vec3 up = Vec3::UnitZ(), slopeNormal(-std::sin(gr.slope), 0.0, std::cos(gr.slope));
+  // twice the pure-sliding travel v0^2 / (2 mu g): spin lengthens it (1.9
+  // and 2.0 times v0^2 / (2 mu g), 8.3 and 8.4 cm, for the exact law's level
+  // coin and block at the defaults, travelling along the path)
+  auto travel = [&](double v0) { return 2.0 * v0 * v0 / (2.0 * a.mu * a.g); };
+  const double coinReach = a.coinRadius, blockReach = 0.5 * std::hypot(a.blockLX, a.blockLY);
+  constexpr double kGap = 0.02;  // between a body's reach and the crease [m]
+  std::vector<TerrainBody> bodies;
+  auto add = [&](const std::string& key, const std::string& region, BodyKind kind, double x,
+                 double y) {
+    TerrainBody b;
+    b.key = key;
+    b.label = key;
+    std::replace(b.label.begin(), b.label.end(), '_', ' ');
+    b.region = region;
+    b.kind = kind;
+    const bool coin = kind == BodyKind::Cylinder;
+    b.size = coin ? Vec3(a.coinRadius, a.coinRadius, a.coinHeight)
+                  : Vec3(a.blockLX, a.blockLY, a.blockLZ);
+    b.mass = coin ? a.coinMass : a.blockMass;
+    const bool sloped = region == "slope";
+    b.normal = sloped ? slopeNormal : up;
+    b.tilt = sloped ? gr.slope : 0.0;
+    const Vec3 surface(x, y, x <= c ? 0.0 : (x - c) * tanA);
+    b.position = surface + 0.5 * b.size.z() * b.normal;
+    const double v0 = coin ? a.coinV0 : a.blockV0;
+    b.v0 = sloped ? Vec3(0.0, v0, 0.0) : Vec3(v0, 0.0, 0.0);  // across the slope: level
+    b.omega0 = coin ? a.coinOmega0 : a.blockOmega0;
+    const double reach = coin ? coinReach : blockReach;
+    if (std::abs(x) + reach > h || std::abs(y) + reach > h)
+      throw Error("terrain: the ground (half size " + std::to_string(h) + " m) is too small for " +
+                  key);
+    bodies.push_back(b);
+  };
+  const double coinTravel = travel(a.coinV0), blockTravel = travel(a.blockV0);
+  // level: sliding along +x, stopping kGap short of the crease
+  add("level_coin", "level", BodyKind::Cylinder, c - kGap - coinReach - coinTravel, 0.05);
+  add("level_block", "level", BodyKind::Box, c - kGap - blockReach - blockTravel, -0.15);
+  // slope: sliding across it (+y), curving downhill, half the slope's
+  // width from the crease
+  add("slope_coin", "slope", BodyKind::Cylinder, c + 0.15, 0.03);
+  add("slope_block", "slope", BodyKind::Box, c + 0.15, -0.21);
+  // over the crease: the rim 3 cm short of it, sliding towards it
+  add("crease_coin", "crease", BodyKind::Cylinder, c - coinReach - 0.03, 0.19);
+  return bodies;
+}
+
+btRigidBody* addTerrainBody(Scene& scene, const TerrainBody& d, double mu, Friction f) {
+  // collision margin: 1 mm capped at a tenth of the smallest half size
+  constexpr double kMargin = 1e-3;
+  std::unique_ptr<btCollisionShape> shape;
+  btVector3 inertia;
+  double minHalf = 0.0;
+  if (d.kind == BodyKind::Cylinder) {
+    const double R = d.size.x(), H = d.size.z();
+    shape = std::make_unique<btCylinderShapeZ>(bt(R, R, H / 2));
+    inertia = cylinderInertia(d.mass, R, H);
+    minHalf = std::min(R, H / 2);
+  } else if (d.kind == BodyKind::Box) {
+    const double lx = d.size.x(), ly = d.size.y(), lz = d.size.z();
+    shape = std::make_unique<btBoxShape>(bt(lx / 2, ly / 2, lz / 2));
+    inertia = boxInertia(d.mass, lx, ly, lz);
+    minHalf = std::min({lx / 2, ly / 2, lz / 2});
+  } else {
+    throw Error("terrain: bodies are boxes or cylinders");
+  }
+  shape->setMargin(btScalar(std::min(kMargin, 0.1 * minHalf)));
+  btTransform start;
+  start.setIdentity();
+  start.setOrigin(bt(d.position.x(), d.position.y(), d.position.z()));
+  start.setRotation(btQuaternion(btVector3(0, 1, 0), btScalar(-d.tilt)));
+  btRigidBody* body = scene.addBody(std::move(shape), d.mass, inertia, start, mu);
+  body->setLinearVelocity(bt(d.v0.x(), d.v0.y(), d.v0.z()));
+  const Vec3 w = d.omega0 * d.normal;
+  body->setAngularVelocity(bt(w.x(), w.y(), w.z()));
+  if (f != Friction::Stock) {
+    bullet::PatchOptions options;
+    options.model = f == Friction::Exact ? Model::Exact : Model::Ellipsoidal;
+    options.mu = mu;
+    scene.solver().enablePatchFriction(body, options);
+  }
+  return body;
+}
+
+std::unique_ptr<Scene> makeTerrain(const TerrainSpec& spec, Friction f,
+                                   std::vector<btRigidBody*>* bodies, btRigidBody** ground) {
+  const std::vector<TerrainBody> defs = terrainBodies(spec);
+  auto scene = std::make_unique<Scene>(spec.g);
+  btRigidBody* g = addGround(*scene, spec.ground, 1.0);  // combined friction = the body's mu
+  if (ground) *ground = g;
+  for (const TerrainBody& d : defs) {
+    btRigidBody* b = addTerrainBody(*scene, d, spec.mu, f);
+    if (bodies) bodies->push_back(b);
+  }
+  return scene;
+}
+
 // ---- blocks -------------------------------------------------------------------------
 std::vector<btVector3> stackPositions(int n, const BlockSpec& s) {
   std::vector<btVector3> pos;
@@ -409,6 +526,11 @@ std::vector<CatalogueEntry> makeCatalogue() {
                "the blocks demo's row: blocks and a coin sliding and spinning, a stack, a sphere",
                1.0 / 240.0, 3.0,
                [](Friction f) { return makeBlocksRow(BlocksRowSpec{}, f, nullptr); }});
+  c.push_back({"terrain",
+               "the terrain demo's world: coins and blocks sliding and spinning to rest on a "
+               "triangle mesh, level and sloped, one coin over the crease",
+               1.0 / 240.0, 2.0,
+               [](Friction f) { return makeTerrain(TerrainSpec{}, f, nullptr); }});
   c.push_back({"stack", "a stack of 10 blocks (10 x 10 x 5 cm) standing still", 1.0 / 240.0, 2.0,
                [](Friction f) {
                  auto s = std::make_unique<Scene>(kG);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "demo_test_util.hpp"
 
@@ -190,6 +191,93 @@ TEST(Renderer, BodyAppearsWhereThePinholeProjectionPutsIt) {
   // polygonal rim cost a little, grid lines hidden under it nothing
   constexpr double kMinFill = 0.6;
   EXPECT_GT(inside, kMinFill * (x1 - x0) * (y1 - y0));
+}
+
+// A mesh (a square of two triangles lying on the ground, off the image
+// centre) is drawn where an independent pinhole model puts its corners:
+// adding it changes pixels only inside their projected box, and fills most
+// of it.
+TEST(Renderer, MeshAppearsWhereThePinholeProjectionPutsIt) {
+  RenderOptions o = smallOptions();
+  o.shadows = false;
+  Renderer renderer(o);
+  Scene without;
+  without.camera.eye = Vec3(0.1, -0.15, 0.25);
+  without.camera.target = Vec3::Zero();
+  without.camera.fovYDeg = 40.0;
+  Scene with = without;
+  SceneMesh square;
+  square.vertices = {Vec3(0.02, -0.01, 0.0), Vec3(0.09, -0.01, 0.0), Vec3(0.09, 0.06, 0.0),
+                     Vec3(0.02, 0.06, 0.0)};
+  // one triangle wound each way: both sides are drawn
+  square.triangles = {{0, 1, 2}, {0, 3, 2}};
+  square.colour = Rgb{0.2, 0.6, 0.3};
+  with.meshes.push_back(square);
+  const Image a = renderer.render(with), b = renderer.render(without);
+
+  const Camera& cam = with.camera;
+  const Vec3 f = (cam.target - cam.eye).normalized();
+  const Vec3 s = f.cross(cam.up).normalized();
+  const Vec3 u = s.cross(f);
+  const double focal = 0.5 * kHeight / std::tan(0.5 * cam.fovYDeg * M_PI / 180.0);
+  PixelBox box;
+  std::vector<Eigen::Vector2d> image;  // the corners' pixels, in order round the square
+  for (const Vec3& corner : square.vertices) {
+    const Vec3 p = corner - cam.eye;
+    const double depth = p.dot(f);
+    const double x = 0.5 * kWidth + focal * p.dot(s) / depth;
+    const double y = 0.5 * kHeight - focal * p.dot(u) / depth;
+    image.emplace_back(x, y);
+    box.x0 = std::min(box.x0, x), box.x1 = std::max(box.x1, x);
+    box.y0 = std::min(box.y0, y), box.y1 = std::max(box.y1, y);
+  }
+  // area (shoelace) and perimeter of the projected quadrilateral [px]
+  double area = 0.0, perimeter = 0.0;
+  for (std::size_t i = 0; i < image.size(); ++i) {
+    const Eigen::Vector2d &p = image[i], &q = image[(i + 1) % image.size()];
+    area += 0.5 * (p.x() * q.y() - q.x() * p.y());
+    perimeter += (q - p).norm();
+  }
+  area = std::abs(area);
+  ASSERT_GT(box.x0, 0.0);
+  ASSERT_LT(box.x1, kWidth);
+  // the box filter of supersampling spreads an edge by at most one pixel
+  constexpr double kEdgePx = 1.5;
+  int inside = 0, outside = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::uint8_t *p = a.pixel(x, y), *q = b.pixel(x, y);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) continue;
+      const double cx = x + 0.5, cy = y + 0.5;
+      if (cx >= box.x0 - kEdgePx && cx <= box.x1 + kEdgePx && cy >= box.y0 - kEdgePx &&
+          cy <= box.y1 + kEdgePx) {
+        ++inside;
+      } else {
+        ++outside;
+      }
+    }
+  }
+  EXPECT_EQ(outside, 0);
+  // the changed pixels cover the projected quadrilateral: its area, give or
+  // take the pixels its edges cross (partly covered: changed or not)
+  EXPECT_NEAR(inside, area, kEdgePx * perimeter);
+  // green: the mesh's own colour at the square's centre, not the grey ground
+  const Vec3 c = Vec3(0.055, 0.025, 0.0) - cam.eye;
+  const int px = int(0.5 * kWidth + focal * c.dot(s) / c.dot(f));
+  const int py = int(0.5 * kHeight - focal * c.dot(u) / c.dot(f));
+  const std::uint8_t* centre = a.pixel(px, py);
+  EXPECT_GT(int(centre[1]), int(centre[0]) + 20);
+}
+
+// A mesh triangle indexing outside the vertices is an error, not a crash.
+TEST(Renderer, MeshIndexOutsideTheVerticesThrows) {
+  Renderer renderer(smallOptions());
+  Scene scene = coinScene();
+  SceneMesh bad;
+  bad.vertices = {Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()};
+  bad.triangles = {{0, 1, 3}};
+  scene.meshes.push_back(bad);
+  EXPECT_THROW(renderer.render(scene), RenderError);
 }
 
 // A convex hull of a box's corners (plus interior points that must be

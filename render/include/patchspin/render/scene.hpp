@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,22 @@ struct SceneBody {
   // Spin cue: a stripe and a dot on cylinder caps, bands on the cylinder side,
   // a stripe on the top and bottom faces of boxes.
   bool spinMarker = true;
+};
+
+// A static triangle mesh in world coordinates (terrain, level geometry),
+// drawn lit above the ground plane: every mesh covers the ground and its grid
+// (meant to lie on or above z = RenderOptions::groundHeight); shadows and
+// trails are drawn over it, bodies in front of it. Flat shaded, both sides
+// lit (each triangle's normal is turned towards the eye).
+// (Renderer.MeshAppearsWhereThePinholeProjectionPutsIt)
+struct SceneMesh {
+  std::vector<Vec3> vertices;                 // world [m]
+  std::vector<std::array<int, 3>> triangles;  // indices into vertices; a triangle
+                                              // with a non-finite vertex is skipped
+  Rgb colour{0.66, 0.70, 0.60};
+  // opacity of the triangle edges, drawn in a darker shade of the colour so
+  // the tessellation shows; 0: no edges                                   [0, 1]
+  double edgeAlpha = 0.2;
 };
 
 // Fading trail of a patch's reference point: points oldest first; the oldest
@@ -109,6 +126,7 @@ struct Camera {
 
 struct Scene {
   std::vector<SceneBody> bodies;
+  std::vector<SceneMesh> meshes;
   std::vector<Trail> trails;
   std::vector<Arrow> arrows;
   FrameOverlay overlay;

@@ -2,6 +2,8 @@
 // tests, the demos and the benchmarks; `demos/scene` renders any of them.
 //   coin trio   the coin demo's coin, one world per law (exact, ellipsoidal, stock)
 //   blocks row  the blocks demo's row (demos/blocks.cpp draws one world per law)
+//   terrain     coins and blocks on a triangle-mesh ground, level and sloped
+//               (demos/terrain.cpp draws one world per law)
 //   stack       blocks standing on each other
 //   pyramid     rows of blocks, each on two below it
 //   incline     a block on a plane tilted by turning gravity
@@ -93,6 +95,59 @@ btRigidBody* addRowBody(Scene& scene, const RowBody& body, double mu, Friction f
 std::unique_ptr<Scene> makeBlocksRow(const BlocksRowSpec& spec, Friction f,
                                      std::vector<btRigidBody*>* bodies,
                                      SolverKind kind = SolverKind::Patch);
+
+// ---- terrain ------------------------------------------------------------------------
+// The terrain demo's world (demos/terrain.cpp draws one per law): a mesh (or
+// heightfield) ground, level for x <= 0 and rising along x beyond at
+// `ground.slope` (terrain.hpp's crease ground, friction 1), with coins and
+// rectangular blocks sliding and spinning to rest on it:
+//   level_coin, level_block   on the level region, sliding along +x
+//   slope_coin, slope_block   on the planar slope, sliding across it (+y)
+//   crease_coin               on the level region, sliding over the crease
+// Each body's face starts flat on its region; the level and slope bodies
+// never reach the crease or the mesh's edge with the default spec (the
+// patch law's region: a face on coplanar triangles). Margin 1 mm capped at
+// a tenth of the smallest half size, exact inertia, opted in under a patch
+// law with PatchOptions::mu = mu.
+struct TerrainSpec {
+  GroundSpec ground = defaultGround();
+  double mu = 0.3, g = 9.81;  // [-], [m/s^2]
+  // coins: radius, thickness [m], mass [kg], speed [m/s], spin [rad/s]
+  double coinRadius = 0.05, coinHeight = 0.005, coinMass = 0.03, coinV0 = 0.5, coinOmega0 = 20.0;
+  // blocks: face LX x LY, height LZ [m], mass [kg], speed [m/s], spin [rad/s]
+  double blockLX = 0.15, blockLY = 0.075, blockLZ = 0.04, blockMass = 1.0;
+  double blockV0 = 0.5, blockOmega0 = 15.0;
+  // a triangle mesh of 1 cm cells over |x|, |y| <= 0.27 m, level for x <= 0,
+  // rising at 8 degrees beyond (tan 8 deg = 0.14 < mu: the slope holds)
+  static GroundSpec defaultGround();
+};
+struct TerrainBody {
+  std::string key, label;         // e.g. "slope_coin", "slope coin"
+  std::string region;             // "level", "slope" or "crease"
+  BodyKind kind = BodyKind::Box;  // Box or Cylinder
+  Vec3 size = Vec3::Zero();       // box: LX, LY, LZ; cylinder: R, R, H [m]
+  double mass = 1.0;              // [kg]
+  Vec3 position = Vec3::Zero();   // centre of mass at the start [m]
+  Vec3 normal = Vec3::UnitZ();    // of the surface under the face at the start
+  double tilt = 0.0;              // the face's tilt about y (the region's slope) [rad]
+  Vec3 v0 = Vec3::Zero();         // in the surface's plane [m/s]
+  double omega0 = 0.0;            // about `normal` [rad/s]
+};
+// Every body of the terrain world, in the order makeTerrain adds them,
+// placed from the sizes and from twice the pure-sliding travel
+// v0^2 / (2 mu g) (spin lengthens it, to
+// about twice for the defaults). Throws Error unless the ground is a
+// mesh or heightfield crease ground rising at a slope in (0, atan mu), large
+// enough that every body starts on it.
+std::vector<TerrainBody> terrainBodies(const TerrainSpec& spec);
+// Adds one terrain body, its face touching the surface, moving at v0 and
+// spinning at omega0, opted in under f.
+btRigidBody* addTerrainBody(Scene& scene, const TerrainBody& body, double mu, Friction f);
+// A world holding the terrain ground and its bodies under f; the ground
+// and then the bodies in order in `ground` and `bodies` (either may be null).
+std::unique_ptr<Scene> makeTerrain(const TerrainSpec& spec, Friction f,
+                                   std::vector<btRigidBody*>* bodies,
+                                   btRigidBody** ground = nullptr);
 
 // ---- blocks: stack, pyramid, incline ----------------------------------------------
 // Blocks a x a x 2 halfH [m], mass [kg], friction mu, on the ground plane
