@@ -24,8 +24,8 @@ namespace patchspin::parts {
 
 // One patch of the group, in a reference frame in the patches' common plane.
 struct SharedPatch {
-  Mat2 R = Mat2::Identity();         // the patch's x, y axes in reference coordinates (columns)
-  Vec2 origin = Vec2::Zero();        // its O in reference coordinates [m]
+  Mat2 R = Mat2::Identity();          // the patch's x, y axes in reference coordinates (columns)
+  Vec2 origin = Vec2::Zero();         // its O in reference coordinates [m]
   const PatchShape* shape = nullptr;  // patch frame about O
   // normal impulses (Lambda_z, couple about x, couple about y) as in the
   // normal block (toLoads: Pz = l0, Tx = -l1, Ty = -l2), in and out
