@@ -177,25 +177,42 @@ constexpr double kShareParallel = 1e-3;
 
 // The groups of (S25): per dynamic body, its hard patches on static or
 // kinematic supports with no stack hold, parallel to the body's first such
-// patch; groups of one are dropped. (A patch's loads are shared only while
-// its impulses leave the support's velocity unchanged.)
-void groupSharedPatches(const std::vector<PatchConstraint>& patches,
-                        std::vector<std::vector<int>>& groups) {
+// patch; a body with one such patch has none. (A patch's loads are shared
+// only while its impulses leave the support's velocity unchanged.)
+// `groupOf`: scratch by solver body id; linear in the patches, and nothing
+// allocated for bodies on one patch (a pile of coins).
+void groupSharedPatches(const std::vector<PatchConstraint>& patches, int numBodies,
+                        std::vector<int>& groupOf, std::vector<std::vector<int>>& groups) {
   groups.clear();
+  auto eligible = [](const PatchConstraint& pc) {
+    return !pc.b.body.dynamic && pc.compliance == 0.0 && pc.stack.hold < 0 && pc.stack.loadHold < 0;
+  };
+  // pass 1: -1 none, -2 one, -3 several eligible patches
+  groupOf.assign(std::size_t(numBodies), -1);
+  bool several = false;
+  for (const PatchConstraint& pc : patches) {
+    if (!eligible(pc)) continue;
+    int& g = groupOf[std::size_t(pc.a.id)];
+    several = several || g == -2;
+    g = g == -1 ? -2 : -3;
+  }
+  if (!several) return;
+  // pass 2: a group per body with several, by index once made
   const double cosParallel = std::cos(kShareParallel);
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const PatchConstraint& pc = patches[i];
-    if (pc.b.body.dynamic || pc.compliance != 0.0 || pc.stack.hold >= 0 || pc.stack.loadHold >= 0)
-      continue;
-    auto g = std::find_if(groups.begin(), groups.end(), [&](const std::vector<int>& grp) {
-      return patches[std::size_t(grp[0])].a.id == pc.a.id;
-    });
-    if (g == groups.end()) {
+    if (!eligible(pc)) continue;
+    int& g = groupOf[std::size_t(pc.a.id)];
+    if (g == -2) continue;
+    if (g == -3) {
+      g = int(groups.size());
       groups.push_back({int(i)});
-    } else if (patches[std::size_t((*g)[0])].F.col(2).dot(pc.F.col(2)) >= cosParallel) {
-      g->push_back(int(i));
+    } else if (patches[std::size_t(groups[std::size_t(g)][0])].F.col(2).dot(pc.F.col(2)) >=
+               cosParallel) {
+      groups[std::size_t(g)].push_back(int(i));
     }
   }
+  // (a body whose other patches are not parallel to its first)
   groups.erase(std::remove_if(groups.begin(), groups.end(),
                               [](const std::vector<int>& grp) { return grp.size() < 2; }),
                groups.end());
@@ -254,6 +271,7 @@ struct PatchFrictionSolver::Impl {
   // plane, their loads shared after every iteration (S25); indices in patches
   std::vector<std::vector<int>> shareGroups;
   std::vector<parts::SharedPatch> shareBuf;  // scratch
+  std::vector<int> shareGroupOf;             // scratch: a body's group (solver body id)
   PatchConstraint retry;                     // a stacked patch's state before its visit
   std::vector<btRigidBody*> flushBodies;     // bodies of the island's patches
 };
@@ -468,7 +486,7 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     for (std::size_t i = 0; i < im.patches.size(); ++i) im.patches[i].stack = im.stackLinks[i];
   }
   // 3b share loads (S25)
-  groupSharedPatches(im.patches, im.shareGroups);
+  groupSharedPatches(im.patches, m_tmpSolverBodyPool.size(), im.shareGroupOf, im.shareGroups);
 }
 
 // Stage 5, after Bullet's rows in each iteration.
