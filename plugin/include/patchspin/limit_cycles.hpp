@@ -53,7 +53,7 @@ struct LimitCycle {
   double multiplier = 0.0;          // Floquet multiplier exp(oint div V* dtau), forward [-]
   double returnMapSlope = 0.0;      // P'(sigma*) forward, variational (abs. error ~1e-8) [-]
   bool attracting = false;          // multiplier < 1 (on the sphere, forward in tau)
-  double w3Min = 0.0, w3Max = 0.0;  // extent of w3 on the cycle [-]
+  double w3Min = 0.0, w3Max = 0.0;  // extent of w3 on the cycle (parabolic vertex) [-]
   double slipRatioMin = 0.0;        // min and max of v / (R omega) on the cycle [-]
   double slipRatioMax = 0.0;
   double meanRdot = 0.0;       // <R*> = (1/T) oint R* dtau [m/s^2]
@@ -82,6 +82,9 @@ struct CycleAnalysis {
   std::vector<Vec3> unresolvedForward;
   std::vector<Vec3> unresolvedBackward;
   double fieldScale = 0.0;  // max |F_o| over the seeds [m/s^2]; 1 / fieldScale is the unit of tau
+  // false: no search (F_o = 0, or a continuum of fixed points, where no
+  // cycle is isolated); the lists above are then empty
+  bool searched = false;
   bool complete() const { return unresolvedForward.empty() && unresolvedBackward.empty(); }
 };
 
