@@ -225,5 +225,27 @@ TEST(LimitCycles, EllipsoidalLawAtTheIssuesForceHasNoCycle) {
   for (const SeedEnd& e : cycles.forward) EXPECT_EQ(e.kind, SeedEnd::FixedPoint);
 }
 
+// A budget too short to reach anything: every seed is listed as unresolved,
+// in both directions, none silently dropped. (1 / fieldScale of fast time,
+// 50 RK4 steps: the cycle's period is 47 such units, and the slowest
+// approach to a fixed direction takes longer than one.)
+TEST(LimitCycles, SeedsThatReachNothingWithinTheBudgetAreListed) {
+  const FlatBodyModel model(thickDisk(0.4469), Model::Exact);
+  const LimitAnalysis fixed = findLimitDirections(model);
+  CycleOptions options;
+  options.seeds = 8;
+  options.budget = 1.0;
+  const CycleAnalysis cycles = findLimitCycles(model, fixed, options);
+  EXPECT_FALSE(cycles.complete());
+  ASSERT_EQ(cycles.forward.size(), 8u);
+  ASSERT_EQ(cycles.backward.size(), 8u);
+  std::size_t unresolvedForward = 0, unresolvedBackward = 0;
+  for (const SeedEnd& e : cycles.forward) unresolvedForward += e.kind == SeedEnd::Unresolved;
+  for (const SeedEnd& e : cycles.backward) unresolvedBackward += e.kind == SeedEnd::Unresolved;
+  EXPECT_EQ(cycles.unresolvedForward.size(), unresolvedForward);
+  EXPECT_EQ(cycles.unresolvedBackward.size(), unresolvedBackward);
+  EXPECT_EQ(unresolvedForward, 8u);  // no attracting fixed direction, no cycle yet
+}
+
 }  // namespace
 }  // namespace patchspin
