@@ -44,18 +44,17 @@ FlatBody thickDisk(double F) {
 }
 
 // F_o(w) of the thick disk by brute-force quadrature (derivation above).
-// relTol 1e-6 of the quadrature: F_o to ~1e-6 relative, which moves the
+// relTol 1e-6 of the quadrature (the default): F_o to ~1e-6 relative, which moves the
 // cycle by ~1e-6 (it attracts at rates ~1 m/s^2 against |F_o| ~ 5 m/s^2),
 // far below the tolerances of the comparisons below.
-Vec3 oracleField(const Vec3& w, double F) {
-  constexpr double kQuadTol = 1e-6;
+Vec3 oracleField(const Vec3& w, double F, double quadTol = 1e-6) {
   const Vec2 centre = Vec2::Zero();
   const Vec3 K1 = testing::bruteForceQDisk(
-      centre, kR, [](const Vec2&) { return 1.0; }, 1.0, kRho, w, kQuadTol);
+      centre, kR, [](const Vec2&) { return 1.0; }, 1.0, kRho, w, quadTol);
   const Vec3 Kx = testing::bruteForceQDisk(
-      centre, kR, [](const Vec2& p) { return p.x(); }, 1.0, kRho, w, kQuadTol);
+      centre, kR, [](const Vec2& p) { return p.x(); }, 1.0, kRho, w, quadTol);
   const Vec3 Ky = testing::bruteForceQDisk(
-      centre, kR, [](const Vec2& p) { return p.y(); }, 1.0, kRho, w, kQuadTol);
+      centre, kR, [](const Vec2& p) { return p.y(); }, 1.0, kRho, w, quadTol);
   const double p0 = kMass * kG / (M_PI * kR * kR);
   const double a = 4.0 * kH / (M_PI * std::pow(kR, 4));
   Eigen::Matrix2d A = Eigen::Matrix2d::Identity();
@@ -223,6 +222,60 @@ TEST(LimitCycles, EllipsoidalLawAtTheIssuesForceHasNoCycle) {
   EXPECT_TRUE(cycles.cycles.empty());
   EXPECT_TRUE(cycles.complete());
   for (const SeedEnd& e : cycles.forward) EXPECT_EQ(e.kind, SeedEnd::FixedPoint);
+}
+
+// Issue 34, item 5: the fixed directions of the exact thick disk at
+// F / (mu m g) = 0.15, 0.25, 0.40 are zeros of the independent field, with
+// the same rate and, from central differences of that field on the
+// tangent plane, the same eigenvalues (31): both negative (dominant), so
+// the cycle of the 0.0911 case has given way to attracting directions.
+TEST(LimitCycles, DominantDirectionsOfTheThickDiskAreZerosOfTheIndependentField) {
+  for (double xi : {0.15, 0.25, 0.40}) {
+    const double F = xi * kMu * kMass * kG;
+    const FlatBodyModel model(thickDisk(F), Model::Exact);
+    const LimitAnalysis fixed = findLimitDirections(model);
+    int dominant = 0;
+    for (const LimitDirection& d : fixed.directions) {
+      if (d.type != LimitType::Dominant) continue;
+      ++dominant;
+      // quadrature at relTol 1e-10 here: F_o to ~1e-10 relative
+      constexpr double kQuad = 1e-10;
+      const Vec3 Fo = oracleField(d.w, F, kQuad);
+      const double scale = Fo.norm();
+      // the code's residual is < 1e-11 of the field, the oracle's ~1e-10
+      constexpr double kFieldTol = 1e-8;  // relative to |F_o|
+      EXPECT_LT((Fo - d.w.dot(Fo) * d.w).norm(), kFieldTol * scale) << xi;
+      EXPECT_NEAR(d.w.dot(Fo), d.rdot, kFieldTol * scale) << xi;
+      // projected Jacobian J2 = E^T dV* E of (31) by central differences on
+      // the tangent plane: step 1e-3, truncation ~1e-6 |V'''| (~1e-5 m/s^2),
+      // quadrature noise 1e-10 |F_o| / 1e-3 (~5e-7 m/s^2) per entry
+      const Vec3 e1 = d.w.unitOrthogonal(), e2 = d.w.cross(e1);
+      constexpr double kStep = 1e-3;
+      auto V = [&](const Vec3& w) {
+        const Vec3 x = w.normalized();
+        const Vec3 f = oracleField(x, F, kQuad);
+        return Vec3(f - x.dot(f) * x);
+      };
+      Eigen::Matrix2d J;
+      for (int k = 0; k < 2; ++k) {
+        const Vec3 e = k == 0 ? e1 : e2;
+        const Vec3 dV = (V(d.w + kStep * e) - V(d.w - kStep * e)) / (2.0 * kStep);
+        J(0, k) = e1.dot(dV);
+        J(1, k) = e2.dot(dV);
+      }
+      const Eigen::Vector2cd lambda = J.eigenvalues();
+      for (int k = 0; k < 2; ++k) EXPECT_LT(lambda[k].real(), 0.0) << xi;
+      // the pair of (31) is invariant to the basis: trace and determinant,
+      // to 1e-4 m/s^2 and 1e-3 (m/s^2)^2 (ten times the entries' error, times
+      // |J| <= 6 m/s^2 for the determinant)
+      constexpr double kTraceTol = 1e-4, kDetTol = 1e-3;
+      const double tr = d.eigenvalues.sum().real();
+      const double det = (d.eigenvalues[0] * d.eigenvalues[1]).real();
+      EXPECT_NEAR(J.trace(), tr, kTraceTol) << xi;
+      EXPECT_NEAR(J.determinant(), det, kDetTol) << xi;
+    }
+    EXPECT_EQ(dominant, 2) << xi;
+  }
 }
 
 // A budget too short to reach anything: every seed is listed as unresolved,
