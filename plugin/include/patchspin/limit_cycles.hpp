@@ -18,8 +18,9 @@
 //    (31) traced). `multiplier` is that integral (RK4 quadrature along the
 //    cycle, relative error < 1e-6 at T/400 per step); `returnMapSlope` is
 //    P' from the variational equation and the section, whose absolute
-//    error is ~1e-8 at that step: the flow component of the variation,
-//    O(1), is projected out. They agree where m >> 1e-8; the thick disk's
+//    error is ~1e-8 at that step for the issue's cycle (and grows with the
+//    period: 1e-5 at T = 26 s^2/m, F / (mu m g) = 0.13): the flow component
+//    of the variation, O(1), is projected out. They agree where m >> 1e-8; the thick disk's
 //    cycle (issue 34) has m = 2.0e-12, where only the first resolves it
 //    (the slope converges to it as the step is refined 32-fold).
 //  * mean rate <R*> = (1/T) oint R* dtau [m/s^2]: ln r falls by T |<R*>| per
@@ -51,7 +52,7 @@ struct LimitCycle {
   std::vector<Vec3> orbit;          // kCycleSamples points along one period, forward in tau
   double period = 0.0;              // T in the fast time tau [s^2/m]
   double multiplier = 0.0;          // Floquet multiplier exp(oint div V* dtau), forward [-]
-  double returnMapSlope = 0.0;      // P'(sigma*) forward, variational (abs. error ~1e-8) [-]
+  double returnMapSlope = 0.0;      // P'(sigma*) forward, variational (abs. error >= 1e-8) [-]
   bool attracting = false;          // multiplier < 1 (on the sphere, forward in tau)
   double w3Min = 0.0, w3Max = 0.0;  // extent of w3 on the cycle (parabolic vertex) [-]
   double slipRatioMin = 0.0;        // min and max of v / (R omega) on the cycle [-]
