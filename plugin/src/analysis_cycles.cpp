@@ -306,6 +306,7 @@ SeedEnd runSeed(const FlatBodyModel& model, const LimitAnalysis& fixed, const Ve
       g = gNext;
     }
     y = next;
+    if (!y.w.allFinite()) break;  // the field overflowed: unresolved, not a silent loop
   }
   end.last = y.w;
   // a seed on a stable manifold (measure zero) ends at a saddle: listed as
