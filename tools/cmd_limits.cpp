@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <patchspin/analysis.hpp>
+#include <patchspin/limit_cycles.hpp>
 
 #include "tool_common.hpp"
 
@@ -113,10 +114,93 @@ nlohmann::json limitsToJson(const LimitAnalysis& a) {
 
 namespace {
 
+// +inf (a cycle crossing w3 = 0) as JSON null
+nlohmann::json finiteOrNull(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
+
+// The periodic orbits of the fast dynamics and where each seed ended.
+nlohmann::json cyclesToJson(const CycleAnalysis& c, int seeds) {
+  nlohmann::json cycles = nlohmann::json::array();
+  for (const LimitCycle& y : c.cycles) {
+    cycles.push_back({{"point", vec(y.point)},
+                      {"period", y.period},
+                      {"multiplier", y.multiplier},
+                      {"return_map_slope", y.returnMapSlope},
+                      {"attracting", y.attracting},
+                      {"w3", {y.w3Min, y.w3Max}},
+                      {"slip_ratio", {finiteOrNull(y.slipRatioMin), finiteOrNull(y.slipRatioMax)}},
+                      {"mean_rdot", y.meanRdot},
+                      {"turn", y.turn},
+                      {"turn_per_decade", y.turnPerDecade}});
+  }
+  auto ends = [](const std::vector<SeedEnd>& list, const std::vector<Vec3>& unresolved) {
+    int fixed = 0, cycle = 0;
+    for (const SeedEnd& e : list) {
+      fixed += e.kind == SeedEnd::FixedPoint ? 1 : 0;
+      cycle += e.kind == SeedEnd::Cycle ? 1 : 0;
+    }
+    nlohmann::json none = nlohmann::json::array();
+    for (const Vec3& w : unresolved) none.push_back(vec(w));
+    return nlohmann::json{{"fixed_point", fixed}, {"cycle", cycle}, {"unresolved", none}};
+  };
+  return {{"limit_cycles", cycles},
+          {"cycle_search",
+           {{"seeds", seeds},
+            {"forward", ends(c.forward, c.unresolvedForward)},
+            {"backward", ends(c.backward, c.unresolvedBackward)},
+            {"complete", c.complete()},
+            {"searched", c.searched}}}};
+}
+
+void printCycles(const CycleAnalysis& c, int seeds) {
+  std::printf(
+      "\nlimit cycles of the fast dynamics w' = V*(w), Eq. (27) (%d seeds, forward and "
+      "backward in the fast time tau, dt = r dtau):\n",
+      seeds);
+  if (!c.searched) {
+    std::printf("no search: the fixed points form a continuum (or F_o = 0)\n");
+    return;
+  }
+  if (c.cycles.empty()) std::printf("none\n");
+  for (const LimitCycle& y : c.cycles) {
+    const double deg = 180.0 / M_PI;
+    std::printf(
+        "%-10s T = %.6g s^2/m, multiplier %.3g, w3 in [%+.6f, %+.6f], v/(R w) in [%.5g, %.5g], "
+        "mean R* = %.6g m/s^2\n"
+        "           velocity direction turns %+.4g deg per period, %+.4g deg per decade of slip "
+        "(%s)\n",
+        y.attracting ? "attracting" : "repelling", y.period, y.multiplier, y.w3Min, y.w3Max,
+        y.slipRatioMin, y.slipRatioMax, y.meanRdot, y.turn * deg, y.turnPerDecade * deg,
+        y.turnPerDecade < 0.0 ? "clockwise" : "counter-clockwise");
+  }
+  auto report = [](const char* dir, const char* what, const std::vector<SeedEnd>& list,
+                   const std::vector<Vec3>& unresolved) {
+    int fixed = 0, cycle = 0;
+    for (const SeedEnd& e : list) {
+      fixed += e.kind == SeedEnd::FixedPoint ? 1 : 0;
+      cycle += e.kind == SeedEnd::Cycle ? 1 : 0;
+    }
+    std::printf("%s: %d seeds end at a fixed point, %d on a cycle", dir, fixed, cycle);
+    if (unresolved.empty()) {
+      std::printf("\n");
+      return;
+    }
+    std::printf("; %zu reach no %s within the budget:\n", unresolved.size(), what);
+    for (const Vec3& w : unresolved)
+      std::printf("  seed (%+.6f, %+.6f, %+.6f)\n", w.x(), w.y(), w.z());
+  };
+  report("forward ", "attractor", c.forward, c.unresolvedForward);
+  if (!c.backward.empty()) report("backward", "repeller", c.backward, c.unresolvedBackward);
+  if (!c.complete())
+    std::printf("\nwarning: the search is incomplete: how those seeds' bodies stop is not known\n");
+}
+
 struct LimitsArgs {
   std::string model = "ellipsoidal";
   bool json = false;
   int seeds = 600;
+  int cycleSeeds = 64;
 };
 
 void run(const LimitsArgs& a, const FlatBody& body) {
@@ -126,8 +210,21 @@ void run(const LimitsArgs& a, const FlatBody& body) {
   LimitOptions options;
   options.seeds = a.seeds;
   const LimitAnalysis an = findLimitDirections(model, options);
+  if (a.cycleSeeds != 0 && a.cycleSeeds < 2)
+    throw UsageError("--cycle-seeds must be 0 (no search) or at least 2");
+  CycleOptions cycleOptions;
+  cycleOptions.seeds = a.cycleSeeds;
+  const CycleAnalysis cycles =
+      a.cycleSeeds > 0 ? findLimitCycles(model, an, cycleOptions) : CycleAnalysis();
   if (a.json) {
-    std::printf("%s\n", limitsToJson(an).dump().c_str());
+    nlohmann::json out = limitsToJson(an);
+    if (a.cycleSeeds > 0) {
+      out.update(cyclesToJson(cycles, a.cycleSeeds));
+    } else {
+      out["limit_cycles"] = nullptr;
+      out["cycle_search"] = nullptr;
+    }
+    std::printf("%s\n", out.dump().c_str());
     return;
   }
   std::printf("body      %s, m = %g kg, Jz = %g kg m^2, r_c = (%g, %g, %g) m\n",
@@ -167,6 +264,7 @@ void run(const LimitsArgs& a, const FlatBody& body) {
     std::printf("\nwarning: the pressure turns negative on the patch (the body would tip)\n");
   if (!an.indexConsistent)
     std::printf("\nwarning: the index sum is not 2: a limit direction may be missing\n");
+  if (a.cycleSeeds > 0) printCycles(cycles, a.cycleSeeds);
 }
 
 const RegisterCommand registration([](CLI::App& app) {
@@ -177,8 +275,12 @@ const RegisterCommand registration([](CLI::App& app) {
   cmd->add_option("--model", args->model, "ellipsoidal (Eq. 41) | exact (Eq. 16)");
   cmd->add_option("--seeds", args->seeds,
                   "seed points of the sphere solver for Pi(w) (default 600)");
+  cmd->add_option("--cycle-seeds", args->cycleSeeds,
+                  "seeds of the limit-cycle search, each integrated forward and backward in the "
+                  "fast time (default 64; 0: no search)");
   cmd->add_flag("--json", args->json,
-                "print one JSON object {limit_directions, continuum, tipping}");
+                "print one JSON object {limit_directions, continuum, tipping, limit_cycles, "
+                "cycle_search}");
   cmd->callback([args, body] { run(*args, body()); });
 });
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <patchspin/analysis.hpp>
+#include <patchspin/limit_cycles.hpp>
 #include <sstream>
 
 #include "run_tool.hpp"
@@ -99,6 +100,72 @@ TEST(LimitsToolTest, TableIsReadable) {
 
 // Free thin disk, exact law: stops with eps -> 0.6530 (Farkas et al. 2003);
 // at r = 1e-5 r0 the approach (exponent ~0.6 per decade) leaves < 1e-3.
+// Issue 34's thick disk under the exact law: the cycles and the seed
+// accounting in the JSON are the library's (limit_cycles_test checks the
+// library against an independent integration).
+TEST(LimitsToolTest, ThickDiskExactJsonListsTheLimitCycles) {
+  const auto run = runTool(PATCHSPIN_TOOL,
+                           "limits --patch disk:1 --mass 1 --inertia 0.5 --com 0,0,0.4 --mu 0.5 "
+                           "--g 9.81 --force 0.4469,0 --model exact --cycle-seeds 16 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  FlatBody body;
+  body.shape = PatchShape::disk(1.0);
+  body.mass = 1.0;
+  body.Jz = 0.5;
+  body.com = Vec3(0.0, 0.0, 0.4);
+  body.mu = 0.5;
+  body.g = 9.81;
+  body.force = Vec2(0.4469, 0.0);
+  const FlatBodyModel model(body, Model::Exact);
+  CycleOptions options;
+  options.seeds = 16;
+  const CycleAnalysis lib = findLimitCycles(model, findLimitDirections(model), options);
+  ASSERT_EQ(j["limit_cycles"].size(), lib.cycles.size());
+  ASSERT_EQ(lib.cycles.size(), 2u);
+  for (std::size_t i = 0; i < lib.cycles.size(); ++i) {
+    const auto& c = j["limit_cycles"][i];
+    const LimitCycle& y = lib.cycles[i];
+    EXPECT_EQ(c["attracting"].get<bool>(), y.attracting);
+    EXPECT_NEAR(c["period"].get<double>(), y.period, kPrintTol * y.period);
+    EXPECT_NEAR(c["multiplier"].get<double>(), y.multiplier, kPrintTol * y.multiplier);
+    EXPECT_NEAR(c["w3"][0].get<double>(), y.w3Min, kPrintTol);
+    EXPECT_NEAR(c["w3"][1].get<double>(), y.w3Max, kPrintTol);
+    EXPECT_NEAR(c["slip_ratio"][0].get<double>(), y.slipRatioMin, kPrintTol);
+    EXPECT_NEAR(c["slip_ratio"][1].get<double>(), y.slipRatioMax, kPrintTol);
+    EXPECT_NEAR(c["mean_rdot"].get<double>(), y.meanRdot, kPrintTol * std::abs(y.meanRdot));
+    EXPECT_NEAR(c["turn"].get<double>(), y.turn, kPrintTol);
+    EXPECT_NEAR(c["turn_per_decade"].get<double>(), y.turnPerDecade, kPrintTol);
+    ASSERT_EQ(c["point"].size(), 3u);
+    EXPECT_TRUE(c.contains("return_map_slope"));
+  }
+  const auto& search = j["cycle_search"];
+  EXPECT_EQ(search["seeds"].get<int>(), 16);
+  EXPECT_EQ(search["forward"]["cycle"].get<int>(), 16);
+  EXPECT_EQ(search["forward"]["fixed_point"].get<int>(), 0);
+  EXPECT_TRUE(search["forward"]["unresolved"].empty());
+  EXPECT_TRUE(search["backward"]["unresolved"].empty());
+  EXPECT_TRUE(search["complete"].get<bool>());
+  EXPECT_TRUE(search["searched"].get<bool>());
+}
+
+// The thin disk of Case 3 stops along its dominant directions: no cycle,
+// every seed at a fixed point; --cycle-seeds 0 skips the search.
+TEST(LimitsToolTest, Case3HasNoLimitCycle) {
+  const auto run = runTool(PATCHSPIN_TOOL, kCase3);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(j["limit_cycles"].empty());
+  EXPECT_EQ(j["cycle_search"]["forward"]["fixed_point"].get<int>(),
+            j["cycle_search"]["seeds"].get<int>());
+  EXPECT_TRUE(j["cycle_search"]["complete"].get<bool>());
+  const auto skip = runTool(PATCHSPIN_TOOL, std::string(kCase3) + " --cycle-seeds 0");
+  ASSERT_EQ(skip.exitCode, 0) << skip.err;
+  const auto k = nlohmann::json::parse(skip.out);
+  EXPECT_TRUE(k["limit_cycles"].is_null());
+  EXPECT_TRUE(k["cycle_search"].is_null());
+}
+
 TEST(SimulateToolTest, ReferenceFreeDiskJson) {
   const auto run =
       runTool(PATCHSPIN_TOOL,
@@ -180,10 +247,11 @@ TEST(SweepToolTest, ThinDiskCasesOverF) {
 
 TEST(AnalysisToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
   const char* bad[] = {
-      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 1",      // wrong count
-      "limits --patch disk:0.1 --mass -2 --inertia 0.01",               // negative mass
-      "limits --patch disk:0.1 --mass 2 --inertia 0,1,2",               // Jz = 0
-      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model stock",  // not an analysis law
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 1",        // wrong count
+      "limits --patch disk:0.1 --mass -2 --inertia 0.01",                 // negative mass
+      "limits --patch disk:0.1 --mass 2 --inertia 0,1,2",                 // Jz = 0
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --model stock",    // not an analysis law
+      "limits --patch disk:0.1 --mass 2 --inertia 0.01 --cycle-seeds 1",  // 0 or >= 2
       "simulate --engine reference --model stock --shape cylinder:0.05,0.01",  // stock needs Bullet
       "simulate --shape sphere:1",                                             // unknown shape
       "simulate --shape cylinder:0.05,0.01 --record-at 2",                     // bad fraction

@@ -1,0 +1,304 @@
+// Limit cycles of the fast dynamics on the sphere of slip directions
+// (patchspin/limit_cycles.hpp) against an independent computation written
+// here: the thick disk's fast dynamics re-derived from Newton-Euler, the
+// exact law (16) by brute-force quadrature (tests/support/oracle.hpp), and a
+// plain fixed-step RK4 run from a seed.
+//
+// Thick disk of issue 34: R = 1 m, centre of mass at (0, 0, h), h = 0.4 m,
+// m = 1 kg, Jz = 0.5 kg m^2, mu = 0.5, g = 9.81, force F along x, rho =
+// 2R/3 given explicitly (so nothing here depends on Eq. (11)). At r -> 0
+// (omega -> 0, psi frozen), with Q = (P_x, P_y, T_z / rho) = -mu ∫ p k dA:
+//   C moves with O (it lies on O's vertical):  m u' = (P_x + F, P_y)
+//   spin about the vertical through O and C:   (rho omega)' = rho^2 Q3 / Jz
+//   no rotation about x, y: moments about C of the pressure and of the
+//   friction at depth h cancel, ∫ x p = -h P_x, ∫ y p = -h P_y; with p =
+//   p0 + cx x + cy y on the disk: p0 = m g / (pi R^2), (cx, cy) = -a (P_x,
+//   P_y), a = 4 h / (pi R^4) (a body sliding along +x presses its front).
+// Q is linear in (p0, cx, cy): Q = mu (p0 K1 + cx Kx + cy Ky), Kf = -∫ f k
+// dA; the 2x2 system (I + mu a [Kx Ky]) (P_x, P_y) = mu p0 K1 gives P.
+// Then F_o = ((Q1 + F) / m, Q2 / m, rho^2 Q3 / Jz), w' = F_o - (w.F_o) w,
+// (ln r)' = w.F_o, Eq. (27), (103)-(104).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <oracle.hpp>
+#include <patchspin/limit_cycles.hpp>
+
+namespace patchspin {
+namespace {
+
+constexpr double kR = 1.0, kH = 0.4, kMass = 1.0, kJz = 0.5, kMu = 0.5, kG = 9.81;
+constexpr double kRho = 2.0 * kR / 3.0;
+
+FlatBody thickDisk(double F) {
+  FlatBody body;
+  body.shape = PatchShape::disk(kR);
+  body.mass = kMass;
+  body.Jz = kJz;
+  body.com = Vec3(0.0, 0.0, kH);
+  body.mu = kMu;
+  body.g = kG;
+  body.force = Vec2(F, 0.0);
+  body.rho = kRho;
+  return body;
+}
+
+// F_o(w) of the thick disk by brute-force quadrature (derivation above).
+// relTol 1e-6 of the quadrature (the default): F_o to ~1e-6 relative, which moves the
+// cycle by ~1e-6 (it attracts at rates ~1 m/s^2 against |F_o| ~ 5 m/s^2),
+// far below the tolerances of the comparisons below.
+Vec3 oracleField(const Vec3& w, double F, double quadTol = 1e-6) {
+  const Vec2 centre = Vec2::Zero();
+  const Vec3 K1 = testing::bruteForceQDisk(
+      centre, kR, [](const Vec2&) { return 1.0; }, 1.0, kRho, w, quadTol);
+  const Vec3 Kx = testing::bruteForceQDisk(
+      centre, kR, [](const Vec2& p) { return p.x(); }, 1.0, kRho, w, quadTol);
+  const Vec3 Ky = testing::bruteForceQDisk(
+      centre, kR, [](const Vec2& p) { return p.y(); }, 1.0, kRho, w, quadTol);
+  const double p0 = kMass * kG / (M_PI * kR * kR);
+  const double a = 4.0 * kH / (M_PI * std::pow(kR, 4));
+  Eigen::Matrix2d A = Eigen::Matrix2d::Identity();
+  A.col(0) += kMu * a * Kx.head<2>();
+  A.col(1) += kMu * a * Ky.head<2>();
+  const Vec2 P = A.lu().solve(kMu * p0 * K1.head<2>());
+  const Vec3 Q = kMu * (p0 * K1 - a * P.x() * Kx - a * P.y() * Ky);
+  return Vec3((Q.x() + F) / kMass, Q.y() / kMass, kRho * kRho * Q.z() / kJz);
+}
+
+// A plain fixed-step RK4 run of w' = F_o - (w.F_o) w from w0 over [0, tEnd]
+// (fast time, s^2/m), recording over [tFrom, tEnd] the extent of w3, the
+// downward crossings of phi = atan2(w2, w1) through 0 (w2 from + to -,
+// w1 > 0; linear interpolation), and, between the last two crossings, the
+// integral of R* = w.F_o and the turn of phi.
+struct OracleRun {
+  double w3Min = 1e9, w3Max = -1e9;
+  std::vector<double> crossings;
+  double intR = 0.0, turn = 0.0;  // over [crossings[n-2], crossings[n-1]]
+  Vec3 last = Vec3::Zero();
+};
+
+OracleRun runOracle(const Vec3& w0, double F, double h, double tFrom, double tEnd) {
+  OracleRun out;
+  Vec3 w = w0.normalized();
+  std::vector<double> rdots, phis;
+  double intR = 0.0, phi = std::atan2(w.y(), w.x()), prevZ = w.z();
+  for (double t = 0.0; t < tEnd; t += h) {
+    auto V = [&](const Vec3& x, double* rdot) {
+      const Vec3 Fo = oracleField(x, F);
+      if (rdot) *rdot = x.dot(Fo);
+      return Vec3(Fo - x.dot(Fo) * x);
+    };
+    double r1, r2, r3, r4;
+    const Vec3 k1 = V(w, &r1);
+    const Vec3 k2 = V(w + h / 2 * k1, &r2);
+    const Vec3 k3 = V(w + h / 2 * k2, &r3);
+    const Vec3 k4 = V(w + h * k3, &r4);
+    const Vec3 next = (w + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)).normalized();
+    const double dR = h / 6 * (r1 + 2 * r2 + 2 * r3 + r4);
+    const double dphi =
+        std::remainder(std::atan2(next.y(), next.x()) - std::atan2(w.y(), w.x()), 2.0 * M_PI);
+    if (t + h >= tFrom) {
+      // extremes of w3: the vertex of the parabola through three nodes
+      // (error ~ the third derivative times a step cubed, < 1e-6)
+      const double a = prevZ, b = w.z(), c = next.z();
+      const double curv = a - 2.0 * b + c;
+      if ((b >= a && b >= c) || (b <= a && b <= c)) {
+        const double vertex = curv != 0.0 ? b - (c - a) * (c - a) / (8.0 * curv) : b;
+        out.w3Min = std::min(out.w3Min, vertex);
+        out.w3Max = std::max(out.w3Max, vertex);
+      }
+      if (w.y() > 0.0 && next.y() <= 0.0 && next.x() > 0.0) {
+        // at the crossing, interpolated linearly within the step
+        const double theta = w.y() / (w.y() - next.y());
+        out.crossings.push_back(t + theta * h);
+        rdots.push_back(intR + theta * dR);
+        phis.push_back(phi + theta * dphi);
+      }
+    }
+    intR += dR;
+    phi += dphi;
+    prevZ = w.z();
+    w = next;
+  }
+  const std::size_t n = rdots.size();
+  if (n >= 2) {
+    out.intR = rdots[n - 1] - rdots[n - 2];
+    out.turn = phis[n - 1] - phis[n - 2];
+  }
+  out.last = w;
+  return out;
+}
+
+// Issue 34: F = 0.4469 N, F / (mu m g) = 0.0911. The oracle runs from a seed
+// near the pole (inside the cycle, off the repelling focus) for 3.1 periods
+// with h = 0.04 s^2/m (|F_o| <= 5.4 m/s^2: <= 0.22 rad per step, RK4 error
+// ~1e-6 per period) and measures the last two periods.
+TEST(LimitCycles, ThickDiskExactLawEndsOnACycleAroundEachPole) {
+  constexpr double kF = 0.4469;
+  const FlatBodyModel model(thickDisk(kF), Model::Exact);
+  const LimitAnalysis fixed = findLimitDirections(model);
+  for (const LimitDirection& d : fixed.directions) EXPECT_NE(d.type, LimitType::Dominant);
+  const CycleAnalysis cycles = findLimitCycles(model, fixed);
+  ASSERT_TRUE(cycles.complete());
+  ASSERT_EQ(cycles.cycles.size(), 2u);
+  for (const SeedEnd& e : cycles.forward) EXPECT_EQ(e.kind, SeedEnd::Cycle);
+  const LimitCycle& up = cycles.cycles[0].w3Max > 0.0 ? cycles.cycles[0] : cycles.cycles[1];
+  const LimitCycle& down = cycles.cycles[0].w3Max > 0.0 ? cycles.cycles[1] : cycles.cycles[0];
+
+  const OracleRun run = runOracle(Vec3(0.3, 0.0, 0.95), kF, 0.04, 10.0, 28.0);
+  ASSERT_GE(run.crossings.size(), 2u);
+  // extent: RK4 at 0.22 rad per step and quadrature at 1e-6 move the
+  // oracle's cycle by ~1e-6; both sides take the extremes as the vertex of
+  // a parabola through three nodes (error ~1e-7)
+  constexpr double kExtentTol = 1e-5;
+  EXPECT_NEAR(up.w3Min, run.w3Min, kExtentTol);
+  EXPECT_NEAR(up.w3Max, run.w3Max, kExtentTol);
+  // the w3 < 0 cycle is the mirror image (w2, w3) -> (-w2, -w3)
+  EXPECT_NEAR(down.w3Min, -run.w3Max, kExtentTol);
+  EXPECT_NEAR(down.w3Max, -run.w3Min, kExtentTol);
+  // period from successive crossings of phi = 0 (linear interpolation
+  // within a step: the same ~1e-5 error at both ends, cancelling)
+  constexpr double kPeriodTol = 1e-4;  // relative
+  const std::size_t n = run.crossings.size();
+  EXPECT_NEAR(up.period, run.crossings[n - 1] - run.crossings[n - 2], kPeriodTol * up.period);
+  EXPECT_NEAR(down.period, up.period, kPeriodTol * up.period);
+  // counter-clockwise spin, clockwise turn: -2 pi per period
+  EXPECT_NEAR(up.turn, -2.0 * M_PI, 1e-9);
+  // (the oracle's ends are interpolated linearly within a step: the
+  // phase error ~ (h dphi/dt)^2 / 8, dphi/dt <= 3 rad per s^2/m, < 2e-3)
+  constexpr double kInterpolatedTurn = 2e-3;
+  EXPECT_NEAR(run.turn, -2.0 * M_PI, kInterpolatedTurn);
+  EXPECT_NEAR(down.turn, 2.0 * M_PI, 1e-9);
+  // mean R* and the turn per decade of slip (the oracle's integral between
+  // interpolated crossings: its ends off by < 1e-3 of a step's R*, 1e-5 of
+  // the period's)
+  constexpr double kRateTol = 1e-4;  // relative
+  EXPECT_NEAR(up.meanRdot * up.period, run.intR, kRateTol * std::abs(run.intR));
+  EXPECT_NEAR(up.turnPerDecade, -std::log(10.0) * run.turn / run.intR,
+              kRateTol * std::abs(up.turnPerDecade));
+  // v / (R omega) = rho sqrt(1 - w3^2) / (R w3) at the w3 extremes
+  auto ratio = [](double w3) { return kRho * std::sqrt(1.0 - w3 * w3) / (kR * w3); };
+  // (|d ratio / d w3| <= 2.1 on the cycle: kExtentTol times that)
+  constexpr double kRatioTol = 2.1 * kExtentTol;
+  EXPECT_NEAR(up.slipRatioMin, ratio(run.w3Max), kRatioTol);
+  EXPECT_NEAR(up.slipRatioMax, ratio(run.w3Min), kRatioTol);
+  // strongly attracting: the oracle is on the cycle within its first period
+  // (its extents after 10 s^2/m match to kExtentTol); the two multipliers
+  // agree within the slope's absolute error (limit_cycles.hpp)
+  EXPECT_TRUE(up.attracting);
+  EXPECT_GT(up.multiplier, 0.0);
+  EXPECT_LT(up.multiplier, 1e-6);
+  EXPECT_NEAR(up.returnMapSlope, up.multiplier, 1e-7);
+}
+
+// F / (mu m g) = 0.40: two dominant directions attract; no cycle, and every
+// seed ends at one of them. The oracle, from a seed, reaches the reported
+// attracting direction (RK4 h = 0.02 for 12 s^2/m: the slower eigenvalue
+// -1.87 m/s^2 contracts by e^-22).
+TEST(LimitCycles, ThickDiskWithADominantDirectionHasNoCycle) {
+  const double F = 0.40 * kMu * kMass * kG;
+  const FlatBodyModel model(thickDisk(F), Model::Exact);
+  const LimitAnalysis fixed = findLimitDirections(model);
+  const CycleAnalysis cycles = findLimitCycles(model, fixed);
+  EXPECT_TRUE(cycles.cycles.empty());
+  EXPECT_TRUE(cycles.complete());
+  for (const SeedEnd& e : cycles.forward) {
+    ASSERT_EQ(e.kind, SeedEnd::FixedPoint);
+    EXPECT_EQ(fixed.directions[static_cast<std::size_t>(e.index)].type, LimitType::Dominant);
+  }
+  const OracleRun run = runOracle(Vec3(0.3, 0.0, 0.95), F, 0.02, 0.0, 12.0);
+  double nearest = 1e9;
+  for (const LimitDirection& d : fixed.directions) {
+    if (d.type == LimitType::Dominant) nearest = std::min(nearest, (d.w - run.last).norm());
+  }
+  EXPECT_LT(nearest, 1e-6);
+}
+
+// The ellipsoidal law at the issue's force has dominant foci: no cycle.
+TEST(LimitCycles, EllipsoidalLawAtTheIssuesForceHasNoCycle) {
+  const FlatBodyModel model(thickDisk(0.4469), Model::Ellipsoidal);
+  const LimitAnalysis fixed = findLimitDirections(model);
+  const CycleAnalysis cycles = findLimitCycles(model, fixed);
+  EXPECT_TRUE(cycles.cycles.empty());
+  EXPECT_TRUE(cycles.complete());
+  for (const SeedEnd& e : cycles.forward) EXPECT_EQ(e.kind, SeedEnd::FixedPoint);
+}
+
+// Issue 34, item 5: the fixed directions of the exact thick disk at
+// F / (mu m g) = 0.15, 0.25, 0.40 are zeros of the independent field, with
+// the same rate and, from central differences of that field on the
+// tangent plane, the same eigenvalues (31): both negative (dominant), so
+// the cycle of the 0.0911 case has given way to attracting directions.
+TEST(LimitCycles, DominantDirectionsOfTheThickDiskAreZerosOfTheIndependentField) {
+  for (double xi : {0.15, 0.25, 0.40}) {
+    const double F = xi * kMu * kMass * kG;
+    const FlatBodyModel model(thickDisk(F), Model::Exact);
+    const LimitAnalysis fixed = findLimitDirections(model);
+    int dominant = 0;
+    for (const LimitDirection& d : fixed.directions) {
+      if (d.type != LimitType::Dominant) continue;
+      ++dominant;
+      // quadrature at relTol 1e-10 here: F_o to ~1e-10 relative
+      constexpr double kQuad = 1e-10;
+      const Vec3 Fo = oracleField(d.w, F, kQuad);
+      const double scale = Fo.norm();
+      // the code's residual is < 1e-11 of the field, the oracle's ~1e-10
+      constexpr double kFieldTol = 1e-8;  // relative to |F_o|
+      EXPECT_LT((Fo - d.w.dot(Fo) * d.w).norm(), kFieldTol * scale) << xi;
+      EXPECT_NEAR(d.w.dot(Fo), d.rdot, kFieldTol * scale) << xi;
+      // projected Jacobian J2 = E^T dV* E of (31) by central differences on
+      // the tangent plane: step 1e-3, truncation ~1e-6 |V'''| (~1e-5 m/s^2),
+      // quadrature noise 1e-10 |F_o| / 1e-3 (~5e-7 m/s^2) per entry
+      const Vec3 e1 = d.w.unitOrthogonal(), e2 = d.w.cross(e1);
+      constexpr double kStep = 1e-3;
+      auto V = [&](const Vec3& w) {
+        const Vec3 x = w.normalized();
+        const Vec3 f = oracleField(x, F, kQuad);
+        return Vec3(f - x.dot(f) * x);
+      };
+      Eigen::Matrix2d J;
+      for (int k = 0; k < 2; ++k) {
+        const Vec3 e = k == 0 ? e1 : e2;
+        const Vec3 dV = (V(d.w + kStep * e) - V(d.w - kStep * e)) / (2.0 * kStep);
+        J(0, k) = e1.dot(dV);
+        J(1, k) = e2.dot(dV);
+      }
+      const Eigen::Vector2cd lambda = J.eigenvalues();
+      for (int k = 0; k < 2; ++k) EXPECT_LT(lambda[k].real(), 0.0) << xi;
+      // the pair of (31) is invariant to the basis: trace and determinant,
+      // to 1e-4 m/s^2 and 1e-3 (m/s^2)^2 (ten times the entries' error, times
+      // |J| <= 6 m/s^2 for the determinant)
+      constexpr double kTraceTol = 1e-4, kDetTol = 1e-3;
+      const double tr = d.eigenvalues.sum().real();
+      const double det = (d.eigenvalues[0] * d.eigenvalues[1]).real();
+      EXPECT_NEAR(J.trace(), tr, kTraceTol) << xi;
+      EXPECT_NEAR(J.determinant(), det, kDetTol) << xi;
+    }
+    EXPECT_EQ(dominant, 2) << xi;
+  }
+}
+
+// A budget too short to reach anything: every seed is listed as unresolved,
+// in both directions, none silently dropped. (1 / fieldScale of fast time,
+// 50 RK4 steps: the cycle's period is 47 such units, and the slowest
+// approach to a fixed direction takes longer than one.)
+TEST(LimitCycles, SeedsThatReachNothingWithinTheBudgetAreListed) {
+  const FlatBodyModel model(thickDisk(0.4469), Model::Exact);
+  const LimitAnalysis fixed = findLimitDirections(model);
+  CycleOptions options;
+  options.seeds = 8;
+  options.budget = 1.0;
+  const CycleAnalysis cycles = findLimitCycles(model, fixed, options);
+  EXPECT_FALSE(cycles.complete());
+  ASSERT_EQ(cycles.forward.size(), 8u);
+  ASSERT_EQ(cycles.backward.size(), 8u);
+  std::size_t unresolvedForward = 0, unresolvedBackward = 0;
+  for (const SeedEnd& e : cycles.forward) unresolvedForward += e.kind == SeedEnd::Unresolved;
+  for (const SeedEnd& e : cycles.backward) unresolvedBackward += e.kind == SeedEnd::Unresolved;
+  EXPECT_EQ(cycles.unresolvedForward.size(), unresolvedForward);
+  EXPECT_EQ(cycles.unresolvedBackward.size(), unresolvedBackward);
+  EXPECT_EQ(unresolvedForward, 8u);  // no attracting fixed direction, no cycle yet
+}
+
+}  // namespace
+}  // namespace patchspin
