@@ -110,20 +110,6 @@ struct StepCounts {
   NotPatchedCounts reasons;  // summed over the steps
 };
 
-void addCounts(NotPatchedCounts& sum, const NotPatchedCounts& c) {
-  sum.unsupportedShape += c.unsupportedShape;
-  sum.sideContact += c.sideContact;
-  sum.notFlat += c.notFlat;
-  sum.offFaces += c.offFaces;
-  sum.tipCooldown += c.tipCooldown;
-  sum.noOverlap += c.noOverlap;
-  sum.lawRefused += c.lawRefused;
-  sum.sliver += c.sliver;
-  sum.singularBlocks += c.singularBlocks;
-  sum.crease += c.crease;
-  sum.badMesh += c.badMesh;
-}
-
 nlohmann::json countsJson(const NotPatchedCounts& c) {
   return {{"unsupported_shape", c.unsupportedShape},
           {"side_contact", c.sideContact},
@@ -234,7 +220,7 @@ void countStep(Track& k, const scenes::Scene& scene) {
   } else {
     ++k.steps.noContact;
   }
-  if (np) addCounts(k.steps.reasons, *np);
+  if (np) k.steps.reasons += *np;
 }
 
 // Steps `scene` `steps` times, sampling every track; the world's
@@ -248,7 +234,7 @@ void stepAndTrack(scenes::Scene& scene, std::vector<Track>& tracks, double dt, l
   }
   for (long i = 1; i <= steps; ++i) {
     scene.step(dt);
-    if (world) addCounts(*world, scene.solver().stats().notPatched);
+    if (world) *world += scene.solver().stats().notPatched;
     for (Track& k : tracks) {
       const Sample s = observe(k, double(i) * dt);
       track(k, s, dt);

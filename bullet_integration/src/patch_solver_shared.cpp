@@ -4,26 +4,9 @@
 #include <algorithm>
 
 namespace patchspin::bullet::internal {
-namespace {
 
-void addNotPatched(NotPatchedCounts& sum, const NotPatchedCounts& s) {
-  sum.unsupportedShape += s.unsupportedShape;
-  sum.sideContact += s.sideContact;
-  sum.notFlat += s.notFlat;
-  sum.offFaces += s.offFaces;
-  sum.tipCooldown += s.tipCooldown;
-  sum.noOverlap += s.noOverlap;
-  sum.lawRefused += s.lawRefused;
-  sum.sliver += s.sliver;
-  sum.singularBlocks += s.singularBlocks;
-  sum.crease += s.crease;
-  sum.badMesh += s.badMesh;
-}
-
-}  // namespace
-
-// (a field added to the stats must be merged here: the sizes below count
-// the fields, 8 bytes each)
+// (a field added to the stats must be merged here, and in
+// NotPatchedCounts::operator+=: the sizes below count the fields, 8 bytes each)
 static_assert(sizeof(NotPatchedCounts) == 11 * 8);
 static_assert(sizeof(parts::FrictionPartCounters) == 5 * 8);
 static_assert(sizeof(PatchSolverStats) == (5 + 7 + 11) * 8);
@@ -40,7 +23,7 @@ void addStats(PatchSolverStats& sum, const PatchSolverStats& s) {
   sum.stackHolds += s.stackHolds;
   sum.maxPressureLag = std::max(sum.maxPressureLag, s.maxPressureLag);
   sum.patchesWithoutPoints += s.patchesWithoutPoints;
-  addNotPatched(sum.notPatched, s.notPatched);
+  sum.notPatched += s.notPatched;
 }
 
 void PatchSolverShared::beginStep() {

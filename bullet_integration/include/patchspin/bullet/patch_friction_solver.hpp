@@ -193,6 +193,21 @@ struct NotPatchedCounts {
     return unsupportedShape + sideContact + notFlat + offFaces + tipCooldown + noOverlap +
            lawRefused + sliver + singularBlocks + crease + badMesh;
   }
+  // Adds c's counts field by field (a pool's solvers, a run's steps).
+  NotPatchedCounts& operator+=(const NotPatchedCounts& c) {
+    unsupportedShape += c.unsupportedShape;
+    sideContact += c.sideContact;
+    notFlat += c.notFlat;
+    offFaces += c.offFaces;
+    tipCooldown += c.tipCooldown;
+    noOverlap += c.noOverlap;
+    lawRefused += c.lawRefused;
+    sliver += c.sliver;
+    singularBlocks += c.singularBlocks;
+    crease += c.crease;
+    badMesh += c.badMesh;
+    return *this;
+  }
 };
 
 // What the solver did in the last step (all islands), for profiling. The
