@@ -9,6 +9,8 @@
 #   MIN_TIME=0.2              seconds per micro-benchmark (steadier figures: more)
 #   SKIP_BUILD=1              do not (re)build first (BUILD_DIR must hold the programs)
 #   PATCHSPIN_SCALE_MAX_N=1000  skip the 10000-body world (bench_bullet_scale)
+#   PATCHSPIN_MATRIX_MAX_N=1000 skip the 10000-body cells of the speed matrix
+#   PATCHSPIN_MATRIX_REPETITIONS=5  repetitions per speed-matrix cell
 #   PATCHSPIN_SCALE_REPETITIONS=3  world scale: fastest of 3 repetitions, not 9
 #                             (a third of its time; ratios +-20 % on a noisy machine)
 #   BENCH_DOC=path            refresh this file instead of docs/benchmarks.md (to try the script)
@@ -20,6 +22,9 @@
 #   <!-- bench-patch:begin -->      <!-- bench-patch:end -->      per patch: time against error
 #   <!-- bench-simulation:begin --> <!-- bench-simulation:end --> per simulation
 #   <!-- bench-scale:begin -->      <!-- bench-scale:end -->      world scale
+#   <!-- bench-matrix-float:begin --> (or -double, the build's precision)
+#                                   the speed matrix (bench_bullet_speed_matrix;
+#                                   its instruction counts: scripts/count_instructions.sh)
 # CSVs: docs/bench/patch_error.csv, simulation_error.csv, world_scale.csv
 # (scripts/make_gallery.sh plots the first two).
 set -euo pipefail
@@ -44,13 +49,14 @@ declare -A csv_of=([bench_patch_error]=patch_error.csv [bench_bullet_simulation]
   [bench_bullet_scale]=world_scale.csv)
 declare -A args_of=([bench_patch_error]="--benchmark_min_time=$min_time")
 error_benches=(bench_patch_error bench_bullet_simulation bench_bullet_scale)
+matrix=bench_bullet_speed_matrix
 # anything else named bench_* in the build joins the raw section
 for exe in "$build"/bench/bench_*; do
   b=$(basename "$exe")
   [[ -x $exe && -f $exe ]] || continue
-  [[ " ${micro[*]} ${error_benches[*]} " == *" $b "* ]] || micro+=("$b")
+  [[ " ${micro[*]} ${error_benches[*]} $matrix " == *" $b "* ]] || micro+=("$b")
 done
-all=("${micro[@]}" "${error_benches[@]}")
+all=("${micro[@]}" "${error_benches[@]}" "$matrix")
 total=${#all[@]}
 count=0
 start=$SECONDS
@@ -142,6 +148,21 @@ for b in "${error_benches[@]}"; do
   } >"$section.$b"
   replace_section "${section_of[$b]}" "$section.$b"
 done
+
+# (3) the speed matrix: its own markdown table, per precision
+if [[ ! -x $build/bench/$matrix ]]; then
+  count=$((count + 1))
+  echo "[$count/$total] $matrix: not built, skipped" >&2
+elif run "$matrix" --markdown="$section.matrix"; then
+  {
+    echo "$stamp. Regenerate with \`bash scripts/run_benchmarks.sh\`."
+    echo
+    cat "$section.matrix"
+  } >"$section.matrix.md"
+  replace_section "bench-matrix-$("$build/bench/$matrix" --precision)" "$section.matrix.md"
+else
+  failed=1
+fi
 
 echo "done in $((SECONDS - start)) s: results in $out, CSVs in $csvdir" >&2
 echo "plots: bash scripts/make_gallery.sh $build" >&2

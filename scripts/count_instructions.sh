@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# The speed matrix (bench/bench_bullet_speed_matrix.cpp) as instruction
+# counts: each cell's episode under callgrind, once per variant, and the
+# patch variants' counts against stock Bullet's. Counts, unlike times, are
+# the same on every run of the same build whatever else the machine does,
+# so a change can be judged on a busy or noisy machine. Refreshes the
+# section bench-matrix-ir-float (or -double, from the program's
+# --precision) of docs/benchmarks.md. Not part of the tests.
+#   bash scripts/count_instructions.sh [BUILD_DIR]
+# Environment:
+#   MAX_N=1000     largest N (default 1000: under callgrind the N = 1000
+#                  pile takes about 2 minutes per variant on one core;
+#                  10000 is possible, and slow)
+#   CELLS="slipping:100:default pile:10:tight"   only these cells (the
+#                  section is then not refreshed; the table goes to stdout)
+#   BENCH_DOC=path refresh this file instead of docs/benchmarks.md
+# Needs valgrind (Debian package valgrind; its header is what the program
+# brackets the episode with).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=$(cd "${1:-$root/build}" && pwd)
+prog=$build/bench/bench_bullet_speed_matrix
+doc=${BENCH_DOC:-$root/docs/benchmarks.md}
+max_n=${MAX_N:-1000}
+command -v valgrind >/dev/null || { echo "count_instructions: valgrind is not installed (apt-get install valgrind)" >&2; exit 2; }
+[[ -x $prog ]] || { echo "count_instructions: $prog is not built (cmake --build $build --target bench_bullet_speed_matrix)" >&2; exit 2; }
+[[ $max_n =~ ^[0-9]+$ ]] || { echo "count_instructions: MAX_N must be an integer, got '$max_n'" >&2; exit 2; }
+precision=$("$prog" --precision)
+variants=(stock none-opted-in ellipsoidal exact)
+if [[ -n ${CELLS:-} ]]; then
+  read -r -a cells <<<"$CELLS"
+else
+  cells=()
+  for bp in default tight; do
+    for scene in slipping to-rest pile; do
+      for n in 10 100 1000 10000; do
+        ((n <= max_n)) && cells+=("$scene:$n:$bp")
+      done
+    done
+  done
+fi
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+total=$((${#cells[@]} * ${#variants[@]}))
+done_runs=0
+start=$SECONDS
+table=$tmp/table.md
+{
+  echo "Bullet in $precision; instructions of each cell's whole episode (callgrind, \`bash scripts/count_instructions.sh\`), the patch variants against stock Bullet's."
+  echo
+  echo "| scene | N | broadphase | stock [instructions per step] | none opted in | ellipsoidal | exact |"
+  echo "|---|---|---|---|---|---|---|"
+} >"$table"
+worst_e=0 worst_x=0 where_e="" where_x=""
+for cell in "${cells[@]}"; do
+  declare -A ir=()
+  for v in "${variants[@]}"; do
+    done_runs=$((done_runs + 1))
+    echo "[$done_runs/$total] $cell $v ($((SECONDS - start)) s so far)" >&2
+    out=$tmp/cg.out
+    if ! valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$out" \
+      "$prog" --count="$cell" --variant="$v" >"$tmp/run.txt" 2>"$tmp/run.err"; then
+      echo "count_instructions: $cell $v failed:" >&2
+      cat "$tmp/run.err" >&2
+      exit 1
+    fi
+    ir[$v]=$(awk '/^totals:/ { print $2; exit }' "$out")
+    [[ -n ${ir[$v]} ]] || { echo "count_instructions: no totals in callgrind's output for $cell $v" >&2; exit 1; }
+  done
+  IFS=: read -r scene n bp <<<"$cell"
+  steps=$(case $scene in slipping) echo 48 ;; to-rest) echo 120 ;; *) echo 240 ;; esac)
+  row=$(awk -v s="${ir[stock]}" -v o="${ir[none-opted-in]}" -v e="${ir[ellipsoidal]}" \
+    -v x="${ir[exact]}" -v steps="$steps" \
+    'BEGIN { printf "%.0f|%.3f|%.3f|%.3f", s / steps, o / s, e / s, x / s }')
+  IFS='|' read -r per_step r_none r_e r_x <<<"$row"
+  echo "| $scene | $n | $bp | $per_step | $r_none | $r_e | $r_x |" >>"$table"
+  if awk -v a="$r_e" -v b="$worst_e" 'BEGIN { exit !(a > b) }'; then worst_e=$r_e where_e="$scene, N = $n, $bp broadphase"; fi
+  if awk -v a="$r_x" -v b="$worst_x" 'BEGIN { exit !(a > b) }'; then worst_x=$r_x where_x="$scene, N = $n, $bp broadphase"; fi
+  unset ir
+done
+{
+  echo
+  echo "Worst cells: ellipsoidal ${worst_e}x stock ($where_e), exact ${worst_x}x stock ($where_x)."
+} >>"$table"
+cat "$table"
+name=bench-matrix-ir-$precision
+if [[ -n ${CELLS:-} ]]; then
+  echo "(CELLS given: section $name of $doc not refreshed)" >&2
+elif ! grep -q "<!-- $name:begin -->" "$doc" || ! grep -q "<!-- $name:end -->" "$doc"; then
+  echo "$doc has no <!-- $name:begin --> / <!-- $name:end --> pair: not refreshed" >&2
+else
+  awk -v file="$table" -v begin="<!-- $name:begin -->" -v end="<!-- $name:end -->" '
+    index($0, begin) { print; while ((getline line < file) > 0) print line; skip = 1; next }
+    index($0, end) { skip = 0 }
+    !skip { print }
+  ' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+  echo "section $name of $doc refreshed" >&2
+fi
+echo "done in $((SECONDS - start)) s" >&2
