@@ -53,9 +53,9 @@
 #include <benchmark/benchmark.h>
 #include <btBulletDynamicsCommon.h>
 
+#include "capturing_reporter.hpp"
 #include "interleaving.hpp"
 
-#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -227,23 +227,13 @@ void BM_Scale(benchmark::State& state, int n, Variant variant, Phase phase,
   state.SetLabel(std::string(kPhaseNames[phase]) + ", " + kVariantNames[variant]);
 }
 
-class CapturingReporter : public benchmark::ConsoleReporter {
- public:
-  CapturingReporter() : ConsoleReporter(isatty(1) ? OO_ColorTabular : OO_Tabular) {}
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs) {
-      if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
-      auto it = gRows.find(r.run_name.function_name);
-      if (it != gRows.end()) {
-        // the fastest repetition (see the head comment)
-        const double ms =
-            r.GetAdjustedCPUTime() * 1e3 / benchmark::GetTimeUnitMultiplier(r.time_unit);
-        if (it->second.msPerStep <= 0 || ms < it->second.msPerStep) it->second.msPerStep = ms;
-      }
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
+// the fastest repetition (see the head comment)
+void captureRun(const benchmark::BenchmarkReporter::Run& r) {
+  auto it = gRows.find(r.run_name.function_name);
+  if (it == gRows.end()) return;
+  const double ms = r.GetAdjustedCPUTime() * 1e3 / benchmark::GetTimeUnitMultiplier(r.time_unit);
+  if (it->second.msPerStep <= 0 || ms < it->second.msPerStep) it->second.msPerStep = ms;
+}
 
 const Row* findRow(Phase p, int n, Variant v) {
   for (const auto& kv : gRows)
@@ -311,7 +301,7 @@ int main(int argc, char** argv) {
             ->Unit(benchmark::kMillisecond);
       }
     }
-  CapturingReporter reporter;
+  patchspin::bench::CapturingReporter reporter(captureRun);
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
 

@@ -26,6 +26,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "capturing_reporter.hpp"
 #include "interleaving.hpp"
 
 #if __has_include(<valgrind/callgrind.h>)
@@ -36,7 +37,6 @@
 #endif
 
 #include <time.h>
-#include <unistd.h>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -119,19 +119,6 @@ void BM_Matrix(benchmark::State& state, SpeedCell cell) {
 
 // Per cell, every repetition's counters (their median and range go in the table).
 std::map<std::string, std::map<std::string, std::vector<double>>> gSamples;
-
-class CapturingReporter : public benchmark::ConsoleReporter {
- public:
-  CapturingReporter() : ConsoleReporter(isatty(1) ? OO_ColorTabular : OO_Tabular) {}
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs) {
-      if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
-      for (const auto& [name, counter] : r.counters)
-        gSamples[r.run_name.function_name][name].push_back(counter.value);
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -273,7 +260,10 @@ int main(int argc, char** argv) {
             ->UseManualTime()
             ->Unit(benchmark::kMillisecond);
       }
-  CapturingReporter reporter;
+  patchspin::bench::CapturingReporter reporter([](const benchmark::BenchmarkReporter::Run& r) {
+    for (const auto& [name, counter] : r.counters)
+      gSamples[r.run_name.function_name][name].push_back(counter.value);
+  });
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
   return markdown.empty() ? 0 : writeMarkdown(markdown, repetitions);

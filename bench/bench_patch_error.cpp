@@ -70,7 +70,8 @@
 #include <benchmark/benchmark.h>
 #include <Eigen/Geometry>
 
-#include <unistd.h>
+#include "capturing_reporter.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -360,20 +361,12 @@ struct Row {
 };
 std::map<std::string, Row> gRows;  // by benchmark name
 
-class CapturingReporter : public benchmark::ConsoleReporter {
- public:
-  CapturingReporter() : ConsoleReporter(isatty(1) ? OO_ColorTabular : OO_Tabular) {}
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& r : runs) {
-      if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
-      auto it = gRows.find(r.benchmark_name());
-      if (it != gRows.end())
-        it->second.timeNs =
-            r.GetAdjustedCPUTime() * 1e9 / benchmark::GetTimeUnitMultiplier(r.time_unit);
-    }
-    ConsoleReporter::ReportRuns(runs);
-  }
-};
+void captureRun(const benchmark::BenchmarkReporter::Run& r) {
+  auto it = gRows.find(r.benchmark_name());
+  if (it != gRows.end())
+    it->second.timeNs =
+        r.GetAdjustedCPUTime() * 1e9 / benchmark::GetTimeUnitMultiplier(r.time_unit);
+}
 
 }  // namespace
 
@@ -411,7 +404,7 @@ int main(int argc, char** argv) {
       });
     }
   }
-  CapturingReporter reporter;
+  patchspin::bench::CapturingReporter reporter(captureRun);
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
 
