@@ -116,14 +116,8 @@ EOF
 cat "$out/table.md"
 if ((write)); then
   readme=$root/README.md
-  if ! grep -q '<!-- before-after:begin -->' "$readme" || ! grep -q '<!-- before-after:end -->' "$readme"; then
-    echo "error: $readme has no before-after markers" >&2
-    exit 1
-  fi
-  awk -v file="$out/table.md" '
-    index($0, "<!-- before-after:begin -->") { print; while ((getline line < file) > 0) print line; skip = 1; next }
-    index($0, "<!-- before-after:end -->") { skip = 0 }
-    !skip { print }
-  ' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
+  # shellcheck source=scripts/doc_section.sh
+  source "$root/scripts/doc_section.sh"
+  replace_doc_section "$readme" before-after "$out/table.md" || exit 1
   echo "== README.md table written" >&2
 fi

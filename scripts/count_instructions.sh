@@ -86,14 +86,9 @@ cat "$table"
 name=bench-matrix-ir-$precision
 if [[ -n ${CELLS:-} ]]; then
   echo "(CELLS given: section $name of $doc not refreshed)" >&2
-elif ! grep -q "<!-- $name:begin -->" "$doc" || ! grep -q "<!-- $name:end -->" "$doc"; then
-  echo "$doc has no <!-- $name:begin --> / <!-- $name:end --> pair: not refreshed" >&2
 else
-  awk -v file="$table" -v begin="<!-- $name:begin -->" -v end="<!-- $name:end -->" '
-    index($0, begin) { print; while ((getline line < file) > 0) print line; skip = 1; next }
-    index($0, end) { skip = 0 }
-    !skip { print }
-  ' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
-  echo "section $name of $doc refreshed" >&2
+  # shellcheck source=scripts/doc_section.sh
+  source "$root/scripts/doc_section.sh"
+  replace_doc_section "$doc" "$name" "$table" && echo "section $name of $doc refreshed" >&2
 fi
 echo "done in $((SECONDS - start)) s" >&2

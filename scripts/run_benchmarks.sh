@@ -73,20 +73,12 @@ run() {  # bench, extra args...
   fi
 }
 
-# replaces the text between <!-- NAME:begin --> and <!-- NAME:end --> in the
-# benchmark document with FILE; a document without that pair is left alone (reported)
+# replaces the generated block NAME of the benchmark document with FILE (a
+# document without that block is left alone, reported)
+# shellcheck source=scripts/doc_section.sh
+source "$root/scripts/doc_section.sh"
 replace_section() {  # name, file
-  local name=$1 file=$2
-  if ! grep -q "<!-- $name:begin -->" "$doc" || ! grep -q "<!-- $name:end -->" "$doc"; then
-    echo "   $doc has no <!-- $name:begin --> / <!-- $name:end --> pair: section not refreshed ($file)" >&2
-    return 0
-  fi
-  awk -v file="$file" -v begin="<!-- $name:begin -->" -v end="<!-- $name:end -->" '
-    index($0, begin) { print; while ((getline line < file) > 0) print line; skip = 1; next }
-    index($0, end) { skip = 0 }
-    !skip { print }
-  ' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
-  echo "   section $name of $doc refreshed" >&2
+  replace_doc_section "$doc" "$1" "$2" && echo "   section $1 of $doc refreshed" >&2 || true
 }
 
 stamp="Measured on $(nproc) cores ($(uname -m)), $(date -u +%Y-%m-%d)"
