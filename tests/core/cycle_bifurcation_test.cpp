@@ -92,9 +92,9 @@ TEST(CycleBifurcation, ThickDiskCycleDiesInASaddleNodeOnTheCycle) {
   }
   ASSERT_NE(up, nullptr);
   constexpr double kLocateTol = 1e-6;  // in mu m g, the bisection's bracket
-  const CycleBifurcation b = locateCycleBifurcation(thickDisk(0.0), Model::Exact, fWith, fWithout,
-                                                    *up, kLocateTol * kUnit,
-                                                    {3e-3 * kUnit, 1e-3 * kUnit});
+  const CycleBifurcation b =
+      locateCycleBifurcation(thickDisk(0.0), Model::Exact, fWith, fWithout, *up, kLocateTol * kUnit,
+                             {3e-3 * kUnit, 1e-3 * kUnit});
   ASSERT_EQ(b.kind, CycleBifurcation::SaddleNodeOnCycle);
   EXPECT_LE(b.forceError, kLocateTol * kUnit);
 

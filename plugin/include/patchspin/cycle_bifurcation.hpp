@@ -40,11 +40,11 @@ struct CycleBifurcation {
   double withCycle = 0.0, withoutCycle = 0.0;  // the bracket given [N]
   double force = 0.0;                          // F* [N] (Unclassified: the bracket's midpoint)
   double forceError = 0.0;                     // half-width of the final bracket [N]
-  Vec3 point = Vec3::Zero();  // the saddle-node at F* (mid of the last node-saddle pair)
-  double pairSeparation = 0.0;   // |node - saddle| at the last force with the pair
-  double nodeEigenvalue = 0.0;   // the node's eigenvalue nearest 0 there [m/s^2]
-  double saddleEigenvalue = 0.0; // the saddle's positive eigenvalue there [m/s^2]
-  double distanceToCycle = 0.0;  // from `point` to the given cycle's orbit [rad]
+  Vec3 point = Vec3::Zero();      // the saddle-node at F* (mid of the last node-saddle pair)
+  double pairSeparation = 0.0;    // |node - saddle| at the last force with the pair
+  double nodeEigenvalue = 0.0;    // the node's eigenvalue nearest 0 there [m/s^2]
+  double saddleEigenvalue = 0.0;  // the saddle's positive eigenvalue there [m/s^2]
+  double distanceToCycle = 0.0;   // from `point` to the given cycle's orbit [rad]
   // the cycle on its side of F*, at distances |F - F*| from it
   struct Sample {
     double force = 0.0;   // [N]
