@@ -265,15 +265,22 @@ void run(const SweepArgs& a, const FlatBody& base) {
     }
   }
   const double mumg = base.mu * base.mass * base.g;
-  parallelFor(
-      static_cast<int>(changes.size()), a.threads, a.quiet, "cycle bifurcations", [&](int k) {
-        Change& c = changes[static_cast<std::size_t>(k)];
-        const Point& p = points[static_cast<std::size_t>(c.with)];
-        const Point& q = points[static_cast<std::size_t>(c.without)];
-        c.result =
-            locateCycleBifurcation(bodyAt(0.0, p.T * tUnit), law, p.F * fUnit, q.F * fUnit,
-                                   *c.cycle, 1e-5 * mumg, {1e-2 * mumg, 3e-3 * mumg, 1e-3 * mumg});
-      });
+  parallelFor(static_cast<int>(changes.size()), a.threads, a.quiet, "cycle bifurcations",
+              [&](int k) {
+                Change& c = changes[static_cast<std::size_t>(k)];
+                const Point& p = points[static_cast<std::size_t>(c.with)];
+                const Point& q = points[static_cast<std::size_t>(c.without)];
+                // a failure here (e.g. a body that tips inside the bracket) leaves
+                // this change unclassified rather than failing the sweep
+                c.result.withCycle = p.F * fUnit, c.result.withoutCycle = q.F * fUnit;
+                c.result.force = 0.5 * (p.F + q.F) * fUnit;
+                try {
+                  c.result = locateCycleBifurcation(bodyAt(0.0, p.T * tUnit), law, p.F * fUnit,
+                                                    q.F * fUnit, *c.cycle, 1e-5 * mumg,
+                                                    {1e-2 * mumg, 3e-3 * mumg, 1e-3 * mumg});
+                } catch (const Error&) {
+                }
+              });
 
   std::ofstream file;
   if (!a.out.empty()) {

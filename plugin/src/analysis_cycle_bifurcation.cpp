@@ -72,6 +72,8 @@ const char* toString(CycleBifurcation::Kind kind) {
 CycleBifurcation locateCycleBifurcation(const FlatBody& base, Model law, double fWith,
                                         double fWithout, const LimitCycle& cycle, double tol,
                                         const std::vector<double>& approachOffsets) {
+  if (!(tol > 0.0) || !std::isfinite(tol) || !std::isfinite(fWith) || !std::isfinite(fWithout))
+    throw Error("locateCycleBifurcation: the forces and tol must be finite, tol > 0");
   CycleBifurcation out;
   out.withCycle = fWith;
   out.withoutCycle = fWithout;
@@ -86,7 +88,7 @@ CycleBifurcation locateCycleBifurcation(const FlatBody& base, Model law, double 
   LimitDirection node = *first.node, saddle;
   bool haveSaddle = false;
   double lo = fWith, hi = fWithout;  // no pair at lo, the pair at hi
-  while (std::abs(hi - lo) > tol) {
+  for (int it = 0; it < 200 && std::abs(hi - lo) > tol; ++it) {
     const double mid = 0.5 * (lo + hi);
     const LimitAnalysis a = findLimitDirections(modelAt(base, law, mid));
     // the pair near the one last seen (it moves by O(sqrt(dF)) between forces)
