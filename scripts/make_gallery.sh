@@ -2,6 +2,8 @@
 # Regenerates the README gallery's plots (issue 5) into docs/img/:
 #   bifurcation_force.png  limit directions against F, thin disk, T = 0 (Fig. 11 analogue)
 #   bifurcation_plane.png  number and types of limit directions over (F, T) (Fig. 13 analogue)
+#   thick_disk_cycles.png  limit directions and limit cycles against F, issue 34's
+#                          thick disk (its cycle dies at F = 0.1345 mu m g)
 #   pareto_exact.png       time against error of the exact law's accuracy knob
 #   pareto_patch.png       per patch: time per friction-block solve against the
 #                          impulse's error, ellipsoidal / exact / stock point friction
@@ -10,7 +12,8 @@
 #                          error vs the reference dynamics, one point per time step
 # from `patchspin sweep`, the benchmark JSON in BUILD_DIR/bench-results and the
 # CSVs in docs/bench/ (all three from scripts/run_benchmarks.sh).
-# Runs in a few seconds on 2 cores. The gnuplot scripts (.gp, data inline) that
+# Runs in about a minute on 2 cores (the thick disk's cycle search takes most;
+# the thin-disk sweeps skip it with --cycle-seeds 0). The gnuplot scripts (.gp, data inline) that
 # the plot functions write next to each PNG are removed unless KEEP_GP=1.
 #
 # usage: scripts/make_gallery.sh BUILD_DIR
@@ -39,7 +42,7 @@ trap 'rm -rf "$work"' EXIT
 
 # thin disk of Sect. 6.1/6.3: R = 0.05 m, m = 1 kg, Jz = m R^2 / 2, centre of
 # mass in the patch plane, uniform pressure. --scaled: F in mu m g, T in m g R.
-disk=(--patch disk:0.05 --mass 1 --inertia 0.00125 --com 0,0,0 --mu 0.3 --scaled --quiet)
+disk=(--patch disk:0.05 --mass 1 --inertia 0.00125 --com 0,0,0 --mu 0.3 --scaled --quiet --cycle-seeds 0)
 
 # (1) Fig. 11: F from 0 to 1.5 mu m g at T = 0 (bifurcations at F = 1/9 and 1
 # in the paper's ellipsoidal analysis, Sect. 6.1)
@@ -60,6 +63,19 @@ done
   --title "thin disk with torque: limit directions over (F, T)" \
   --force-label "F / ({/Symbol m} m g)" --torque-label "T / (m g R)" \
   --panel "ellipsoidal=$work/plane_ellipsoidal.csv" --panel "exact=$work/plane_exact.csv"
+
+# (2b) issue 34's thick disk (R = 1 m, centre of mass 0.4 m up, mu = 0.5,
+# Jz = 0.5 kg m^2): under the exact law a limit cycle around each pole for
+# 0 < F < 0.1345 mu m g, which dies in a saddle-node on the cycle
+# (docs/notes/2026-11-28-thick-disk-cycle-bifurcation.md)
+thick=(--patch disk:1 --mass 1 --inertia 0.5 --com 0,0,0.4 --mu 0.5 --scaled --quiet)
+for model in ellipsoidal exact; do
+  "$tool" sweep "${thick[@]}" --model "$model" --F 0:0.4:41 --out "$work/thick_$model.csv" >/dev/null
+done
+"$plots" force --out "$img/thick_disk_cycles.png" --size 900x500 --component 3 \
+  --title "thick disk (R = 1 m, h = 0.4 m): limit directions and cycles against F" \
+  --force-label "F / ({/Symbol m} m g)" \
+  --panel "ellipsoidal=$work/thick_ellipsoidal.csv" --panel "exact=$work/thick_exact.csv"
 
 # (3) Pareto: the benchmarks that report max_rel_err (the accuracy knob of the
 # exact law) -> model,time,error,label with time per evaluation in seconds
@@ -111,7 +127,7 @@ csv="$root/docs/bench"
 "$plots" pareto-sim --csv "$csv/simulation_error.csv" --scene "pushed disk" --out "$img/pareto_sim_pushed.png" \
   --size 900x700 --title "pushed disk, Sect. 6.1 Case 3"
 
-made=(bifurcation_force bifurcation_plane pareto_exact pareto_patch pareto_sim_coin pareto_sim_coin_limit
+made=(bifurcation_force bifurcation_plane thick_disk_cycles pareto_exact pareto_patch pareto_sim_coin pareto_sim_coin_limit
   pareto_sim_pushed)
 if [[ "${KEEP_GP:-0}" != 1 ]]; then
   for f in "${made[@]}"; do rm -f "$img/$f.gp"; done

@@ -1,6 +1,7 @@
 // patchspin limits: all limit directions of a flat body on a plane, their
 // rate R* and type (Sect. 3.3, 5.5-5.6). Also exports the body options and
-// the JSON form of an analysis to `patchspin sweep` (cmd_sweep.cpp).
+// the JSON forms of an analysis and of its cycles to `patchspin sweep`
+// (cmd_sweep.cpp).
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -119,7 +120,10 @@ nlohmann::json finiteOrNull(double x) {
   return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
 }
 
-// The periodic orbits of the fast dynamics and where each seed ended.
+}  // namespace
+
+// The periodic orbits of the fast dynamics and where each seed ended (also
+// used by `patchspin sweep --json`).
 nlohmann::json cyclesToJson(const CycleAnalysis& c, int seeds) {
   nlohmann::json cycles = nlohmann::json::array();
   for (const LimitCycle& y : c.cycles) {
@@ -152,6 +156,8 @@ nlohmann::json cyclesToJson(const CycleAnalysis& c, int seeds) {
             {"complete", c.complete()},
             {"searched", c.searched}}}};
 }
+
+namespace {
 
 void printCycles(const CycleAnalysis& c, int seeds) {
   std::printf(

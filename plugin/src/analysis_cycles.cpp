@@ -15,7 +15,10 @@ constexpr double kSeedStep = 0.02;     // RK4 step of the seed runs: <= 0.02 rad
 constexpr double kCapture = 1e-3;      // a seed this close to an attracting fixed point ends there
 constexpr double kOnCycle = 1e-4;      // ... or this close to an attracting cycle found before
 constexpr double kReturnWindow = 0.1;  // a return within this of the section's anchor: try Newton
-constexpr double kReanchorTime = 200.0;  // no return to the section within this: new anchor
+// no return to the section within this: new anchor (a cycle's period in
+// these units: 47 for issue 34's thick disk at F / (mu m g) = 0.0911, 190 at
+// 0.132, diverging at the saddle-node near 0.135: cycle_bifurcation.hpp)
+constexpr double kReanchorTime = 1000.0;
 constexpr double kNewtonTol = 1e-11;     // |P(sigma) - sigma| of a resolved cycle (RK4 at T/400
                                          // is ~1e-8 accurate; this is the map's own fixed point)
 constexpr double kMaxNewtonStep = 0.05;  // trust region of the Newton step on sigma

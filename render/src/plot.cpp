@@ -531,10 +531,15 @@ void plotSlipRatio(const TimeSeriesPlot& plot, const std::string& pngPath, const
 namespace {
 
 // One parameter point of a `patchspin sweep` CSV.
+struct SweepCycle {
+  bool attracting = false;
+  std::array<double, 4> lo{}, hi{};  // ranges of the angle atan2(w3, w1) [deg], w1, w2, w3
+};
 struct SweepPoint {
   double F = 0.0, T = 0.0;
   bool tipping = false;
   std::vector<LimitDirection> directions;
+  std::vector<SweepCycle> cycles;
 };
 
 std::vector<SweepPoint> readSweep(const std::string& csvPath) {
@@ -569,6 +574,28 @@ std::vector<SweepPoint> readSweep(const std::string& csvPath) {
       d.stability = parseStability(one, 0);
       d.kind = parseKind(one, 0);
       p.directions.push_back(d);
+    }
+    // optional: "attracting|repelling period multiplier turn w1min w1max w2min
+    // w2max w3min w3max angle_min angle_max" entries separated by '|'
+    if (csv.has("cycles")) {
+      std::stringstream cycles(csv.text(i, "cycles"));
+      while (std::getline(cycles, entry, '|')) {
+        if (trim(entry).empty()) continue;
+        std::istringstream in(entry);
+        std::string stability;
+        double period, multiplier, turn;
+        SweepCycle c;
+        if (!(in >> stability >> period >> multiplier >> turn >> c.lo[1] >> c.hi[1] >> c.lo[2] >>
+              c.hi[2] >> c.lo[3] >> c.hi[3] >> c.lo[0] >> c.hi[0]) ||
+            (stability != "attracting" && stability != "repelling")) {
+          throw RenderError(csvPath + ":" + std::to_string(csv.lineOf[i]) +
+                            ": a cycle must be 'attracting|repelling period multiplier turn w1min "
+                            "w1max w2min w2max w3min w3max angle_min angle_max', got '" +
+                            entry + "'");
+        }
+        c.attracting = stability == "attracting";
+        p.cycles.push_back(c);
+      }
     }
     points.push_back(std::move(p));
   }
@@ -620,6 +647,7 @@ void plotBifurcationForce(const std::vector<SweepPanel>& panelList, const std::s
   std::ostringstream s;
   s << header(pngPath, o);
   std::set<int> allStyles;
+  bool anyCycle[2] = {false, false};  // attracting, repelling
   std::string panels;
   for (std::size_t m = 0; m < sweeps.size(); ++m) {
     std::map<int, std::string> byStyle;
@@ -638,7 +666,29 @@ void plotBifurcationForce(const std::vector<SweepPanel>& panelList, const std::s
     if (!any) {
       throw RenderError(panelList[m].csvPath + ": no parameter points at T = " + num(T0));
     }
+    // cycles: a vertical bar over the range of the plotted quantity on the
+    // orbit, one datablock per stability
+    std::string cycleData[2];
+    for (const SweepPoint& p : sweeps[m]) {
+      if (std::abs(p.T - T0) > tTol) continue;
+      for (const SweepCycle& c : p.cycles) {
+        const std::size_t k = static_cast<std::size_t>(b.component);
+        cycleData[c.attracting ? 0 : 1] +=
+            num(p.F) + " " + num(c.lo[k]) + " 0 " + num(c.hi[k] - c.lo[k]) + "\n";
+        anyCycle[c.attracting ? 0 : 1] = true;
+      }
+    }
     std::string plots;
+    for (int k = 0; k < 2; ++k) {
+      if (cycleData[k].empty()) continue;
+      const std::string name = "m" + std::to_string(m) + "_cycles" + std::to_string(k);
+      datablock(s, name, cycleData[k]);
+      plots +=
+          std::string(plots.empty() ? "" : ", ") + "$" + name +
+          " with vectors nohead lw 3 lc rgb " +
+          gpString(stabilityColour(k == 0 ? Stability::Attracting : Stability::Repelling, true)) +
+          " notitle";
+    }
     for (const auto& [st, data] : byStyle) {
       const std::string name = "m" + std::to_string(m) + "_s" + std::to_string(st);
       datablock(s, name, data);
@@ -652,7 +702,13 @@ void plotBifurcationForce(const std::vector<SweepPanel>& panelList, const std::s
         "set title " + gpString(panelList[m].title) + " noenhanced\nplot " + plots + "__KEY__\n";
   }
   // key (all styles present in any panel) on every panel
-  const std::string key = limitKeyEntries(allStyles);
+  std::string key = limitKeyEntries(allStyles);
+  for (int k = 0; k < 2; ++k) {
+    if (!anyCycle[k]) continue;
+    key += ", keyentry with vectors nohead lw 3 lc rgb " +
+           gpString(stabilityColour(k == 0 ? Stability::Attracting : Stability::Repelling, true)) +
+           " title " + gpString(k == 0 ? "attracting cycle (range)" : "repelling cycle (range)");
+  }
   std::string p = panels;
   for (std::size_t at; (at = p.find("__KEY__")) != std::string::npos;) p.replace(at, 7, key);
   s << multiplotHeader(sweeps.size(), o) << "set grid lc rgb '#dddddd'\n"
@@ -673,6 +729,7 @@ void plotBifurcationPlane(const std::vector<SweepPanel>& panelList, const std::s
   // per (panel, F, T): counts of each style, and the tipping flag
   std::map<std::tuple<std::size_t, double, double>, std::pair<std::array<int, kStyles>, bool>>
       points;
+  std::map<std::tuple<std::size_t, double, double>, std::array<int, 2>> cycleCounts;
   std::vector<double> Fs, Ts;
   for (std::size_t m = 0; m < panelList.size(); ++m) {
     for (const SweepPoint& p : readSweep(panelList[m].csvPath)) {
@@ -681,6 +738,8 @@ void plotBifurcationPlane(const std::vector<SweepPanel>& panelList, const std::s
         ++entry.first[static_cast<std::size_t>(styleIndex(d.stability, d.kind))];
       }
       entry.second = entry.second || p.tipping;
+      auto& cycles = cycleCounts[{m, p.F, p.T}];
+      for (const SweepCycle& c : p.cycles) ++cycles[c.attracting ? 0 : 1];
       Fs.push_back(p.F);
       Ts.push_back(p.T);
     }
@@ -700,8 +759,15 @@ void plotBifurcationPlane(const std::vector<SweepPanel>& panelList, const std::s
                (styleStability(st) == Stability::Attracting ? "A-" : "R-") +
                kindShort(styleKind(st));
     }
-    const std::string cat =
-        std::to_string(total) + ": " + (total ? parts : "none") + (tipping ? " (tips)" : "");
+    // and the limit cycles, e.g. " + 2 A-cyc"
+    std::string cyclePart;
+    const std::array<int, 2> cycles = cycleCounts[key];
+    for (int k = 0; k < 2; ++k) {
+      if (cycles[k])
+        cyclePart += " + " + std::to_string(cycles[k]) + (k == 0 ? " A-cyc" : " R-cyc");
+    }
+    const std::string cat = std::to_string(total) + ": " + (total ? parts : "none") + cyclePart +
+                            (tipping ? " (tips)" : "");
     categoryOf[key] = cat;
     ++frequency[cat];
   }

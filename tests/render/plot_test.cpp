@@ -144,6 +144,57 @@ TEST(Plot, BifurcationAgainstForceAndOverPlane) {
   }
 }
 
+// A sweep with limit cycles (the optional `cycles` column of `patchspin
+// sweep`): below F = 0.5 two attracting cycles around the poles (synthetic
+// ranges), none above. The F diagram draws them as bars (its image differs
+// from the same sweep without the column); the plane counts them; a
+// malformed cycle entry names file and line.
+TEST(Plot, BifurcationMarksLimitCycles) {
+  const std::string dir = tempDir("cycles");
+  for (bool cycles : {true, false}) {
+    std::ofstream out(dir + (cycles ? "/with.csv" : "/without.csv"));
+    out << "F,T,directions" << (cycles ? ",cycles" : "") << "\n";
+    for (int i = 0; i <= 10; ++i) {
+      for (int j = 0; j <= 2; ++j) {
+        const double F = 0.1 * i, T = 0.1 * j;
+        out << F << "," << T << ",\"-1 0 0 -3 attracting isolated\"";
+        if (cycles) {
+          out << ",\"";
+          if (F < 0.5) {
+            out << "attracting 8.9 2e-12 -22 -0.6 0.75 -0.7 0.7 0.65 0.8 40 128|"
+                   "attracting 8.9 2e-12 22 -0.6 0.75 -0.7 0.7 -0.8 -0.65 -128 -40";
+          }
+          out << "\"";
+        }
+        out << "\n";
+      }
+    }
+  }
+  BifurcationOptions w3;
+  w3.component = 3;
+  plotBifurcationForce({{"with", dir + "/with.csv"}}, dir + "/with.png", w3, smallOptions());
+  plotBifurcationForce({{"with", dir + "/without.csv"}}, dir + "/without.png", w3, smallOptions());
+  expectValidPng(dir + "/with.png");
+  EXPECT_NE(readPng(dir + "/with.png").rgb, readPng(dir + "/without.png").rgb);
+  plotBifurcationForce({{"with", dir + "/with.csv"}}, dir + "/angle.png", BifurcationOptions(),
+                       smallOptions());
+  expectValidPng(dir + "/angle.png");
+  plotBifurcationPlane({{"with", dir + "/with.csv"}}, dir + "/plane.png", BifurcationOptions(),
+                       smallOptions());
+  expectValidPng(dir + "/plane.png");
+  {
+    std::ofstream out(dir + "/bad.csv");
+    out << "F,T,directions,cycles\n0,0,\"1 0 0 -1 attracting dominant\",\"attracting 1 2\"\n";
+  }
+  try {
+    plotBifurcationForce({{"bad", dir + "/bad.csv"}}, dir + "/bad.png");
+    ADD_FAILURE() << "no error";
+  } catch (const RenderError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2: a cycle must be"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Plot, Pareto) {
   const std::string dir = tempDir("pareto");
   {

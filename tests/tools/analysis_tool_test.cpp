@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <patchspin/analysis.hpp>
+#include <patchspin/cycle_bifurcation.hpp>
 #include <patchspin/limit_cycles.hpp>
 #include <sstream>
 
@@ -245,6 +246,85 @@ TEST(SweepToolTest, ThinDiskCasesOverF) {
   std::remove(out.c_str());
 }
 
+// Issue 34's thick disk (rho = 2R/3) just below the saddle-node where its
+// cycle dies (F* = 0.134497 mu m g, cycle_bifurcation_test): at F = 0.6596 N
+// = 0.134475 mu m g the period, ~1.8 (xi* - xi)^(-1/2) = 380 s^2/m, is
+// longer than the search waits for a return to its section, so no seed
+// reaches an attractor. The tool says so and names the seeds (issue 34,
+// "Bad input"), in text and JSON.
+constexpr const char* kNearTheSaddleNode =
+    "limits --patch disk:1 --mass 1 --inertia 0.5 --com 0,0,0.4 --mu 0.5 --g 9.81 "
+    "--rho 0.6666666666666666 --force 0.6596,0 --model exact --cycle-seeds 2";
+
+TEST(LimitsToolTest, ASearchThatReachesNoAttractorSaysSoWithItsSeeds) {
+  const auto text = runTool(PATCHSPIN_TOOL, kNearTheSaddleNode);
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_NE(text.out.find("2 reach no attractor within the budget"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("seed (+0.866025, +0.000000, +0.500000)"), std::string::npos);
+  EXPECT_NE(text.out.find("warning: the search is incomplete"), std::string::npos);
+  const auto run = runTool(PATCHSPIN_TOOL, std::string(kNearTheSaddleNode) + " --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(j["cycle_search"]["complete"].get<bool>());
+  EXPECT_EQ(j["cycle_search"]["forward"]["unresolved"].size(), 2u);
+  EXPECT_EQ(j["cycle_search"]["forward"]["fixed_point"].get<int>(), 0);
+  EXPECT_EQ(j["cycle_search"]["forward"]["cycle"].get<int>(), 0);
+}
+
+// The sweep across the saddle-node: cycles at 0.13 mu m g, none at 0.14;
+// each of the two mirror cycles' bifurcation is the library's
+// (cycle_bifurcation_test checks the library against an independent fold).
+TEST(SweepToolTest, ThickDiskCycleBifurcationIsLocated) {
+  const std::string body =
+      "sweep --patch disk:1 --mass 1 --inertia 0.5 --com 0,0,0.4 --mu 0.5 --g 9.81 "
+      "--rho 0.6666666666666666 --model exact --scaled --F 0.13:0.14:2 --threads 2 --quiet";
+  const auto run = runTool(PATCHSPIN_TOOL, body + " --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  ASSERT_EQ(j["points"].size(), 2u);
+  EXPECT_EQ(j["points"][0]["limit_cycles"].size(), 2u);
+  EXPECT_TRUE(j["points"][1]["limit_cycles"].empty());
+  ASSERT_EQ(j["cycle_bifurcations"].size(), 2u);
+  FlatBody disk;
+  disk.shape = PatchShape::disk(1.0);
+  disk.mass = 1.0;
+  disk.Jz = 0.5;
+  disk.com = Vec3(0.0, 0.0, 0.4);
+  disk.mu = 0.5;
+  disk.g = 9.81;
+  disk.rho = 0.6666666666666666;
+  const double unit = 0.5 * 9.81;
+  disk.force.x() = 0.13 * unit;
+  const FlatBodyModel model(disk, Model::Exact);
+  CycleOptions options;
+  options.seeds = 16;
+  const CycleAnalysis lib = findLimitCycles(model, findLimitDirections(model), options);
+  ASSERT_EQ(lib.cycles.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& b = j["cycle_bifurcations"][i];
+    const CycleBifurcation expected =
+        locateCycleBifurcation(disk, Model::Exact, 0.13 * unit, 0.14 * unit, lib.cycles[i],
+                               1e-5 * unit, {1e-2 * unit, 3e-3 * unit, 1e-3 * unit});
+    EXPECT_EQ(b["kind"].get<std::string>(), "saddle_node_on_cycle");
+    EXPECT_TRUE(b["located"].get<bool>());
+    EXPECT_NEAR(b["F"].get<double>(), expected.force / unit, kPrintTol);
+    EXPECT_LE(b["F_error"].get<double>(), 1e-5);
+    EXPECT_EQ(b["approach"].size(), expected.approach.size());
+  }
+  // CSV to a file: the bifurcations as text on stdout
+  const std::string out = std::string(::testing::TempDir()) + "/sweep_cycles.csv";
+  const auto csv = runTool(PATCHSPIN_TOOL, body + " --out " + out);
+  ASSERT_EQ(csv.exitCode, 0) << csv.err;
+  EXPECT_NE(csv.out.find("saddle-node on the cycle (SNIC) at F* = 0.13449"), std::string::npos)
+      << csv.out;
+  std::ifstream file(out);
+  std::string header;
+  std::getline(file, header);
+  EXPECT_NE(header.find(",n_cycles_attracting,n_cycles_repelling,cycles_complete,cycles"),
+            std::string::npos);
+  std::remove(out.c_str());
+}
+
 TEST(AnalysisToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
   const char* bad[] = {
       "limits --patch disk:0.1 --mass 2 --inertia 0.01 --force 1",        // wrong count
@@ -256,6 +336,7 @@ TEST(AnalysisToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
       "simulate --shape sphere:1",                                             // unknown shape
       "simulate --shape cylinder:0.05,0.01 --record-at 2",                     // bad fraction
       "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --F 0:1",                // bad range
+      "sweep --patch disk:0.1 --mass 2 --inertia 0.01 --F 0 --cycle-seeds 1",  // 0 or >= 2
   };
   for (const char* args : bad) {
     const auto run = runTool(PATCHSPIN_TOOL, args);

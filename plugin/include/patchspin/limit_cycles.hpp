@@ -102,6 +102,10 @@ struct CycleOptions {
 // already found, or until its orbit returns to a section through an earlier
 // point of it: then Newton on the return map of that section (RK4 at T/400
 // per step, with the variational equation for P') resolves the cycle.
+// A cycle whose period exceeds 1000 / fieldScale (the recurrence window; near
+// a saddle-node born on it the period diverges, cycle_bifurcation.hpp) is not
+// resolved: its seeds end unresolved and complete() is false
+// (LimitsToolTest.ASearchThatReachesNoAttractorSaysSoWithItsSeeds).
 CycleAnalysis findLimitCycles(const FlatBodyModel& model, const LimitAnalysis& fixed,
                               const CycleOptions& options = CycleOptions());
 

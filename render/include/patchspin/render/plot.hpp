@@ -97,6 +97,11 @@ void plotSlipRatio(const TimeSeriesPlot& plot, const std::string& pngPath,
 //               limit direction, type dominant|isolated|saddle|nonhyperbolic
 //   tipping     optional, 1 if the pressure turns negative (marked in the
 //               (F, T) categories)
+//   cycles      optional, the limit cycles: "attracting|repelling period
+//               multiplier turn w1min w1max w2min w2max w3min w3max angle_min
+//               angle_max|..." (ranges over the orbit, angle = atan2(w3, w1)
+//               [deg]); the F diagram draws each as a bar over its range,
+//               the (F, T) categories count them ("+ 2 A-cyc")
 // Example row:  0.5,0,2,...,0,1,"1 0 0 -2.1 attracting dominant|-1 0 0 -4.9 attracting isolated"
 struct SweepPanel {
   std::string title;    // panel title, e.g. "ellipsoidal"
@@ -114,7 +119,8 @@ struct BifurcationOptions {
 };
 
 // Limit directions against F (angle or component, see above), styled by type
-// as in plotSlipSphere. One panel per sweep, side by side.
+// as in plotSlipSphere, and limit cycles as bars over their range (pale,
+// coloured by stability). One panel per sweep, side by side.
 void plotBifurcationForce(const std::vector<SweepPanel>& panels, const std::string& pngPath,
                           const BifurcationOptions& bifurcation = BifurcationOptions(),
                           const PlotOptions& options = PlotOptions());
