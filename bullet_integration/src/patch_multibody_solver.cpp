@@ -1,0 +1,490 @@
+// PatchMultiBodySolver: btMultiBodyConstraintSolver with PatchFrictionSolver's
+// patches, whose sides may be Featherstone links. The stages are those of
+// patch_friction_solver.cpp (1 select, 2 set up, 4 push, 5 iterate,
+// 6 store; no stage 3 stack holds yet), with the patch visits of
+// patch_visit.hpp; what is new is how a link side reads and moves:
+//   DOF velocity   c = J (qdot0 + dqdot)      J: the 6 DOFs' rows of (S1)
+//                                            per link side, A's + and B's -
+//   impulse d      dqdot += M^-1 J^T d       (Bullet's m_deltaVelocities,
+//                                            and the multibody's own deltaV)
+//   effective mass K6 += J M^-1 J^T          (S2)
+// with qdot0 the multibody's velocity vector at the set-up (Bullet changes
+// it only after the solve) and dqdot the solve's change, which Bullet's
+// multibody rows read and write too (MultiBodyPatches.* guard it).
+#include <patchspin/bullet/patch_multibody_solver.hpp>
+
+#include "manifold_impulses.hpp"
+#include "patch_constraint.hpp"
+#include "patch_reports.hpp"
+#include "patch_selection.hpp"
+#include "patch_solver_shared.hpp"
+#include "patch_visit.hpp"
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+#include <algorithm>
+
+namespace patchspin::bullet {
+
+using internal::PatchConstraint;
+using parts::Mat6;
+using parts::Vec6;
+
+namespace {
+
+// One side of a patch on a Featherstone link: the 6 rows of J (signed) and
+// their responses M^-1 J^T, n = 6 + dofs numbers each, at `offset` in the
+// island's jac / resp.
+struct LinkSide {
+  btMultiBody* body = nullptr;  // null: no link on this side
+  int link = -1;                // -1: the base
+  int velocity = -1;  // the multibody's companion id: its dqdot in m_data.m_deltaVelocities
+  int n = 0;
+  std::size_t offset = 0;
+  double sign = 1.0;  // +1 A, -1 B (both: the rows are J_A - J_B, on side 0)
+};
+struct LinkTerms {
+  LinkSide side[2];
+  Vec6 c0 = Vec6::Zero();  // J qdot0
+};
+
+// The Bodies of patch_visit.hpp: solver bodies (SolverBodies) plus links.
+struct MultiBodyBodies {
+  internal::SolverBodies rigid;
+  const std::vector<LinkTerms>& terms;
+  const std::vector<btScalar>& jac;
+  const std::vector<btScalar>& resp;
+  btAlignedObjectArray<btScalar>& dqdot;
+
+  Vec6 velocity(const PatchConstraint& pc) const {
+    Vec6 c = rigid.velocity(pc);
+    if (pc.articulated < 0) return c;
+    const LinkTerms& t = terms[std::size_t(pc.articulated)];
+    c += t.c0;
+    for (const LinkSide& s : t.side) {
+      if (!s.body) continue;
+      const btScalar* v = &dqdot[s.velocity];
+      for (int i = 0; i < 6; ++i) {
+        const btScalar* J = &jac[s.offset + std::size_t(i * s.n)];
+        double sum = 0.0;
+        for (int k = 0; k < s.n; ++k) sum += double(J[k]) * double(v[k]);
+        c[i] += sum;
+      }
+    }
+    return c;
+  }
+  void apply(const PatchConstraint& pc, const Vec6& d) {
+    rigid.apply(pc, d);
+    if (pc.articulated < 0) return;
+    for (const LinkSide& s : terms[std::size_t(pc.articulated)].side) {
+      if (!s.body) continue;
+      btScalar* v = &dqdot[s.velocity];
+      for (int i = 0; i < 6; ++i) {
+        if (d[i] == 0.0) continue;
+        const btScalar* r = &resp[s.offset + std::size_t(i * s.n)];
+        const btScalar x = internal::flushed(d[i]);
+        for (int k = 0; k < s.n; ++k) v[k] += r[k] * x;
+        s.body->applyDeltaVeeMultiDof2(r, x);
+      }
+    }
+  }
+  // (a link's dqdot is not snapshot: its patches are visited every time)
+  static bool settles(const PatchConstraint& pc) { return pc.articulated < 0; }
+  void snapshot(const PatchConstraint& pc, btVector3* out) const { rigid.snapshot(pc, out); }
+};
+
+// The island's rows of the link sides, and Bullet's data they use.
+struct LinkArrays {
+  std::vector<btScalar>& jac;
+  std::vector<btScalar>& resp;
+  std::vector<btScalar>& scratch;
+  btMultiBodyJacobianData& data;
+};
+
+// Fills the 6 rows of J for one link at O, `sign` times (S1), into `out`.
+void fillLinkRows(const btMultiBodyLinkCollider& c, const Mat3& F, const Vec3& O, double rho,
+                  double sign, btMultiBodyJacobianData& data, btScalar* out) {
+  const btMultiBody& body = *c.m_multiBody;
+  const int n = body.getNumDofs() + 6;
+  const btVector3 o = internal::toBt(O);
+  const btVector3 ex = internal::toBt(sign * F.col(0)), ey = internal::toBt(sign * F.col(1));
+  const btVector3 nz = internal::toBt(sign * F.col(2)),
+                  spin = internal::toBt(sign * rho * F.col(2));
+  const btVector3 zero(0, 0, 0);
+  // rows: n.u(O), ex.omega, ey.omega, ex.u(O), ey.u(O), rho n.omega
+  const btVector3 ang[6] = {zero, ex, ey, zero, zero, spin};
+  const btVector3 lin[6] = {nz, zero, zero, ex, ey, zero};
+  for (int i = 0; i < 6; ++i)
+    body.fillConstraintJacobianMultiDof(c.m_link, o, ang[i], lin[i], out + i * n, data.scratch_r,
+                                        data.scratch_v, data.scratch_m);
+}
+
+// The link sides of a patch (state st; links[s] null: no link on side s):
+// J, M^-1 J^T, J qdot0 and K6's share J M^-1 J^T, and each multibody's
+// place in Bullet's delta velocities (given one if it has none yet, as
+// Bullet's multibody contacts do). Two links of one multibody make one
+// side, J_A - J_B.
+void setUpLinkSides(const internal::PatchState& st, const btMultiBodyLinkCollider* const links[2],
+                    const LinkArrays& arrays, LinkTerms& terms, internal::ArticulatedShare& share) {
+  Mat3 F;
+  Vec3 O;
+  internal::patchFrameOf(st, F, O);
+  const double rho = st.friction->rho();
+  const bool same = links[0] && links[1] && links[0]->m_multiBody == links[1]->m_multiBody;
+  for (int s = 0; s < 2; ++s) {
+    if (!links[s] || (same && s == 1)) continue;
+    btMultiBody* body = links[s]->m_multiBody;
+    LinkSide& side = terms.side[s];
+    side.body = body;
+    side.link = links[s]->m_link;
+    side.n = body->getNumDofs() + 6;
+    side.sign = s == 0 ? 1.0 : -1.0;
+    const std::size_t rows = std::size_t(6 * side.n);
+    side.offset = arrays.jac.size();
+    arrays.jac.resize(side.offset + rows);
+    arrays.resp.resize(side.offset + rows);
+    btScalar* J = &arrays.jac[side.offset];
+    fillLinkRows(*links[s], F, O, rho, side.sign, arrays.data, J);
+    if (same) {
+      arrays.scratch.resize(rows);
+      fillLinkRows(*links[1], F, O, rho, -1.0, arrays.data, arrays.scratch.data());
+      for (std::size_t k = 0; k < rows; ++k) J[k] += arrays.scratch[k];
+    }
+    btScalar* R = &arrays.resp[side.offset];
+    for (int i = 0; i < 6; ++i)
+      body->calcAccelerationDeltasMultiDof(J + i * side.n, R + i * side.n, arrays.data.scratch_r,
+                                           arrays.data.scratch_v);
+    const btScalar* qdot = body->getVelocityVector();
+    for (int i = 0; i < 6; ++i) {
+      double c = 0.0;
+      for (int k = 0; k < side.n; ++k) c += double(J[i * side.n + k]) * double(qdot[k]);
+      terms.c0[i] += c;
+      for (int j = 0; j < 6; ++j) {
+        double kij = 0.0;
+        for (int k = 0; k < side.n; ++k)
+          kij += double(J[i * side.n + k]) * double(R[j * side.n + k]);
+        share.K6(i, j) += kij;
+      }
+    }
+    side.velocity = body->getCompanionId();
+    if (side.velocity < 0) {
+      side.velocity = arrays.data.m_deltaVelocities.size();
+      body->setCompanionId(side.velocity);
+      arrays.data.m_deltaVelocities.resize(side.velocity + side.n);
+    }
+  }
+  // (J M^-1 J^T is symmetric: its round-off is not)
+  share.K6 = 0.5 * (share.K6 + share.K6.transpose()).eval();
+  share.before = terms.c0;
+}
+
+}  // namespace
+
+struct PatchMultiBodySolver::Impl {
+  Impl() : shared(std::make_shared<internal::PatchSolverShared>()), selection(shared->selection) {
+    shared->friction = internal::frictionSettings(shared->settings);
+    linkBody.m_originalBody = nullptr;
+    linkBody.m_worldTransform.setIdentity();
+    linkBody.m_linearVelocity.setZero();
+    linkBody.m_angularVelocity.setZero();
+  }
+  std::shared_ptr<internal::PatchSolverShared> shared;
+  internal::PatchSelection& selection;
+  std::vector<internal::Candidate> candidates;
+  std::vector<btPersistentManifold*> rest;  // manifolds left to Bullet's rows
+  std::vector<PatchConstraint> patches;
+  std::vector<LinkTerms> terms;  // of the patches with a link side
+  std::vector<btScalar> jac, resp, scratch;
+  std::vector<parts::StackHold> holds;  // (empty: no stack holds on this solver yet)
+  std::vector<std::vector<int>> shareGroups;
+  std::vector<parts::SharedPatch> shareBuf;
+  std::vector<int> shareGroupOf;
+  PatchConstraint retry;
+  std::vector<btRigidBody*> flushBodies;
+  // stands for a link side in makePatchConstraint: no m_originalBody, so
+  // its BodyTerms are those of a body that adds nothing
+  btSolverBody linkBody;
+};
+
+PatchMultiBodySolver::PatchMultiBodySolver() : impl_(std::make_unique<Impl>()) {}
+PatchMultiBodySolver::~PatchMultiBodySolver() = default;
+
+void PatchMultiBodySolver::enablePatchFriction(btCollisionObject* body,
+                                               const PatchOptions& options) {
+  if (!body) throw Error("enablePatchFriction: body is null");
+  internal::checkPatchOptions(options);
+  if (btRigidBody* rb = btRigidBody::upcast(body)) {
+    impl_->selection.optIns().enable(*rb, options);
+  } else if (btMultiBodyLinkCollider::upcast(body)) {
+    impl_->selection.optIns().enableObject(*body, options);
+  } else {
+    throw Error(
+        "enablePatchFriction: the body is neither a btRigidBody nor a btMultiBodyLinkCollider");
+  }
+}
+
+void PatchMultiBodySolver::disablePatchFriction(btCollisionObject* body) {
+  if (!body) return;
+  if (btRigidBody* rb = btRigidBody::upcast(body))
+    impl_->selection.optIns().disable(*rb);
+  else
+    impl_->selection.optIns().disableObject(*body);
+}
+
+bool PatchMultiBodySolver::isPatchFrictionEnabled(const btCollisionObject* body) const {
+  return impl_->selection.optIns().optionsOf(body) != nullptr;
+}
+
+void PatchMultiBodySolver::setSettings(const PatchSolverSettings& settings) {
+  internal::checkSolverSettings(settings);
+  impl_->shared->settings = settings;
+  impl_->shared->friction = internal::frictionSettings(settings);
+}
+const PatchSolverSettings& PatchMultiBodySolver::settings() const {
+  return impl_->shared->settings;
+}
+const PatchSolverStats& PatchMultiBodySolver::stats() const {
+  return impl_->shared->stats;
+}
+const std::vector<PatchReport>& PatchMultiBodySolver::patchReports() const {
+  return impl_->shared->reports.reports();
+}
+const PatchReport* PatchMultiBodySolver::findPatchReport(const btCollisionObject* body) const {
+  return impl_->shared->reports.find(body);
+}
+std::optional<PatchReport> PatchMultiBodySolver::patchReportOf(
+    const btCollisionObject* body) const {
+  const PatchReport* r = impl_->shared->reports.find(body);
+  return r ? std::optional<PatchReport>(*r) : std::nullopt;
+}
+const NotPatchedCounts* PatchMultiBodySolver::notPatchedOf(const btCollisionObject* body) const {
+  return impl_->selection.notPatchedOf(body);
+}
+void PatchMultiBodySolver::setUnsupportedShapeCallback(UnsupportedShapeCallback callback) {
+  impl_->selection.setUnsupportedShapeCallback(std::move(callback));
+}
+
+void PatchMultiBodySolver::prepareSolve(int numBodies, int numManifolds) {
+  btMultiBodyConstraintSolver::prepareSolve(numBodies, numManifolds);
+  impl_->shared->beginStep();
+}
+
+void PatchMultiBodySolver::allSolved(const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
+  btMultiBodyConstraintSolver::allSolved(info, debugDrawer);
+  impl_->shared->endStep();
+}
+
+void PatchMultiBodySolver::solveMultiBodyGroup(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints,
+    btMultiBodyConstraint** multiBodyConstraints, int numMultiBodyConstraints,
+    const btContactSolverInfo& info, btIDebugDraw* debugDrawer, btDispatcher* dispatcher) {
+  impl_->selection.enterWorld(dispatcher);
+  btMultiBodyConstraintSolver::solveMultiBodyGroup(
+      bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, multiBodyConstraints,
+      numMultiBodyConstraints, info, debugDrawer, dispatcher);
+}
+
+// Stages 1-2 (and 3b, the load sharing of rigid bodies' patches).
+void PatchMultiBodySolver::convertContacts(btPersistentManifold** manifolds, int numManifolds,
+                                           const btContactSolverInfo& info) {
+  Impl& im = *impl_;
+  im.patches.clear();
+  im.terms.clear();
+  im.jac.clear();
+  im.resp.clear();
+  im.shareGroups.clear();
+  if (!im.selection.optIns().any()) {
+    btMultiBodyConstraintSolver::convertContacts(manifolds, numManifolds, info);
+    return;
+  }
+  // 1 select; Bullet's rows (and the multibody constraints' rows) for the rest
+  im.candidates.clear();
+  im.rest.clear();
+  for (int i = 0; i < numManifolds; ++i)
+    if (!im.selection.select(manifolds[i], i, double(info.m_timeStep), im.shared->stats,
+                             im.candidates)) {
+      im.selection.handBack(manifolds[i]);
+      im.rest.push_back(manifolds[i]);
+    }
+  btMultiBodyConstraintSolver::convertContacts(im.rest.data(), int(im.rest.size()), info);
+  // 2 set up
+  MultiBodyBodies bodies{
+      {m_tmpSolverBodyPool}, im.terms, im.jac, im.resp, m_data.m_deltaVelocities};
+  for (const internal::Candidate& cand : im.candidates) {
+    btPersistentManifold* m = manifolds[cand.index];
+    const btCollisionObject* objs[2] = {cand.A, cand.B};
+    const btMultiBodyLinkCollider* links[2] = {btMultiBodyLinkCollider::upcast(cand.A),
+                                               btMultiBodyLinkCollider::upcast(cand.B)};
+    int ids[2] = {-1, -1};
+    for (int s = 0; s < 2; ++s)
+      if (!links[s])
+        ids[s] = getOrInitSolverBody(*const_cast<btCollisionObject*>(objs[s]), info.m_timeStep);
+    const btSolverBody& sbA = links[0] ? im.linkBody : m_tmpSolverBodyPool[ids[0]];
+    const btSolverBody& sbB = links[1] ? im.linkBody : m_tmpSolverBodyPool[ids[1]];
+    const bool articulated = links[0] || links[1];
+    internal::ArticulatedShare share;
+    LinkTerms terms;
+    btContactSolverInfo linkInfo = info;
+    if (articulated) {
+      // (Bullet's multibody contacts put the position error into the
+      // velocity target: so does a patch on a link)
+      linkInfo.m_splitImpulse = 0;
+      const LinkArrays arrays{im.jac, im.resp, im.scratch, m_data};
+      setUpLinkSides(*cand.state, links, arrays, terms, share);
+    }
+    im.patches.emplace_back();
+    PatchConstraint& pc = im.patches.back();
+    if (!internal::makePatchConstraint(cand, *m, sbA, ids[0], sbB, ids[1],
+                                       articulated ? linkInfo : info, pc,
+                                       articulated ? &share : nullptr)) {
+      im.patches.pop_back();
+      cand.state->flat = false;  // no usable effective mass: Bullet's contact
+      im.selection.countSingular(cand, im.shared->stats);
+      im.selection.handBack(m);
+      if (articulated)
+        convertMultiBodyContact(m, info);
+      else
+        convertContact(m, info);
+      continue;
+    }
+    pc.manifold = m;
+    if (articulated) {
+      pc.articulated = int(im.terms.size());
+      im.terms.push_back(terms);
+    }
+    Vec6 lam;
+    if (internal::warmStart(cand, info, pc, lam)) bodies.apply(pc, lam);
+  }
+  // 3b share loads (S25), rigid bodies' patches
+  internal::groupSharedPatches(im.patches, m_tmpSolverBodyPool.size(), im.shareGroupOf,
+                               im.shareGroups);
+}
+
+// Stage 5, after Bullet's rows (joint limits and motors included) in each
+// iteration.
+btScalar PatchMultiBodySolver::solveSingleIteration(
+    int iteration, btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
+    int numManifolds, btTypedConstraint** constraints, int numConstraints,
+    const btContactSolverInfo& info, btIDebugDraw* debugDrawer) {
+  const btScalar residual = btMultiBodyConstraintSolver::solveSingleIteration(
+      iteration, bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info,
+      debugDrawer);
+  Impl& im = *impl_;
+  if (iteration >= info.m_numIterations || im.patches.empty()) return residual;
+  MultiBodyBodies bodiesOf{
+      {m_tmpSolverBodyPool}, im.terms, im.jac, im.resp, m_data.m_deltaVelocities};
+  internal::VisitContext<MultiBodyBodies> cx{bodiesOf, im.shared->settings, im.shared->friction,
+                                             im.shared->stats};
+  internal::PatchIteration it{im.patches, im.holds, im.shareGroups, im.shareBuf, im.retry};
+  const double worst = internal::iteratePatches(cx, it);
+  for (const LinkTerms& t : im.terms)
+    for (const LinkSide& s : t.side)
+      if (s.body) s.body->setPosUpdated(false);
+  return std::max(residual, btScalar(worst));
+}
+
+// Stage 4: the position correction of patches between solver bodies on
+// Bullet's pseudo velocities, as PatchFrictionSolver's (a patch on a link
+// has its position error in its velocity target: no push).
+void PatchMultiBodySolver::solveGroupCacheFriendlySplitImpulseIterations(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& info,
+    btIDebugDraw* debugDrawer) {
+  btMultiBodyConstraintSolver::solveGroupCacheFriendlySplitImpulseIterations(
+      bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
+  if (!info.m_splitImpulse || info.m_numIterations <= 0) return;
+  auto& pool = m_tmpSolverBodyPool;
+  for (int it = 0; it < internal::kPushIterations; ++it) {
+    for (PatchConstraint& pc : impl_->patches) {
+      if (pc.articulated >= 0 || pc.targetPush.isZero()) continue;
+      const Vec3 c = parts::patchVelocityOf(pc.a.body, pc.b.body, pc.F, pc.fb.rho,
+                                            [&](int side, Vec3& v, Vec3& w) {
+                                              const int id = side == 0 ? pc.a.id : pc.b.id;
+                                              v = internal::toEigen(pool[id].m_pushVelocity);
+                                              w = internal::toEigen(pool[id].m_turnVelocity);
+                                            })
+                         .head<3>();
+      const Vec3 lam = parts::solveNormalPosition(
+          pc.k.Winv, pc.lamPush, c, internal::softTarget(pc.targetPush, pc.compliance, pc.lamPush));
+      Vec6 d = Vec6::Zero();
+      d.head<3>() = lam - pc.lamPush;
+      pc.lamPush = lam;
+      parts::applyPatchImpulse(pc.a.body, pc.b.body, pc.F, pc.fb.rho, d,
+                               [&](int side, const Vec3& dv, const Vec3& dw) {
+                                 btSolverBody& sb = pool[side == 0 ? pc.a.id : pc.b.id];
+                                 sb.m_pushVelocity += internal::toBt(dv);
+                                 sb.m_turnVelocity += internal::toBt(dw);
+                               });
+    }
+  }
+}
+
+// Stage 6; a link side also gets the patch's force as its constraint force
+// (joint feedback), as Bullet's multibody rows give theirs.
+btScalar PatchMultiBodySolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies,
+                                                             int numBodies,
+                                                             const btContactSolverInfo& info) {
+  Impl& im = *impl_;
+  PatchSolverStats& stats = im.shared->stats;
+  stats.patches += long(im.patches.size());
+  MultiBodyBodies bodiesOf{
+      {m_tmpSolverBodyPool}, im.terms, im.jac, im.resp, m_data.m_deltaVelocities};
+  const double dt = double(info.m_timeStep);
+  for (PatchConstraint& pc : im.patches) {
+    const Vec6 c = bodiesOf.velocity(pc);
+    internal::storePatchState(pc, c, im.selection.step());
+    im.shared->reports.record(pc, c);
+    if (internal::writeManifoldImpulses(pc, *pc.manifold))
+      im.selection.markWritten(*pc.state);
+    else
+      ++stats.patchesWithoutPoints;
+    const PatchLoads l = parts::toLoads(pc.lamN);
+    if (l.Pz > 0.0 && pc.fb.mu > 0.0) {
+      const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
+      stats.maxPressureLag =
+          std::max(stats.maxPressureLag, (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
+    }
+    if (pc.articulated < 0) continue;
+    // force f at O and couple m on A (minus both on B), as forces over dt
+    const Vec3 f = pc.F * Vec3(pc.lamF[0], pc.lamF[1], pc.lamN[0]) / dt;
+    const Vec3 mo = pc.F * Vec3(pc.lamN[1], pc.lamN[2], pc.fb.rho * pc.lamF[2]) / dt;
+    const Vec3 O = internal::toEigen(pc.state->geometry.origin);
+    const LinkTerms& t = im.terms[std::size_t(pc.articulated)];
+    const btMultiBodyLinkCollider* links[2] = {btMultiBodyLinkCollider::upcast(pc.state->body),
+                                               btMultiBodyLinkCollider::upcast(pc.state->other)};
+    for (int s = 0; s < 2; ++s) {
+      if (!links[s]) continue;
+      btMultiBody* body = links[s]->m_multiBody;
+      const int link = links[s]->m_link;
+      const double sign = s == 0 ? 1.0 : -1.0;
+      const btVector3 origin =
+          link < 0 ? body->getBasePos() : body->getLink(link).m_cachedWorldTransform.getOrigin();
+      const Vec3 r = O - internal::toEigen(origin);
+      const btVector3 force = internal::toBt(sign * f);
+      const btVector3 torque = internal::toBt(sign * (mo + r.cross(f)));
+      if (link < 0) {
+        body->addBaseConstraintForce(force);
+        body->addBaseConstraintTorque(torque);
+      } else {
+        body->addLinkConstraintForce(link, force);
+        body->addLinkConstraintTorque(link, torque);
+      }
+    }
+    for (const LinkSide& s : t.side)
+      if (s.body) s.body->setCompanionId(-1);
+  }
+  im.flushBodies.clear();
+  for (const PatchConstraint& pc : im.patches)
+    if (btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(pc.state->body)))
+      im.flushBodies.push_back(body);
+  im.patches.clear();
+  im.terms.clear();
+  im.shareGroups.clear();
+  const btScalar out =
+      btMultiBodyConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, info);
+  for (btRigidBody* body : im.flushBodies) internal::flushCrumbs(*body);
+  return out;
+}
+}  // namespace patchspin::bullet

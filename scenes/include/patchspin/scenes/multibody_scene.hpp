@@ -1,0 +1,86 @@
+// MultiBodyScene: a small owning btMultiBodyDynamicsWorld with the
+// PatchMultiBodySolver or stock Bullet's btMultiBodyConstraintSolver, in the
+// precision of this build's btScalar: the multibody counterpart of Scene
+// (scene.hpp), with the same conventions (z up, no sleeping, no damping, no
+// restitution, exact inertia, margins given). Not installed.
+#pragma once
+
+#include <patchspin/bullet/patch_multibody_solver.hpp>
+#include <patchspin/scenes/scene.hpp>
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+
+#include <memory>
+#include <vector>
+
+namespace patchspin::scenes {
+
+class MultiBodyScene {
+ public:
+  // Gravity -g z [m/s^2]; `iterations` solver iterations per step; patch:
+  // PatchMultiBodySolver, else btMultiBodyConstraintSolver.
+  explicit MultiBodyScene(double g = 9.81, int iterations = 10, bool patch = true);
+  ~MultiBodyScene();
+  MultiBodyScene(const MultiBodyScene&) = delete;
+  MultiBodyScene& operator=(const MultiBodyScene&) = delete;
+
+  btMultiBodyDynamicsWorld& world() { return *world_; }
+  bool patch() const { return patch_ != nullptr; }
+  // The patch solver; throws Error in a stock scene.
+  bullet::PatchMultiBodySolver& solver();
+
+  // Static plane z = 0 (a btRigidBody), friction as Scene::addGroundPlane.
+  btRigidBody* addGroundPlane(double friction = 1.0);
+  // A rigid body: a solid box with half extents `half` [m], exact inertia.
+  btRigidBody* addBox(const btVector3& half, double mass, const btVector3& position,
+                      double friction, double margin = 1e-3);
+  // A floating-base multibody without links whose base collider is a
+  // solid cylinder along z (radius R, height H), exact inertia.
+  btMultiBody* addCylinderBase(double R, double H, double mass, const btVector3& position,
+                               double friction, double margin = 1e-3);
+  // A floating-base multibody without links whose base collider is a box.
+  btMultiBody* addBoxBase(const btVector3& half, double mass, const btVector3& position,
+                          double friction, double margin = 1e-3);
+  // A fixed-base multibody whose one link, a box with half extents `half`,
+  // slides along x on a prismatic joint (its origin at `position` for
+  // joint position 0; no collision with the base), moving at `speed` [m/s],
+  // with a velocity motor (target `speed`, at most maxForce [N]).
+  struct Prismatic {
+    btMultiBody* body = nullptr;
+    btMultiBodyJointMotor* motor = nullptr;
+  };
+  Prismatic addPrismaticBox(const btVector3& half, double mass, const btVector3& position,
+                            double friction, double speed, double maxForce, double margin = 1e-3);
+  // The collider of link `link` (-1: the base).
+  static btMultiBodyLinkCollider* collider(btMultiBody* body, int link);
+
+  // One world step of exactly dt [s] (stepSimulation(dt, 0)); the motors'
+  // impulse limits follow dt.
+  void step(double dt);
+
+ private:
+  btMultiBodyLinkCollider* addCollider(btMultiBody* body, int link,
+                                       std::unique_ptr<btCollisionShape> shape,
+                                       const btTransform& pose, double friction, bool isStatic);
+  btMultiBody* addMultiBody(std::unique_ptr<btMultiBody> body);
+  std::unique_ptr<btDefaultCollisionConfiguration> config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btBroadphaseInterface> broadphase_;
+  std::unique_ptr<btMultiBodyConstraintSolver> solver_;
+  bullet::PatchMultiBodySolver* patch_ = nullptr;  // solver_, when it is one
+  std::unique_ptr<btMultiBodyDynamicsWorld> world_;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes_;
+  std::vector<std::unique_ptr<btRigidBody>> bodies_;
+  std::vector<std::unique_ptr<btMultiBody>> multiBodies_;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
+  struct Motor {
+    std::unique_ptr<btMultiBodyJointMotor> motor;
+    double maxForce;
+  };
+  std::vector<Motor> motors_;
+};
+
+}  // namespace patchspin::scenes

@@ -1,0 +1,176 @@
+// MultiBodyScene (multibody_scene.hpp).
+#include <patchspin/scenes/inertia.hpp>
+#include <patchspin/scenes/multibody_scene.hpp>
+
+namespace patchspin::scenes {
+namespace {
+
+btTransform at(const btVector3& position) {
+  btTransform tr;
+  tr.setIdentity();
+  tr.setOrigin(position);
+  return tr;
+}
+
+}  // namespace
+
+MultiBodyScene::MultiBodyScene(double g, int iterations, bool patch)
+    : config_(std::make_unique<btDefaultCollisionConfiguration>()),
+      dispatcher_(std::make_unique<btCollisionDispatcher>(config_.get())),
+      broadphase_(std::make_unique<btDbvtBroadphase>()) {
+  if (patch) {
+    auto solver = std::make_unique<bullet::PatchMultiBodySolver>();
+    patch_ = solver.get();
+    solver_ = std::move(solver);
+  } else {
+    solver_ = std::make_unique<btMultiBodyConstraintSolver>();
+  }
+  world_ = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
+                                                      solver_.get(), config_.get());
+  world_->setGravity(bt(0, 0, -g));
+  world_->getSolverInfo().m_numIterations = iterations;
+}
+
+MultiBodyScene::~MultiBodyScene() {
+  for (Motor& m : motors_) world_->removeMultiBodyConstraint(m.motor.get());
+  for (auto& c : colliders_) world_->removeCollisionObject(c.get());
+  for (auto& b : multiBodies_) world_->removeMultiBody(b.get());
+  for (auto& b : bodies_) world_->removeRigidBody(b.get());
+}
+
+bullet::PatchMultiBodySolver& MultiBodyScene::solver() {
+  if (!patch_) throw Error("MultiBodyScene::solver: a stock scene has no patch solver");
+  return *patch_;
+}
+
+btRigidBody* MultiBodyScene::addGroundPlane(double friction) {
+  shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0));
+  btRigidBody::btRigidBodyConstructionInfo info(0, nullptr, shapes_.back().get());
+  bodies_.push_back(std::make_unique<btRigidBody>(info));
+  btRigidBody* body = bodies_.back().get();
+  body->setFriction(btScalar(friction));
+  body->setRestitution(0);
+  world_->addRigidBody(body);
+  return body;
+}
+
+btRigidBody* MultiBodyScene::addBox(const btVector3& half, double mass, const btVector3& position,
+                                    double friction, double margin) {
+  shapes_.push_back(std::make_unique<btBoxShape>(half));
+  shapes_.back()->setMargin(btScalar(margin));
+  const btVector3 inertia =
+      boxInertia(mass, 2 * double(half.x()), 2 * double(half.y()), 2 * double(half.z()));
+  btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shapes_.back().get(),
+                                                inertia);
+  info.m_startWorldTransform = at(position);
+  bodies_.push_back(std::make_unique<btRigidBody>(info));
+  btRigidBody* body = bodies_.back().get();
+  body->setFriction(btScalar(friction));
+  body->setRollingFriction(0);
+  body->setSpinningFriction(0);
+  body->setRestitution(0);
+  body->setActivationState(DISABLE_DEACTIVATION);
+  world_->addRigidBody(body);
+  return body;
+}
+
+btMultiBody* MultiBodyScene::addMultiBody(std::unique_ptr<btMultiBody> body) {
+  body->setCanSleep(false);
+  body->setLinearDamping(0);
+  body->setAngularDamping(0);
+  multiBodies_.push_back(std::move(body));
+  return multiBodies_.back().get();
+}
+
+btMultiBodyLinkCollider* MultiBodyScene::addCollider(btMultiBody* body, int link,
+                                                     std::unique_ptr<btCollisionShape> shape,
+                                                     const btTransform& pose, double friction,
+                                                     bool isStatic) {
+  colliders_.push_back(std::make_unique<btMultiBodyLinkCollider>(body, link));
+  btMultiBodyLinkCollider* c = colliders_.back().get();
+  c->setCollisionShape(shape.get());
+  shapes_.push_back(std::move(shape));
+  c->setWorldTransform(pose);
+  c->setFriction(btScalar(friction));
+  c->setRollingFriction(0);
+  c->setSpinningFriction(0);
+  c->setRestitution(0);
+  c->setActivationState(DISABLE_DEACTIVATION);
+  const int group =
+      isStatic ? int(btBroadphaseProxy::StaticFilter) : int(btBroadphaseProxy::DefaultFilter);
+  const int mask = isStatic ? int(btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter)
+                            : int(btBroadphaseProxy::AllFilter);
+  world_->addCollisionObject(c, group, mask);
+  if (link < 0)
+    body->setBaseCollider(c);
+  else
+    body->getLink(link).m_collider = c;
+  return c;
+}
+
+btMultiBody* MultiBodyScene::addCylinderBase(double R, double H, double mass,
+                                             const btVector3& position, double friction,
+                                             double margin) {
+  btMultiBody* body = addMultiBody(
+      std::make_unique<btMultiBody>(0, btScalar(mass), cylinderInertia(mass, R, H), false, false));
+  body->setBasePos(position);
+  body->setWorldToBaseRot(btQuaternion::getIdentity());
+  body->finalizeMultiDof();
+  world_->addMultiBody(body);
+  auto shape = std::make_unique<btCylinderShapeZ>(bt(R, R, H / 2));
+  shape->setMargin(btScalar(margin));
+  addCollider(body, -1, std::move(shape), at(position), friction, false);
+  return body;
+}
+
+btMultiBody* MultiBodyScene::addBoxBase(const btVector3& half, double mass,
+                                        const btVector3& position, double friction, double margin) {
+  const btVector3 inertia =
+      boxInertia(mass, 2 * double(half.x()), 2 * double(half.y()), 2 * double(half.z()));
+  btMultiBody* body =
+      addMultiBody(std::make_unique<btMultiBody>(0, btScalar(mass), inertia, false, false));
+  body->setBasePos(position);
+  body->setWorldToBaseRot(btQuaternion::getIdentity());
+  body->finalizeMultiDof();
+  world_->addMultiBody(body);
+  auto shape = std::make_unique<btBoxShape>(half);
+  shape->setMargin(btScalar(margin));
+  addCollider(body, -1, std::move(shape), at(position), friction, false);
+  return body;
+}
+
+MultiBodyScene::Prismatic MultiBodyScene::addPrismaticBox(const btVector3& half, double mass,
+                                                          const btVector3& position,
+                                                          double friction, double speed,
+                                                          double maxForce, double margin) {
+  // the base: fixed, at the link's origin, without a collider
+  btMultiBody* body =
+      addMultiBody(std::make_unique<btMultiBody>(1, btScalar(1), bt(1, 1, 1), true, false));
+  body->setBasePos(position);
+  body->setWorldToBaseRot(btQuaternion::getIdentity());
+  const btVector3 inertia =
+      boxInertia(mass, 2 * double(half.x()), 2 * double(half.y()), 2 * double(half.z()));
+  body->setupPrismatic(0, btScalar(mass), inertia, -1, btQuaternion::getIdentity(), bt(1, 0, 0),
+                       bt(0, 0, 0), bt(0, 0, 0), true);
+  body->finalizeMultiDof();
+  body->setJointVel(0, btScalar(speed));
+  world_->addMultiBody(body);
+  auto shape = std::make_unique<btBoxShape>(half);
+  shape->setMargin(btScalar(margin));
+  addCollider(body, 0, std::move(shape), at(position), friction, false);
+  auto motor = std::make_unique<btMultiBodyJointMotor>(body, 0, 0, btScalar(speed), btScalar(0));
+  world_->addMultiBodyConstraint(motor.get());
+  motors_.push_back({std::move(motor), maxForce});
+  return {body, motors_.back().motor.get()};
+}
+
+btMultiBodyLinkCollider* MultiBodyScene::collider(btMultiBody* body, int link) {
+  return link < 0 ? body->getBaseCollider() : body->getLink(link).m_collider;
+}
+
+void MultiBodyScene::step(double dt) {
+  for (Motor& m : motors_) m.motor->setMaxAppliedImpulse(btScalar(m.maxForce * dt));
+  world_->stepSimulation(btScalar(dt), 0);
+}
+
+}  // namespace patchspin::scenes
