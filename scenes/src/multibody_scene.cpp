@@ -164,6 +164,39 @@ MultiBodyScene::Prismatic MultiBodyScene::addPrismaticBox(const btVector3& half,
   return {body, motors_.back().motor.get()};
 }
 
+MultiBodyScene::Gripper MultiBodyScene::addGripper(const btVector3& pad, double fingerMass,
+                                                   double gap, double squeeze, double friction,
+                                                   double margin) {
+  constexpr double kClosing = 0.05;  // [m/s]
+  btMultiBody* body =
+      addMultiBody(std::make_unique<btMultiBody>(2, btScalar(1), bt(1, 1, 1), true, false));
+  body->setBasePos(bt(0, 0, 0));
+  body->setWorldToBaseRot(btQuaternion::getIdentity());
+  const btVector3 inertia =
+      boxInertia(fingerMass, 2 * double(pad.x()), 2 * double(pad.y()), 2 * double(pad.z()));
+  const double offset = gap + double(pad.y());
+  for (int i = 0; i < 2; ++i)
+    body->setupPrismatic(i, btScalar(fingerMass), inertia, -1, btQuaternion::getIdentity(),
+                         bt(0, 1, 0), bt(0, i == 0 ? -offset : offset, 0), bt(0, 0, 0), true);
+  body->finalizeMultiDof();
+  world_->addMultiBody(body);
+  Gripper gripper;
+  gripper.body = body;
+  for (int i = 0; i < 2; ++i) {
+    auto shape = std::make_unique<btBoxShape>(pad);
+    shape->setMargin(btScalar(margin));
+    addCollider(body, i, std::move(shape), at(bt(0, i == 0 ? -offset : offset, 0)), friction,
+                false);
+    const double closing = i == 0 ? kClosing : -kClosing;
+    auto motor =
+        std::make_unique<btMultiBodyJointMotor>(body, i, 0, btScalar(closing), btScalar(0));
+    world_->addMultiBodyConstraint(motor.get());
+    motors_.push_back({std::move(motor), squeeze});
+    gripper.motors[i] = motors_.back().motor.get();
+  }
+  return gripper;
+}
+
 btMultiBodyLinkCollider* MultiBodyScene::collider(btMultiBody* body, int link) {
   return link < 0 ? body->getBaseCollider() : body->getLink(link).m_collider;
 }

@@ -290,5 +290,89 @@ TEST(MultiBodyPatches, OptInOfALinkCollider) {
   EXPECT_FALSE(solver.isPatchFrictionEnabled(link));
 }
 
+// ---- the two-finger gripper of the issue ----------------------------------
+// A 6 cm, 1 kg cube (friction 0.5) squeezed with N = 20 N by two fingers
+// whose 4 x 4 cm pads (friction 1: mu = 0.5) are opted in; no gravity, so
+// that the pads' friction only resists the twist tau about the grasp axis
+// y. The pad lies within the cube face's inscribed circle at any turn, so
+// each patch is the pad's square, under uniform pressure (no moment of the
+// normal load about the grasp axis): it holds while tau < 2 mu N dbar and
+// slips at the friction torque mu N dbar per pad above, dbar the mean
+// distance of the square from its centre.
+constexpr double kCubeHalf = 0.03, kCubeMass = 1.0, kSqueeze = 20.0, kPadHalf = 0.02;
+constexpr double kGripMu = 0.5;
+
+// dbar of a square of side 2 h by the midpoint rule on 400 x 400 cells
+// (error ~1e-6 relative: the integrand is smooth but at the centre).
+double meanDistanceOfSquare(double h) {
+  constexpr int kN = 400;
+  double sum = 0.0;
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) sum += std::hypot((i + 0.5) / kN * 2 - 1, (j + 0.5) / kN * 2 - 1);
+  return h * sum / (double(kN) * kN);
+}
+
+struct GripRun {
+  double rotation = 0.0;  // cube's turn over the twist, folded into [0, pi] [rad]
+  double torque = 0.0;    // friction torque per pad, tau - J alpha over the window, / 2 [N m]
+  int reports = 0;        // patches reported at the end
+};
+
+// Settles the grasp for 0.25 s, then twists for `seconds`; alpha from the
+// spin at 0.1 s and at the end of the twist.
+GripRun runGripper(bool patch, double tau, double seconds) {
+  MultiBodyScene scene(0.0, 10, patch);
+  const btVector3 pad = bt(kPadHalf, 0.01, kPadHalf);
+  // the fingers start 1 mm off the cube and close on it
+  const MultiBodyScene::Gripper gripper =
+      scene.addGripper(pad, 0.1, kCubeHalf + 1e-3, kSqueeze, 1.0);
+  const btVector3 half = bt(kCubeHalf, kCubeHalf, kCubeHalf);
+  btRigidBody* cube = scene.addBox(half, kCubeMass, bt(0, 0, 0), kGripMu);
+  if (patch)
+    for (int i = 0; i < 2; ++i)
+      scene.solver().enablePatchFriction(MultiBodyScene::collider(gripper.body, i), {Model::Exact});
+  for (int k = 0; k < int(0.25 / kDt); ++k) scene.step(kDt);
+  const btQuaternion q0 = cube->getWorldTransform().getRotation();
+  const double J = kCubeMass * (2 * kCubeHalf) * (2 * kCubeHalf) / 6.0;
+  const int k0 = int(std::lround(0.1 / kDt)), k1 = int(std::lround(seconds / kDt));
+  double w0 = 0.0;
+  for (int k = 1; k <= k1; ++k) {
+    cube->applyTorque(bt(0, tau, 0));
+    scene.step(kDt);
+    if (k == k0) w0 = double(cube->getAngularVelocity().y());
+  }
+  const double w1 = double(cube->getAngularVelocity().y());
+  GripRun run;
+  run.rotation = double((cube->getWorldTransform().getRotation() * q0.inverse()).getAngle());
+  run.rotation = std::min(run.rotation, 2 * M_PI - run.rotation);
+  run.torque = 0.5 * (tau - J * (w1 - w0) / ((k1 - k0) * kDt));
+  if (patch) run.reports = int(scene.solver().patchReports().size());
+  return run;
+}
+
+TEST(MultiBodyPatches, GripperHoldsBelowTheTwistLimitAndSlipsAtItAbove) {
+  const double dbar = meanDistanceOfSquare(kPadHalf);
+  // (closed form of dbar: h (sqrt 2 + asinh 1) / 3, to the quadrature's 1e-5)
+  EXPECT_NEAR(dbar, kPadHalf * (std::sqrt(2.0) + std::asinh(1.0)) / 3.0, 1e-5 * kPadHalf);
+  const double limit = kGripMu * kSqueeze * dbar;           // per pad
+  const GripRun hold = runGripper(true, limit, 2.0);        // half the grasp's limit
+  const GripRun slip = runGripper(true, 2.5 * limit, 0.4);  // 1.25 x the grasp's limit
+  const GripRun stockHold = runGripper(false, limit, 2.0);
+  const GripRun stockSlip = runGripper(false, 2.5 * limit, 0.4);
+  std::printf(
+      "[gripper, %s] limit per pad mu N dbar = %.5f N m; tau = %.4f N m: patch turns %.2e rad "
+      "in 2 s (stock %.2e rad); tau = %.4f N m: patch friction torque per pad %.5f N m "
+      "(%.3f %% off; turned %.3f rad in 0.4 s), stock %.5f N m\n",
+      kDouble ? "double" : "float", limit, limit, hold.rotation, stockHold.rotation, 2.5 * limit,
+      slip.torque, 100.0 * (slip.torque / limit - 1.0), slip.rotation, stockSlip.torque);
+  EXPECT_EQ(hold.reports, 2);
+  EXPECT_LT(hold.rotation, 1e-4);  // the issue's bound
+  EXPECT_EQ(slip.reports, 2);
+  EXPECT_NEAR(slip.torque, limit, 0.02 * limit);  // the issue's 2 %
+  // (it slipped: (tau - 2 mu N dbar) / J over 0.4 s turns it by ~10 rad,
+  // which rotation folds into [0, pi])
+  EXPECT_GT(slip.rotation, 0.1);
+}
+
 }  // namespace
 }  // namespace patchspin::bullet
