@@ -197,6 +197,28 @@ MultiBodyScene::Gripper MultiBodyScene::addGripper(const btVector3& pad, double 
   return gripper;
 }
 
+btMultiBody* MultiBodyScene::addLeg(const btVector3& foot, double footMass, const btVector3& shin,
+                                    double shinMass, const btVector3& footCentre, double friction,
+                                    double margin) {
+  const double rise = double(foot.z() + shin.z());
+  const btVector3 shinInertia =
+      boxInertia(shinMass, 2 * double(shin.x()), 2 * double(shin.y()), 2 * double(shin.z()));
+  btMultiBody* body =
+      addMultiBody(std::make_unique<btMultiBody>(1, btScalar(shinMass), shinInertia, false, false));
+  body->setBasePos(footCentre + bt(0, 0, rise));
+  body->setWorldToBaseRot(btQuaternion::getIdentity());
+  const btVector3 footInertia =
+      boxInertia(footMass, 2 * double(foot.x()), 2 * double(foot.y()), 2 * double(foot.z()));
+  body->setupFixed(0, btScalar(footMass), footInertia, -1, btQuaternion::getIdentity(),
+                   bt(0, 0, -rise), bt(0, 0, 0));
+  body->finalizeMultiDof();
+  world_->addMultiBody(body);
+  auto shape = std::make_unique<btBoxShape>(foot);
+  shape->setMargin(btScalar(margin));
+  addCollider(body, 0, std::move(shape), at(footCentre), friction, false);
+  return body;
+}
+
 btMultiBodyLinkCollider* MultiBodyScene::collider(btMultiBody* body, int link) {
   return link < 0 ? body->getBaseCollider() : body->getLink(link).m_collider;
 }

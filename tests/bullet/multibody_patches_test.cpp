@@ -374,5 +374,79 @@ TEST(MultiBodyPatches, GripperHoldsBelowTheTwistLimitAndSlipsAtItAbove) {
   EXPECT_GT(slip.rotation, 0.1);
 }
 
+// ---- a flat foot ----------------------------------------------------------
+// A leg (a 2 kg shin on a 1 kg foot link of 16 x 8 cm, fixed to it) stands
+// on the ground (mu = 0.6), its weight straight over the sole's centre:
+// uniform pressure, so under a yaw torque tau the foot holds while
+// tau < mu M g dbar and spins with the friction torque mu M g dbar above
+// (dbar of the sole's rectangle by quadrature).
+constexpr double kFootMu = 0.6, kFootMass = 1.0, kShinMass = 2.0;
+const btVector3 kFootHalf(btScalar(0.08), btScalar(0.04), btScalar(0.01));
+const btVector3 kShinHalf(btScalar(0.03), btScalar(0.03), btScalar(0.1));
+
+// dbar of the rectangle [-a, a] x [-b, b] by the midpoint rule (800 x 400).
+double meanDistanceOfRectangle(double a, double b) {
+  constexpr int kN = 400;
+  double sum = 0.0;
+  for (int i = 0; i < 2 * kN; ++i)
+    for (int j = 0; j < kN; ++j)
+      sum += std::hypot(((i + 0.5) / (2 * kN) * 2 - 1) * a, ((j + 0.5) / kN * 2 - 1) * b);
+  return sum / (2.0 * kN * kN);
+}
+
+struct FootRun {
+  double rotation = 0.0;  // yaw turn over the torque, folded into [0, pi] [rad]
+  double torque = 0.0;    // friction torque, tau - J alpha [N m]
+  bool patch = false;     // the foot has a patch at the end
+};
+
+FootRun runFoot(bool patch, double tau, double seconds) {
+  MultiBodyScene scene(kG, 10, patch);
+  scene.addGroundPlane(1.0);
+  btMultiBody* leg = scene.addLeg(kFootHalf, kFootMass, kShinHalf, kShinMass,
+                                  bt(0, 0, double(kFootHalf.z())), kFootMu);
+  btMultiBodyLinkCollider* foot = MultiBodyScene::collider(leg, 0);
+  if (patch) scene.solver().enablePatchFriction(foot, {Model::Exact});
+  for (int k = 0; k < int(0.25 / kDt); ++k) scene.step(kDt);
+  const btQuaternion q0 = leg->getWorldToBaseRot();
+  auto izz = [](double m, const btVector3& h) {
+    return m * 4.0 * double(h.x() * h.x() + h.y() * h.y()) / 12.0;
+  };
+  const double J = izz(kFootMass, kFootHalf) + izz(kShinMass, kShinHalf);
+  const int k0 = int(std::lround(0.1 / kDt)), k1 = int(std::lround(seconds / kDt));
+  double w0 = 0.0;
+  for (int k = 1; k <= k1; ++k) {
+    leg->addLinkTorque(0, bt(0, 0, tau));
+    scene.step(kDt);
+    if (k == k0) w0 = double(leg->getBaseOmega().z());
+  }
+  FootRun run;
+  run.rotation = double((leg->getWorldToBaseRot() * q0.inverse()).getAngle());
+  run.rotation = std::min(run.rotation, 2 * M_PI - run.rotation);
+  run.torque = tau - J * (double(leg->getBaseOmega().z()) - w0) / ((k1 - k0) * kDt);
+  if (patch) run.patch = scene.solver().findPatchReport(foot) != nullptr;
+  return run;
+}
+
+// Below the limit: the 1e-4 rad over 2 s; above, the friction
+// torque within 2 % (the gripper tolerance).
+TEST(MultiBodyPatches, FlatFootDoesNotSpinBelowItsYawLimit) {
+  const double limit = kFootMu * (kFootMass + kShinMass) * kG *
+                       meanDistanceOfRectangle(double(kFootHalf.x()), double(kFootHalf.y()));
+  const FootRun hold = runFoot(true, 0.8 * limit, 2.0);
+  const FootRun spin = runFoot(true, 1.25 * limit, 0.4);
+  const FootRun stockHold = runFoot(false, 0.8 * limit, 2.0);
+  std::printf(
+      "[foot, %s] yaw limit mu M g dbar = %.5f N m; at 0.8 x: patch turns %.2e rad in 2 s "
+      "(stock %.2e rad); at 1.25 x: friction torque %.5f N m (%.3f %% off; turned %.3f rad)\n",
+      kDouble ? "double" : "float", limit, hold.rotation, stockHold.rotation, spin.torque,
+      100.0 * (spin.torque / limit - 1.0), spin.rotation);
+  EXPECT_TRUE(hold.patch);
+  EXPECT_LT(hold.rotation, 1e-4);
+  EXPECT_TRUE(spin.patch);
+  EXPECT_NEAR(spin.torque, limit, 0.02 * limit);
+  EXPECT_GT(spin.rotation, 0.1);
+}
+
 }  // namespace
 }  // namespace patchspin::bullet

@@ -24,7 +24,9 @@
 // plain Gauss-Seidel (no support held, PatchSolverStats::stackHolds 0) and
 // a link's several patches do not share their loads (S25); stacks and
 // load sharing of rigid bodies are as in PatchFrictionSolver only where no
-// link takes part.
+// link takes part. A link's patch on an empty manifold (Bullet's points
+// dropped) is kept within the contact-breaking distance only, not also
+// the distance the link closes in the step (its speed is not looked up).
 #pragma once
 
 #include <patchspin/bullet/patch_friction_solver.hpp>

@@ -66,6 +66,12 @@ class MultiBodyScene {
   };
   Gripper addGripper(const btVector3& pad, double fingerMass, double gap, double squeeze,
                      double friction, double margin = 1e-3);
+  // A short leg: a floating base, a box `shin` (no collider), and fixed
+  // below it link 0, the foot, a box with half extents `foot`, its centre
+  // at `footCentre`, the shin's centre straight above it.
+  btMultiBody* addLeg(const btVector3& foot, double footMass, const btVector3& shin,
+                      double shinMass, const btVector3& footCentre, double friction,
+                      double margin = 1e-3);
   // The collider of link `link` (-1: the base).
   static btMultiBodyLinkCollider* collider(btMultiBody* body, int link);
 
