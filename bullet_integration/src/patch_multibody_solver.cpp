@@ -2,17 +2,11 @@
 // patches, whose sides may be Featherstone links. The stages are those of
 // patch_friction_solver.cpp (1 select, 2 set up, 4 push, 5 iterate,
 // 6 store; no stage 3 stack holds yet), with the patch visits of
-// patch_visit.hpp; what is new is how a link side reads and moves:
-//   DOF velocity   c = J (qdot0 + dqdot)      J: the 6 DOFs' rows of (S1)
-//                                            per link side, A's + and B's -
-//   impulse d      dqdot += M^-1 J^T d       (Bullet's m_deltaVelocities,
-//                                            and the multibody's own deltaV)
-//   effective mass K6 += J M^-1 J^T          (S2)
-// with qdot0 the multibody's velocity vector at the set-up (Bullet changes
-// it only after the solve) and dqdot the solve's change, which Bullet's
-// multibody rows read and write too (MultiBodyPatches.* guard it).
+// patch_visit.hpp; a side on a link reads and moves through its Jacobian
+// (link_sides.hpp).
 #include <patchspin/bullet/patch_multibody_solver.hpp>
 
+#include "link_sides.hpp"
 #include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
 #include "patch_reports.hpp"
@@ -27,159 +21,13 @@
 
 namespace patchspin::bullet {
 
+using internal::LinkArrays;
+using internal::LinkSide;
+using internal::LinkTerms;
+using internal::MultiBodyBodies;
 using internal::PatchConstraint;
 using parts::Mat6;
 using parts::Vec6;
-
-namespace {
-
-// One side of a patch on a Featherstone link: the 6 rows of J (signed) and
-// their responses M^-1 J^T, n = 6 + dofs numbers each, at `offset` in the
-// island's jac / resp.
-struct LinkSide {
-  btMultiBody* body = nullptr;  // null: no link on this side
-  int link = -1;                // -1: the base
-  int velocity = -1;  // the multibody's companion id: its dqdot in m_data.m_deltaVelocities
-  int n = 0;
-  std::size_t offset = 0;
-  double sign = 1.0;  // +1 A, -1 B (both: the rows are J_A - J_B, on side 0)
-};
-struct LinkTerms {
-  LinkSide side[2];
-  Vec6 c0 = Vec6::Zero();  // J qdot0
-};
-
-// The Bodies of patch_visit.hpp: solver bodies (SolverBodies) plus links.
-struct MultiBodyBodies {
-  internal::SolverBodies rigid;
-  const std::vector<LinkTerms>& terms;
-  const std::vector<btScalar>& jac;
-  const std::vector<btScalar>& resp;
-  btAlignedObjectArray<btScalar>& dqdot;
-
-  Vec6 velocity(const PatchConstraint& pc) const {
-    Vec6 c = rigid.velocity(pc);
-    if (pc.articulated < 0) return c;
-    const LinkTerms& t = terms[std::size_t(pc.articulated)];
-    c += t.c0;
-    for (const LinkSide& s : t.side) {
-      if (!s.body) continue;
-      const btScalar* v = &dqdot[s.velocity];
-      for (int i = 0; i < 6; ++i) {
-        const btScalar* J = &jac[s.offset + std::size_t(i * s.n)];
-        double sum = 0.0;
-        for (int k = 0; k < s.n; ++k) sum += double(J[k]) * double(v[k]);
-        c[i] += sum;
-      }
-    }
-    return c;
-  }
-  void apply(const PatchConstraint& pc, const Vec6& d) {
-    rigid.apply(pc, d);
-    if (pc.articulated < 0) return;
-    for (const LinkSide& s : terms[std::size_t(pc.articulated)].side) {
-      if (!s.body) continue;
-      btScalar* v = &dqdot[s.velocity];
-      for (int i = 0; i < 6; ++i) {
-        if (d[i] == 0.0) continue;
-        const btScalar* r = &resp[s.offset + std::size_t(i * s.n)];
-        const btScalar x = internal::flushed(d[i]);
-        for (int k = 0; k < s.n; ++k) v[k] += r[k] * x;
-        s.body->applyDeltaVeeMultiDof2(r, x);
-      }
-    }
-  }
-  // (a link's dqdot is not snapshot: its patches are visited every time)
-  static bool settles(const PatchConstraint& pc) { return pc.articulated < 0; }
-  void snapshot(const PatchConstraint& pc, btVector3* out) const { rigid.snapshot(pc, out); }
-};
-
-// The island's rows of the link sides, and Bullet's data they use.
-struct LinkArrays {
-  std::vector<btScalar>& jac;
-  std::vector<btScalar>& resp;
-  std::vector<btScalar>& scratch;
-  btMultiBodyJacobianData& data;
-};
-
-// Fills the 6 rows of J for one link at O, `sign` times (S1), into `out`.
-void fillLinkRows(const btMultiBodyLinkCollider& c, const Mat3& F, const Vec3& O, double rho,
-                  double sign, btMultiBodyJacobianData& data, btScalar* out) {
-  const btMultiBody& body = *c.m_multiBody;
-  const int n = body.getNumDofs() + 6;
-  const btVector3 o = internal::toBt(O);
-  const btVector3 ex = internal::toBt(sign * F.col(0)), ey = internal::toBt(sign * F.col(1));
-  const btVector3 nz = internal::toBt(sign * F.col(2)),
-                  spin = internal::toBt(sign * rho * F.col(2));
-  const btVector3 zero(0, 0, 0);
-  // rows: n.u(O), ex.omega, ey.omega, ex.u(O), ey.u(O), rho n.omega
-  const btVector3 ang[6] = {zero, ex, ey, zero, zero, spin};
-  const btVector3 lin[6] = {nz, zero, zero, ex, ey, zero};
-  for (int i = 0; i < 6; ++i)
-    body.fillConstraintJacobianMultiDof(c.m_link, o, ang[i], lin[i], out + i * n, data.scratch_r,
-                                        data.scratch_v, data.scratch_m);
-}
-
-// The link sides of a patch (state st; links[s] null: no link on side s):
-// J, M^-1 J^T, J qdot0 and K6's share J M^-1 J^T, and each multibody's
-// place in Bullet's delta velocities (given one if it has none yet, as
-// Bullet's multibody contacts do). Two links of one multibody make one
-// side, J_A - J_B.
-void setUpLinkSides(const internal::PatchState& st, const btMultiBodyLinkCollider* const links[2],
-                    const LinkArrays& arrays, LinkTerms& terms, internal::ArticulatedShare& share) {
-  Mat3 F;
-  Vec3 O;
-  internal::patchFrameOf(st, F, O);
-  const double rho = st.friction->rho();
-  const bool same = links[0] && links[1] && links[0]->m_multiBody == links[1]->m_multiBody;
-  for (int s = 0; s < 2; ++s) {
-    if (!links[s] || (same && s == 1)) continue;
-    btMultiBody* body = links[s]->m_multiBody;
-    LinkSide& side = terms.side[s];
-    side.body = body;
-    side.link = links[s]->m_link;
-    side.n = body->getNumDofs() + 6;
-    side.sign = s == 0 ? 1.0 : -1.0;
-    const std::size_t rows = std::size_t(6 * side.n);
-    side.offset = arrays.jac.size();
-    arrays.jac.resize(side.offset + rows);
-    arrays.resp.resize(side.offset + rows);
-    btScalar* J = &arrays.jac[side.offset];
-    fillLinkRows(*links[s], F, O, rho, side.sign, arrays.data, J);
-    if (same) {
-      arrays.scratch.resize(rows);
-      fillLinkRows(*links[1], F, O, rho, -1.0, arrays.data, arrays.scratch.data());
-      for (std::size_t k = 0; k < rows; ++k) J[k] += arrays.scratch[k];
-    }
-    btScalar* R = &arrays.resp[side.offset];
-    for (int i = 0; i < 6; ++i)
-      body->calcAccelerationDeltasMultiDof(J + i * side.n, R + i * side.n, arrays.data.scratch_r,
-                                           arrays.data.scratch_v);
-    const btScalar* qdot = body->getVelocityVector();
-    for (int i = 0; i < 6; ++i) {
-      double c = 0.0;
-      for (int k = 0; k < side.n; ++k) c += double(J[i * side.n + k]) * double(qdot[k]);
-      terms.c0[i] += c;
-      for (int j = 0; j < 6; ++j) {
-        double kij = 0.0;
-        for (int k = 0; k < side.n; ++k)
-          kij += double(J[i * side.n + k]) * double(R[j * side.n + k]);
-        share.K6(i, j) += kij;
-      }
-    }
-    side.velocity = body->getCompanionId();
-    if (side.velocity < 0) {
-      side.velocity = arrays.data.m_deltaVelocities.size();
-      body->setCompanionId(side.velocity);
-      arrays.data.m_deltaVelocities.resize(side.velocity + side.n);
-    }
-  }
-  // (J M^-1 J^T is symmetric: its round-off is not)
-  share.K6 = 0.5 * (share.K6 + share.K6.transpose()).eval();
-  share.before = terms.c0;
-}
-
-}  // namespace
 
 struct PatchMultiBodySolver::Impl {
   Impl() : shared(std::make_shared<internal::PatchSolverShared>()), selection(shared->selection) {

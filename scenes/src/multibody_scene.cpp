@@ -54,14 +54,11 @@ btRigidBody* MultiBodyScene::addGroundPlane(double friction) {
   return body;
 }
 
-btRigidBody* MultiBodyScene::addBox(const btVector3& half, double mass, const btVector3& position,
-                                    double friction, double margin) {
-  shapes_.push_back(std::make_unique<btBoxShape>(half));
-  shapes_.back()->setMargin(btScalar(margin));
-  const btVector3 inertia =
-      boxInertia(mass, 2 * double(half.x()), 2 * double(half.y()), 2 * double(half.z()));
-  btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shapes_.back().get(),
-                                                inertia);
+btRigidBody* MultiBodyScene::addRigid(std::unique_ptr<btCollisionShape> shape, double mass,
+                                      const btVector3& inertia, const btVector3& position,
+                                      double friction) {
+  btRigidBody::btRigidBodyConstructionInfo info(btScalar(mass), nullptr, shape.get(), inertia);
+  shapes_.push_back(std::move(shape));
   info.m_startWorldTransform = at(position);
   bodies_.push_back(std::make_unique<btRigidBody>(info));
   btRigidBody* body = bodies_.back().get();
@@ -72,6 +69,23 @@ btRigidBody* MultiBodyScene::addBox(const btVector3& half, double mass, const bt
   body->setActivationState(DISABLE_DEACTIVATION);
   world_->addRigidBody(body);
   return body;
+}
+
+btRigidBody* MultiBodyScene::addBox(const btVector3& half, double mass, const btVector3& position,
+                                    double friction, double margin) {
+  auto shape = std::make_unique<btBoxShape>(half);
+  shape->setMargin(btScalar(margin));
+  return addRigid(
+      std::move(shape), mass,
+      boxInertia(mass, 2 * double(half.x()), 2 * double(half.y()), 2 * double(half.z())), position,
+      friction);
+}
+
+btRigidBody* MultiBodyScene::addCylinder(double R, double H, double mass, const btVector3& position,
+                                         double friction, double margin) {
+  auto shape = std::make_unique<btCylinderShapeZ>(bt(R, R, H / 2));
+  shape->setMargin(btScalar(margin));
+  return addRigid(std::move(shape), mass, cylinderInertia(mass, R, H), position, friction);
 }
 
 btMultiBody* MultiBodyScene::addMultiBody(std::unique_ptr<btMultiBody> body) {

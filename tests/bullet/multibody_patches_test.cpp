@@ -104,6 +104,23 @@ CoinRun rigidCoin(double eps, bool patch) {
                  });
 }
 
+// The rigid coin in a multibody world (PatchMultiBodySolver's patches
+// between solver bodies).
+CoinRun rigidCoinAmongLinks(double eps) {
+  MultiBodyScene scene(kG, 10, true);
+  scene.addGroundPlane(1.0);
+  btRigidBody* coin = scene.addCylinder(kR, kH, kMass, bt(0, 0, kH / 2), kMu);
+  scene.solver().enablePatchFriction(coin, {Model::Exact});
+  coin->setLinearVelocity(bt(eps * kR * kOmega0, 0, 0));
+  coin->setAngularVelocity(bt(0, 0, kOmega0));
+  return runCoin([&] { scene.step(kDt); },
+                 [&](double& v, double& w) {
+                   const btVector3 u = coin->getLinearVelocity();
+                   v = std::hypot(double(u.x()), double(u.y()));
+                   w = double(coin->getAngularVelocity().z());
+                 });
+}
+
 CoinRun multiBodyCoin(double eps, bool patch) {
   MultiBodyScene scene(kG, 10, patch);
   scene.addGroundPlane(1.0);
@@ -126,6 +143,21 @@ TEST(MultiBodyPatches, DiskOracleIsTheLiteraturesLimit) {
   const DiskLimit d = diskLimit();
   EXPECT_NEAR(d.eps, 0.6530, 5e-4);
   EXPECT_NEAR(d.stopCoefficient, 1.0600, 5e-4);
+}
+
+// A rigid coin in a multibody world moves as in an ordinary one: the same
+// patch, Bullet's rows around it built by btMultiBodyConstraintSolver.
+// (Same steps, same tolerance as below.)
+TEST(MultiBodyPatches, RigidCoinAmongLinksStopsAsInAnOrdinaryWorld) {
+  const DiskLimit d = diskLimit();
+  const CoinRun among = rigidCoinAmongLinks(d.eps);
+  const CoinRun rb = rigidCoin(d.eps, true);
+  std::printf("[rigid coin, %s] multibody world t_stop %.4f s eps %.4f; ordinary %.4f s eps %.4f\n",
+              kDouble ? "double" : "float", among.tStop, among.eps, rb.tStop, rb.eps);
+  ASSERT_TRUE(among.stopped);
+  ASSERT_TRUE(rb.stopped);
+  EXPECT_NEAR(among.tStop, rb.tStop, 0.02 * rb.tStop);
+  EXPECT_NEAR(among.eps, rb.eps, 0.03);
 }
 
 // A floating-base multibody coin (no links, its base collider a cylinder)

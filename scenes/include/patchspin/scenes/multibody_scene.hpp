@@ -37,6 +37,10 @@ class MultiBodyScene {
   // A rigid body: a solid box with half extents `half` [m], exact inertia.
   btRigidBody* addBox(const btVector3& half, double mass, const btVector3& position,
                       double friction, double margin = 1e-3);
+  // A rigid body: a solid cylinder along z (radius R, height H), exact
+  // inertia.
+  btRigidBody* addCylinder(double R, double H, double mass, const btVector3& position,
+                           double friction, double margin = 1e-3);
   // A floating-base multibody without links whose base collider is a
   // solid cylinder along z (radius R, height H), exact inertia.
   btMultiBody* addCylinderBase(double R, double H, double mass, const btVector3& position,
@@ -80,6 +84,8 @@ class MultiBodyScene {
   void step(double dt);
 
  private:
+  btRigidBody* addRigid(std::unique_ptr<btCollisionShape> shape, double mass,
+                        const btVector3& inertia, const btVector3& position, double friction);
   btMultiBodyLinkCollider* addCollider(btMultiBody* body, int link,
                                        std::unique_ptr<btCollisionShape> shape,
                                        const btTransform& pose, double friction, bool isStatic);
