@@ -1,7 +1,7 @@
 // PatchMultiBodySolver: btMultiBodyConstraintSolver with PatchFrictionSolver's
 // patches, whose sides may be Featherstone links. The stages are those of
-// patch_friction_solver.cpp (1 select, 2 set up, 4 push, 5 iterate,
-// 6 store; no stage 3 stack holds yet), with the patch visits of
+// patch_friction_solver.cpp (1 select, 2 set up, 3 link stacks, of rigid
+// bodies only, 4 push, 5 iterate, 6 store), with the patch visits of
 // patch_visit.hpp; a side on a link reads and moves through its Jacobian
 // (link_sides.hpp).
 #include <patchspin/bullet/patch_multibody_solver.hpp>
@@ -44,7 +44,11 @@ struct PatchMultiBodySolver::Impl {
   std::vector<PatchConstraint> patches;
   std::vector<LinkTerms> terms;  // of the patches with a link side
   std::vector<btScalar> jac, resp, scratch;
-  std::vector<parts::StackHold> holds;  // (empty: no stack holds on this solver yet)
+  std::vector<parts::StackHold> holds;            // of the island's stacked patches (stage 3)
+  std::vector<parts::StackPatchView> stackViews;  // scratch of stage 3
+  std::vector<parts::StackLinks> stackLinks;      // scratch of stage 3
+  std::vector<int> stackIndex;                    // stage 3: view -> patch index
+  std::vector<char> otherRows;  // by solver body id: in one of Bullet's rows or a link's patch
   std::vector<std::vector<int>> shareGroups;
   std::vector<parts::SharedPatch> shareBuf;
   std::vector<int> shareGroupOf;
@@ -143,6 +147,7 @@ void PatchMultiBodySolver::convertContacts(btPersistentManifold** manifolds, int
   im.jac.clear();
   im.resp.clear();
   im.shareGroups.clear();
+  im.holds.clear();
   if (!im.selection.optIns().any()) {
     btMultiBodyConstraintSolver::convertContacts(manifolds, numManifolds, info);
     return;
@@ -205,9 +210,70 @@ void PatchMultiBodySolver::convertContacts(btPersistentManifold** manifolds, int
     Vec6 lam;
     if (internal::warmStart(cand, info, pc, lam)) bodies.apply(pc, lam);
   }
+  // 3 link stacks, among the patches between solver bodies
+  if (im.shared->settings.supportedStacks &&
+      std::any_of(im.patches.begin(), im.patches.end(), [](const PatchConstraint& pc) {
+        return pc.articulated < 0 && pc.b.body.dynamic;
+      }))
+    linkRigidStacks(im);
   // 3b share loads (S25), rigid bodies' patches
   internal::groupSharedPatches(im.patches, m_tmpSolverBodyPool.size(), im.shareGroupOf,
                                im.shareGroups);
+}
+
+// Stage 3 for the patches between solver bodies, as PatchFrictionSolver's:
+// a body in one of Bullet's rows (rigid or multibody) or on a link's patch
+// is in "other rows" (its support's share would not be projected onto
+// them).
+void PatchMultiBodySolver::linkRigidStacks(Impl& im) {
+  im.otherRows.assign(std::size_t(m_tmpSolverBodyPool.size()), 0);
+  auto mark = [&](int id) {
+    if (id >= 0) im.otherRows[std::size_t(id)] = 1;
+  };
+  for (const btConstraintArray* pool :
+       {&m_tmpSolverContactConstraintPool, &m_tmpSolverNonContactConstraintPool})
+    for (int i = 0; i < pool->size(); ++i) {
+      mark((*pool)[i].m_solverBodyIdA);
+      mark((*pool)[i].m_solverBodyIdB);
+    }
+  for (const btMultiBodyConstraintArray* rows :
+       {&m_multiBodyNormalContactConstraints, &m_multiBodyNonContactConstraints})
+    for (int i = 0; i < rows->size(); ++i) {
+      mark((*rows)[i].m_solverBodyIdA);
+      mark((*rows)[i].m_solverBodyIdB);
+    }
+  im.stackViews.clear();
+  im.stackIndex.clear();
+  for (std::size_t i = 0; i < im.patches.size(); ++i) {
+    const PatchConstraint& pc = im.patches[i];
+    if (pc.articulated >= 0) {
+      mark(pc.a.id);
+      mark(pc.b.id);
+      continue;
+    }
+    im.stackIndex.push_back(int(i));
+    im.stackViews.push_back({pc.a.id, pc.b.id, &pc.a.body, &pc.b.body, &pc.F, pc.fb.rho});
+  }
+  parts::linkStackedPatches(im.stackViews, m_tmpSolverBodyPool.size(), im.otherRows, im.stackLinks,
+                            im.holds);
+  auto patchOf = [&](int view) { return view < 0 ? -1 : im.stackIndex[std::size_t(view)]; };
+  // a soft patch is solved on its own (as in PatchFrictionSolver)
+  for (std::size_t v = 0; v < im.stackLinks.size(); ++v) {
+    parts::StackLinks& l = im.stackLinks[v];
+    if (l.support < 0) continue;
+    parts::StackLinks& sl = im.stackLinks[std::size_t(l.support)];
+    if (im.patches[std::size_t(patchOf(int(v)))].compliance == 0.0 &&
+        im.patches[std::size_t(patchOf(l.support))].compliance == 0.0)
+      continue;
+    if (sl.load == int(v)) sl.load = sl.loadHold = -1;
+    l.support = l.hold = -1;
+  }
+  for (std::size_t v = 0; v < im.stackLinks.size(); ++v) {
+    parts::StackLinks l = im.stackLinks[v];
+    l.support = patchOf(l.support);
+    l.load = patchOf(l.load);
+    im.patches[std::size_t(im.stackIndex[v])].stack = l;
+  }
 }
 
 // Stage 5, after Bullet's rows (joint limits and motors included) in each
@@ -281,6 +347,7 @@ btScalar PatchMultiBodySolver::solveGroupCacheFriendlyFinish(btCollisionObject**
       {m_tmpSolverBodyPool}, im.terms, im.jac, im.resp, m_data.m_deltaVelocities};
   const double dt = double(info.m_timeStep);
   for (PatchConstraint& pc : im.patches) {
+    stats.stackHolds += pc.stack.hold >= 0 || pc.stack.loadHold >= 0;
     const Vec6 c = bodiesOf.velocity(pc);
     internal::storePatchState(pc, c, im.selection.step());
     im.shared->reports.record(pc, c);

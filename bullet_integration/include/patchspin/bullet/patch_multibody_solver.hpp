@@ -19,12 +19,11 @@
 // velocity target for a patch on a link (Bullet's multibody contacts have
 // no split impulse), the split-impulse push for one between rigid bodies.
 //
-// Not (yet) done for patches on links, which Bullet's rows then treat as
-// PatchFrictionSolver treats them otherwise: stacked patches are solved by
-// plain Gauss-Seidel (no support held, PatchSolverStats::stackHolds 0) and
-// a link's several patches do not share their loads (S25); stacks and
-// load sharing of rigid bodies are as in PatchFrictionSolver only where no
-// link takes part. A link's patch on an empty manifold (Bullet's points
+// Not (yet) done on links: a patch on a link, or on a body that stands on
+// a link's patch, is solved without stack holds (plain Gauss-Seidel with
+// its support, as Bullet's own rows; stacks of rigid bodies get
+// PatchFrictionSolver's holds), and a link's several patches do not share
+// their loads (S25). A link's patch on an empty manifold (Bullet's points
 // dropped) is kept within the contact-breaking distance only, not also
 // the distance the link closes in the step (its speed is not looked up).
 #pragma once
@@ -63,7 +62,7 @@ class PatchMultiBodySolver : public btMultiBodyConstraintSolver {
 
   void setSettings(const PatchSolverSettings& settings);
   const PatchSolverSettings& settings() const;
-  // Last step; PatchSolverStats::stackHolds counts rigid stacks only.
+  // Last step.
   const PatchSolverStats& stats() const;
   // As PatchFrictionSolver's (lifetime included); `body` is the opted-in
   // link collider or rigid body.
@@ -99,6 +98,7 @@ class PatchMultiBodySolver : public btMultiBodyConstraintSolver {
 
  private:
   struct Impl;
+  void linkRigidStacks(Impl& im);
   std::unique_ptr<Impl> impl_;
 };
 
