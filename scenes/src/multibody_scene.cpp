@@ -233,6 +233,48 @@ btMultiBody* MultiBodyScene::addLeg(const btVector3& foot, double footMass, cons
   return body;
 }
 
+btMultiBody* MultiBodyScene::addBlockOverTable(const btVector3& table, double tableMass,
+                                               const btVector3& block, double blockMass,
+                                               double sliderMass, double speed, double maxForce,
+                                               double friction, double margin) {
+  btMultiBody* body =
+      addMultiBody(std::make_unique<btMultiBody>(4, btScalar(1), bt(1, 1, 1), true, false));
+  body->setBasePos(bt(0, 0, 0));
+  body->setWorldToBaseRot(btQuaternion::getIdentity());
+  const btQuaternion none = btQuaternion::getIdentity();
+  const btVector3 tableCentre = bt(0, 0, -double(table.z()));
+  const btVector3 blockCentre = bt(0, 0, double(block.z()));
+  const btVector3 small(btScalar(1e-3), btScalar(1e-3), btScalar(1e-3));
+  // 0: a carriage along y (no collider), 1: the table on it along x
+  body->setupPrismatic(0, btScalar(sliderMass), small, -1, none, bt(0, 1, 0), tableCentre,
+                       bt(0, 0, 0), true);
+  body->setupPrismatic(
+      1, btScalar(tableMass),
+      boxInertia(tableMass, 2 * double(table.x()), 2 * double(table.y()), 2 * double(table.z())), 0,
+      none, bt(1, 0, 0), bt(0, 0, 0), bt(0, 0, 0), true);
+  // 2: a slider along z (no collider), 3: the block on it, spherical
+  body->setupPrismatic(2, btScalar(sliderMass), small, -1, none, bt(0, 0, 1), blockCentre,
+                       bt(0, 0, 0), true);
+  body->setupSpherical(
+      3, btScalar(blockMass),
+      boxInertia(blockMass, 2 * double(block.x()), 2 * double(block.y()), 2 * double(block.z())), 2,
+      none, bt(0, 0, 0), bt(0, 0, 0), true);
+  body->setHasSelfCollision(true);
+  body->finalizeMultiDof();
+  body->setJointVel(1, btScalar(speed));
+  world_->addMultiBody(body);
+  for (int link : {1, 3}) {
+    auto shape = std::make_unique<btBoxShape>(link == 1 ? table : block);
+    shape->setMargin(btScalar(margin));
+    addCollider(body, link, std::move(shape), at(link == 1 ? tableCentre : blockCentre), friction,
+                false);
+  }
+  auto motor = std::make_unique<btMultiBodyJointMotor>(body, 1, 0, btScalar(speed), btScalar(0));
+  world_->addMultiBodyConstraint(motor.get());
+  motors_.push_back({std::move(motor), maxForce});
+  return body;
+}
+
 btMultiBodyLinkCollider* MultiBodyScene::collider(btMultiBody* body, int link) {
   return link < 0 ? body->getBaseCollider() : body->getLink(link).m_collider;
 }

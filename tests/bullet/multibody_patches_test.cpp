@@ -325,6 +325,41 @@ TEST(MultiBodyPatches, MultiBodyBoxRidesAPrismaticPlatform) {
   expectRidesAlong(patch, "multibody box");
 }
 
+// Two links of one multibody: a block (1 kg, on a spherical joint on a
+// 0.1 kg vertical slider: it may sink, tilt and turn, not slide) stands on
+// a table link (on a carriage along y) that a motor drives along x at
+// 1 m/s; block friction 0.5, table 1. The block's patch on the table takes
+// both links' rows, J_A - J_B of one multibody: it carries the block and
+// slider, Pz = 1.1 g, and
+// rubs with the kinetic friction mu Pz against the slip (1e-3 relative:
+// a steady slide, the law's force exactly mu Pz).
+TEST(MultiBodyPatches, BlockSlidesOnATableLinkOfItsOwnMultiBody) {
+  MultiBodyScene scene(kG, 10, true);
+  btMultiBody* body =
+      scene.addBlockOverTable(bt(0.5, 0.3, 0.02), 2.0, kBoxHalf, 1.0, 0.1, kV, 200.0, 1.0);
+  btMultiBodyLinkCollider* block = MultiBodyScene::collider(body, 3);
+  btMultiBodyLinkCollider* table = MultiBodyScene::collider(body, 1);
+  block->setFriction(btScalar(kBoxMu));
+  scene.solver().enablePatchFriction(block, {Model::Exact});
+  // (0.2 s: the table moves 0.2 m, the block stays 0.25 m off its edge)
+  for (int k = 0; k < int(0.2 / kDt); ++k) scene.step(kDt);
+  const PatchReport* r = scene.solver().findPatchReport(block);
+  ASSERT_NE(r, nullptr);
+  const double friction = std::hypot(r->Q.x(), r->Q.y());
+  std::printf(
+      "[block on its own table, %s] Pz %.5f N (1.1 g = %.5f), friction %.5f N "
+      "(mu Pz %.5f), sticking %d, table at %.4f m\n",
+      kDouble ? "double" : "float", r->loads.Pz, 1.1 * kG, friction, kBoxMu * r->loads.Pz,
+      int(r->sticking), double(body->getJointPos(1)));
+  EXPECT_EQ(r->other, table);
+  EXPECT_FALSE(r->sticking);
+  EXPECT_NEAR(r->loads.Pz, 1.1 * kG, 1e-3 * kG);
+  EXPECT_NEAR(friction, kBoxMu * r->loads.Pz, 1e-3 * kBoxMu * r->loads.Pz);
+  // on the block, against its slip over the table (-x): along +x
+  const btVector3 force = btScalar(r->Q.x()) * r->xAxis + btScalar(r->Q.y()) * r->yAxis;
+  EXPECT_NEAR(double(force.x()), kBoxMu * r->loads.Pz, 1e-3 * kBoxMu * r->loads.Pz);
+}
+
 // The opt-in of a link collider: kept by the solver until disabled; an
 // object that is neither a rigid body nor a link collider is refused.
 // The platform, opted in, slides on the ground and carries a box: its

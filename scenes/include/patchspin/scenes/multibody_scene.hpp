@@ -76,6 +76,17 @@ class MultiBodyScene {
   btMultiBody* addLeg(const btVector3& foot, double footMass, const btVector3& shin,
                       double shinMass, const btVector3& footCentre, double friction,
                       double margin = 1e-3);
+  // One multibody whose links touch each other (self-collision on): a fixed
+  // base at the origin; link 0, a carriage (no collider, mass sliderMass)
+  // on a prismatic joint along y; link 1 on it, a table (box, half extents
+  // `table`, top at z = 0) on a prismatic joint along x, moving at `speed`
+  // with a velocity motor of at most maxForce [N]; link 2, a slider (no
+  // collider, sliderMass) on a prismatic joint along z; link 3, a block
+  // (box, half extents `block`) on a spherical joint at its centre on the
+  // slider, standing on the table: it may sink, tilt and turn, not slide.
+  btMultiBody* addBlockOverTable(const btVector3& table, double tableMass, const btVector3& block,
+                                 double blockMass, double sliderMass, double speed, double maxForce,
+                                 double friction, double margin = 1e-3);
   // The collider of link `link` (-1: the base).
   static btMultiBodyLinkCollider* collider(btMultiBody* body, int link);
 
