@@ -138,7 +138,7 @@ void PatchMultiBodySolver::solveMultiBodyGroup(
       numMultiBodyConstraints, info, debugDrawer, dispatcher);
 }
 
-// Stages 1-2 (and 3b, the load sharing of rigid bodies' patches).
+// Stages 1-3 (3 and 3b, stack holds and load sharing, between rigid bodies only).
 void PatchMultiBodySolver::convertContacts(btPersistentManifold** manifolds, int numManifolds,
                                            const btContactSolverInfo& info) {
   Impl& im = *impl_;
