@@ -58,7 +58,8 @@ PointSoftness pointSoftness(const btManifoldPoint* point, const btCollisionObjec
 
 bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
                          const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
-                         const btContactSolverInfo& info, PatchConstraint& pc) {
+                         const btContactSolverInfo& info, PatchConstraint& pc,
+                         const ArticulatedShare* articulated) {
   PatchState& st = *cand.state;
   const double dt = double(info.m_timeStep);
   pc.state = &st;
@@ -87,6 +88,7 @@ bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
                                            *cand.A, *cand.B, info);
   pc.compliance = soft.cfm > 0.0 ? parts::patchCompliance(soft.cfm) : 0.0;
   Mat6 K6 = parts::patchEffectiveMass(pc.a.body, pc.b.body, pc.F, pc.fb.rho);
+  if (articulated) K6 += articulated->K6;
   K6(0, 0) += pc.compliance;
   if (!parts::makePatchBlocks(K6, pc.k)) return false;
   // restitution from the normal velocity at O before the step (without the
@@ -94,11 +96,12 @@ bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
   double bounce = 0.0;
   if (cand.restitution > 0.0) {
     const btSolverBody* sb[2] = {&sbA, &sbB};
-    const Vec6 before = parts::patchVelocityOf(pc.a.body, pc.b.body, pc.F, pc.fb.rho,
-                                               [&](int side, Vec3& v, Vec3& w) {
-                                                 v = toEigen(sb[side]->m_linearVelocity);
-                                                 w = toEigen(sb[side]->m_angularVelocity);
-                                               });
+    Vec6 before = parts::patchVelocityOf(pc.a.body, pc.b.body, pc.F, pc.fb.rho,
+                                         [&](int side, Vec3& v, Vec3& w) {
+                                           v = toEigen(sb[side]->m_linearVelocity);
+                                           w = toEigen(sb[side]->m_angularVelocity);
+                                         });
+    if (articulated) before += articulated->before;
     const double pending = st.pendingBounceStep == st.lastSeen - 1 ? st.pendingBounce : 0.0;
     const parts::Bounce b =
         parts::restitutionBounce(before[0], st.geometry.gap, dt, cand.restitution,
@@ -121,6 +124,13 @@ bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
   pc.targetN = targets.velocity;
   pc.targetPush = targets.push;
   return true;
+}
+
+void patchFrameOf(const PatchState& st, Mat3& F, Vec3& O) {
+  O = toEigen(st.geometry.origin);
+  F.col(0) = toEigen(st.geometry.xAxis);
+  F.col(1) = toEigen(st.geometry.yAxis);
+  F.col(2) = toEigen(st.geometry.normal);
 }
 
 bool warmStart(const Candidate& cand, const btContactSolverInfo& info, PatchConstraint& pc,

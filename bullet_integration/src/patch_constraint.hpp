@@ -19,9 +19,20 @@ constexpr double kPatchWarmStartFactor = 1.0;
 // The constraint of `cand` (manifold m) between solver bodies sbA (id idA)
 // and sbB (idB); false if its effective mass has no usable blocks (e.g. a
 // body with locked rotation: the manifold goes to Bullet).
+// `articulated`: the share of sides that are no solver body (a Featherstone
+// link: sbA / sbB then a body without m_originalBody), added to K6 and to
+// the DOF velocity before the step (restitution); null: none.
+struct ArticulatedShare {
+  Mat6 K6 = Mat6::Zero();      // J M^-1 J^T of those sides
+  Vec6 before = Vec6::Zero();  // J qdot of those sides at the set-up
+};
 bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
                          const btSolverBody& sbA, int idA, const btSolverBody& sbB, int idB,
-                         const btContactSolverInfo& info, PatchConstraint& pc);
+                         const btContactSolverInfo& info, PatchConstraint& pc,
+                         const ArticulatedShare* articulated = nullptr);
+// The patch frame F = [ex ey n] and reference point O of a candidate's
+// state (as makePatchConstraint sets them).
+void patchFrameOf(const PatchState& st, Mat3& F, Vec3& O);
 
 // A contact point's CFM (velocity per impulse, after Bullet's 1/dt) and ERP
 // by Bullet's rule (btSequentialImpulseConstraintSolver::

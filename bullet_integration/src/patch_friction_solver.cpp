@@ -30,8 +30,7 @@
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
 #include "patch_solver_shared.hpp"
-
-#include <patchspin/parts/load_sharing.hpp>
+#include "patch_visit.hpp"
 
 #include <algorithm>
 #include <string>
@@ -43,27 +42,6 @@ using parts::Vec6;
 
 namespace {
 
-// Within a step, a slipping friction block whose input (b, L) changed by
-// less than this, relative, since its last solve keeps that solution (the
-// velocities carry ~6e-8 in float).
-constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-6;
-// Relative residual at which a friction block solve stops: below the
-// precision of the velocities it is computed from.
-constexpr double kBlockRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-9;
-// Pseudo-velocity iterations of the patch position correction per step.
-constexpr int kPushIterations = 4;
-
-parts::FrictionPartSettings frictionSettings(const PatchSolverSettings& s) {
-  parts::FrictionPartSettings f;
-  f.pressureRefreshTolerance = s.pressureRefreshTolerance;
-  f.pressureLagTolerance = s.pressureLagTolerance;
-  f.quickStick = s.quickStick;
-  f.deferStickingRefresh = s.deferStickingRefresh;
-  f.blockTolerance = kBlockRelTol;
-  f.reuseTolerance = kReuseRelTol;
-  return f;
-}
-
 // The velocity of a patch's dynamic body in the iterations: its fixed part
 // plus the solver body's delta velocities (the line Bullet's rows read too).
 template <class Velocity>
@@ -72,178 +50,12 @@ Vec6 patchVelocity(const PatchConstraint& pc, Velocity velocity) {
       pc.a.body, pc.b.body, pc.F, pc.fb.rho,
       [&](int side, Vec3& v, Vec3& w) { velocity(side == 0 ? pc.a : pc.b, v, w); });
 }
-Vec6 constraintVelocity(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool) {
-  return patchVelocity(pc, [&](const internal::BodyTerms& t, Vec3& v, Vec3& w) {
-    v = internal::toEigen(t.v0 + pool[t.id].m_deltaLinearVelocity);
-    w = internal::toEigen(t.w0 + pool[t.id].m_deltaAngularVelocity);
-  });
+Vec6 constraintVelocity(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool) {
+  return internal::SolverBodies{pool}.velocity(pc);
 }
 void applyImpulse(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool,
                   const Vec6& lam) {
-  parts::applyPatchImpulse(pc.a.body, pc.b.body, pc.F, pc.fb.rho, lam,
-                           [&](int side, const Vec3& dv, const Vec3& dw) {
-                             btSolverBody& sb = pool[side == 0 ? pc.a.id : pc.b.id];
-                             sb.m_deltaLinearVelocity += internal::toBt(dv);
-                             sb.m_deltaAngularVelocity += internal::toBt(dw);
-                           });
-}
-// The delta velocities of a patch's two solver bodies (a settled patch is
-// skipped while they are unchanged).
-void snapshotOf(const PatchConstraint& pc, const btAlignedObjectArray<btSolverBody>& pool,
-                btVector3* out) {
-  const btSolverBody& a = pool[pc.ids[0]];
-  const btSolverBody& b = pool[pc.ids[1]];
-  out[0] = a.m_deltaLinearVelocity;
-  out[1] = a.m_deltaAngularVelocity;
-  out[2] = b.m_deltaLinearVelocity;
-  out[3] = b.m_deltaAngularVelocity;
-}
-
-// The target of a compliant normal row, t - (C lambda_z, 0, 0) (S23); t
-// itself on a hard contact.
-inline Vec3 softTarget(const Vec3& target, double compliance, const Vec3& lam) {
-  if (compliance == 0.0) return target;
-  return Vec3(target[0] - compliance * lam[0], target[1], target[2]);
-}
-
-// What a visit needs besides its patch.
-struct VisitContext {
-  btAlignedObjectArray<btSolverBody>& pool;
-  const PatchSolverSettings& settings;
-  const parts::FrictionPartSettings& friction;
-  PatchSolverStats& stats;
-};
-
-// One visit of a patch (stage 5), with a support hold (0 none, 1 the
-// support's normal block, 2 all six DOFs; sup: the held patch). False: the
-// held support cannot take its share, and the visit is to be redone with
-// less held (nothing was applied). `worst` gets the largest squared change.
-bool visitPatch(VisitContext& cx, PatchConstraint& pc, PatchConstraint* sup,
-                const parts::HeldBlocks* hold, int held, double& worst) {
-  const parts::PatchBlocks& k = hold ? static_cast<const parts::PatchBlocks&>(*hold) : pc.k;
-  FrictionPatch& friction = *pc.state->friction;
-  // normal block (S4)-(S6)
-  const Vec6 c = constraintVelocity(pc, cx.pool);
-  // (soft: the compliant row c_n = t_n - C lamN, with (W + C)^-1 in k.Winv (S23))
-  const parts::NormalImpulse normal = parts::solveNormalVelocity(
-      k.Winv, pc.lamN, c.head<3>(), softTarget(pc.targetN, pc.compliance, pc.lamN), pc.shape,
-      friction.shape());
-  pc.interior = normal.interior;
-  pc.tipping = normal.tipping;
-  Vec6 d = Vec6::Zero();
-  d.head<3>() = normal.lamN - pc.lamN;
-  pc.lamN = normal.lamN;
-  // friction block on the slip x_o, with the normal block held (Schur
-  // complement Ks) while it is inside the admissible set (S7)-(S14)
-  const Vec3 s = c.tail<3>() + k.Knf.transpose() * d.head<3>();
-  bool refreshed = false;
-  const Vec3 lamF =
-      parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
-                                   pc.lamF, pc.lamN, held, cx.friction, cx.stats, refreshed);
-  d.tail<3>() = lamF - pc.lamF;
-  pc.lamF = lamF;
-  if (pc.interior) {
-    // the normal block follows the friction impulse: W dN = -Knf dF
-    const Vec3 dn = -k.G * d.tail<3>();
-    d.head<3>() += dn;
-    pc.lamN += dn;
-  }
-  if (held == 2 &&
-      !parts::frictionCanTake(sup->fb, *sup->state->friction, sup->lamN, sup->lamF, hold->gain * d))
-    return false;
-  applyImpulse(pc, cx.pool, d);
-  worst = std::max(worst, d.squaredNorm());
-  if (hold && !d.isZero(0.0)) {
-    // the support takes what keeps its held DOFs where they were (S15)-(S16)
-    const Vec6 ds = hold->gain * d;
-    sup->lamN += ds.head<3>();
-    sup->lamF += ds.tail<3>();
-    sup->settled = false;
-    sup->fb.haveLast = false;
-    applyImpulse(*sup, cx.pool, ds);
-    worst = std::max(worst, ds.squaredNorm());
-  }
-  if (cx.settings.skipSettledPatches && d.isZero(0.0) && !refreshed) {
-    pc.settled = true;
-    snapshotOf(pc, cx.pool, pc.snapshot);
-  }
-  return true;
-}
-
-// Patches whose normals agree within this angle [rad] share a plane for
-// the load sharing (S25): a body on faces of one floor or of boxes of one
-// height (both exactly parallel); tilted faces keep their own split.
-constexpr double kShareParallel = 1e-3;
-
-// The groups of (S25): per dynamic body, its hard patches on static or
-// kinematic supports with no stack hold, parallel to the body's first such
-// patch; a body with one such patch has none. (A patch's loads are shared
-// only while its impulses leave the support's velocity unchanged.)
-// `groupOf`: scratch by solver body id; linear in the patches, and nothing
-// allocated for bodies on one patch (a pile of coins).
-void groupSharedPatches(const std::vector<PatchConstraint>& patches, int numBodies,
-                        std::vector<int>& groupOf, std::vector<std::vector<int>>& groups) {
-  groups.clear();
-  auto eligible = [](const PatchConstraint& pc) {
-    return !pc.b.body.dynamic && pc.compliance == 0.0 && pc.stack.hold < 0 && pc.stack.loadHold < 0;
-  };
-  // pass 1: -1 none, -2 one, -3 several eligible patches
-  groupOf.assign(std::size_t(numBodies), -1);
-  bool several = false;
-  for (const PatchConstraint& pc : patches) {
-    if (!eligible(pc)) continue;
-    int& g = groupOf[std::size_t(pc.a.id)];
-    several = several || g == -2;
-    g = g == -1 ? -2 : -3;
-  }
-  if (!several) return;
-  // pass 2: a group per body with several, by index once made
-  const double cosParallel = std::cos(kShareParallel);
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    const PatchConstraint& pc = patches[i];
-    if (!eligible(pc)) continue;
-    int& g = groupOf[std::size_t(pc.a.id)];
-    if (g == -2) continue;
-    if (g == -3) {
-      g = int(groups.size());
-      groups.push_back({int(i)});
-    } else if (patches[std::size_t(groups[std::size_t(g)][0])].F.col(2).dot(pc.F.col(2)) >=
-               cosParallel) {
-      groups[std::size_t(g)].push_back(int(i));
-    }
-  }
-  // (a body whose other patches are not parallel to its first)
-  groups.erase(std::remove_if(groups.begin(), groups.end(),
-                              [](const std::vector<int>& grp) { return grp.size() < 2; }),
-               groups.end());
-}
-
-// (S25) for one group, in the frame of its first patch; a patch whose
-// loads change is visited again and its friction block re-solved.
-void shareGroupLoads(std::vector<PatchConstraint>& patches, const std::vector<int>& group,
-                     std::vector<parts::SharedPatch>& buf) {
-  const PatchConstraint& ref = patches[std::size_t(group[0])];
-  const btVector3& o = ref.state->geometry.origin;
-  const Vec3 ex = ref.F.col(0), ey = ref.F.col(1);
-  buf.resize(group.size());
-  for (std::size_t k = 0; k < group.size(); ++k) {
-    const PatchConstraint& pc = patches[std::size_t(group[k])];
-    const btVector3 d = pc.state->geometry.origin - o;
-    const Vec3 dv(double(d.x()), double(d.y()), double(d.z()));
-    parts::SharedPatch& sp = buf[k];
-    sp.origin = Vec2(dv.dot(ex), dv.dot(ey));
-    sp.R << pc.F.col(0).dot(ex), pc.F.col(1).dot(ex), pc.F.col(0).dot(ey), pc.F.col(1).dot(ey);
-    sp.shape = &pc.state->friction->shape();
-    sp.lamN = pc.lamN;
-  }
-  if (!parts::shareLoads(buf)) return;
-  for (std::size_t k = 0; k < group.size(); ++k) {
-    PatchConstraint& pc = patches[std::size_t(group[k])];
-    if (buf[k].lamN == pc.lamN) continue;
-    pc.lamN = buf[k].lamN;
-    pc.settled = false;
-    pc.fb.haveLast = false;
-  }
+  internal::SolverBodies{pool}.apply(pc, lam);
 }
 
 }  // namespace
@@ -278,7 +90,7 @@ struct PatchFrictionSolver::Impl {
 
 std::shared_ptr<internal::PatchSolverShared> PatchFrictionSolver::makeShared() {
   auto shared = std::make_shared<internal::PatchSolverShared>();
-  shared->friction = frictionSettings(shared->settings);
+  shared->friction = internal::frictionSettings(shared->settings);
   return shared;
 }
 
@@ -294,32 +106,8 @@ PatchFrictionSolver::PatchFrictionSolver(std::shared_ptr<internal::PatchSolverSh
 PatchFrictionSolver::~PatchFrictionSolver() = default;
 
 void PatchFrictionSolver::enablePatchFriction(btRigidBody* body, const PatchOptions& options) {
-  using patchspin::internal::formatDouble;
   if (!body) throw Error("enablePatchFriction: body is null");
-  if (options.model != Model::Ellipsoidal && options.model != Model::Exact)
-    throw Error("PatchOptions::model must be Model::Ellipsoidal or Model::Exact: got " +
-                std::to_string(int(options.model)));
-  if (options.mu) {
-    patchspin::internal::requireFinite(*options.mu, "PatchOptions::mu");
-    if (*options.mu < 0.0)
-      throw Error("PatchOptions::mu must be >= 0: got " + formatDouble(*options.mu));
-  }
-  if (options.rho) {
-    patchspin::internal::requirePositive(*options.rho, "PatchOptions::rho");
-    if (!(*options.rho >= kMinRho && *options.rho <= kMaxRho))
-      throw Error("PatchOptions::rho = " + formatDouble(*options.rho) +
-                  " m can never make a patch: the lever max|r| / rho must lie in [1e-5, 1e5] "
-                  "with max|r| in [1.25e-162, 1e6] m, so rho in [" +
-                  formatDouble(kMinRho) + ", " + formatDouble(kMaxRho) + "] m");
-  }
-  patchspin::internal::requirePositive(options.flatnessTolerance,
-                                       "PatchOptions::flatnessTolerance");
-  if (options.flatnessTolerance > kMaxFlatnessTolerance)
-    throw Error("PatchOptions::flatnessTolerance must be at most pi/8 = " +
-                formatDouble(kMaxFlatnessTolerance) +
-                " rad (a patch ends at twice it, within "
-                "the 45 degrees beyond which a face no longer faces the contact): got " +
-                formatDouble(options.flatnessTolerance));
+  internal::checkPatchOptions(options);
   impl_->selection.optIns().enable(*body, options);
 }
 
@@ -353,18 +141,9 @@ std::optional<PatchReport> PatchFrictionSolver::patchReportOf(const btCollisionO
 }
 
 void PatchFrictionSolver::setSettings(const PatchSolverSettings& settings) {
-  using patchspin::internal::formatDouble;
-  for (const auto& [value, name] :
-       {std::pair{settings.pressureRefreshTolerance, "pressureRefreshTolerance"},
-        std::pair{settings.pressureLagTolerance, "pressureLagTolerance"}}) {
-    patchspin::internal::requireFinite(value,
-                                       (std::string("PatchSolverSettings::") + name).c_str());
-    if (value < 0.0)
-      throw Error(std::string("PatchSolverSettings::") + name + " must be >= 0: got " +
-                  formatDouble(value));
-  }
+  internal::checkSolverSettings(settings);
   impl_->shared->settings = settings;
-  impl_->shared->friction = frictionSettings(settings);
+  impl_->shared->friction = internal::frictionSettings(settings);
 }
 const PatchSolverSettings& PatchFrictionSolver::settings() const {
   return impl_->shared->settings;
@@ -486,7 +265,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
     for (std::size_t i = 0; i < im.patches.size(); ++i) im.patches[i].stack = im.stackLinks[i];
   }
   // 3b share loads (S25)
-  groupSharedPatches(im.patches, m_tmpSolverBodyPool.size(), im.shareGroupOf, im.shareGroups);
+  internal::groupSharedPatches(im.patches, m_tmpSolverBodyPool.size(), im.shareGroupOf,
+                               im.shareGroups);
 }
 
 // Stage 5, after Bullet's rows in each iteration.
@@ -499,52 +279,12 @@ btScalar PatchFrictionSolver::solveSingleIteration(
       debugDrawer);
   if (iteration >= info.m_numIterations) return residual;
   Impl& im = *impl_;
-  PatchSolverStats& stats = *im.stats;  // (held across the visits, not reloaded)
-  VisitContext cx{m_tmpSolverBodyPool, im.shared->settings, im.shared->friction, stats};
-  double worst = 0.0;
-  for (PatchConstraint& pc : im.patches) {
-    ++stats.visits;
-    if (pc.settled) {
-      btVector3 now[4];
-      snapshotOf(pc, m_tmpSolverBodyPool, now);
-      if (now[0] == pc.snapshot[0] && now[1] == pc.snapshot[1] && now[2] == pc.snapshot[2] &&
-          now[3] == pc.snapshot[3]) {
-        ++stats.skippedVisits;
-        continue;  // same input, same (zero) change
-      }
-      pc.settled = false;
-    }
-    // a stacked patch: its support held while the support is on its patch
-    // (all six DOFs while it sticks and can take its share, else its
-    // normal block); a support on a static body: its load held alike
-    PatchConstraint* sup = nullptr;
-    const parts::StackHold* stackHold = nullptr;
-    if (pc.stack.hold >= 0) {
-      sup = &im.patches[std::size_t(pc.stack.support)];
-      stackHold = &im.holds[std::size_t(pc.stack.hold)];
-    } else if (pc.stack.loadHold >= 0) {
-      sup = &im.patches[std::size_t(pc.stack.load)];
-      stackHold = &im.holds[std::size_t(pc.stack.loadHold)];
-    }
-    const parts::HeldBlocks* normalHold =
-        stackHold && stackHold->normal.valid ? &stackHold->normal : nullptr;
-    if (!stackHold || !sup->interior) {
-      visitPatch(cx, pc, nullptr, nullptr, 0, worst);
-    } else if (sup->fb.sticking && stackHold->all.valid) {
-      im.retry = pc;
-      if (!visitPatch(cx, pc, sup, &stackHold->all, 2, worst)) {
-        const parts::PressureRecord law =
-            pc.fb.law;  // the law is not rolled back: nor is its record
-        pc = im.retry;
-        pc.fb.law = law;
-        visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
-      }
-    } else {
-      visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
-    }
-  }
-  for (const std::vector<int>& group : im.shareGroups)
-    shareGroupLoads(im.patches, group, im.shareBuf);
+  internal::SolverBodies bodiesOf{m_tmpSolverBodyPool};
+  // (stats held across the visits, not reloaded)
+  internal::VisitContext<internal::SolverBodies> cx{bodiesOf, im.shared->settings,
+                                                    im.shared->friction, *im.stats};
+  internal::PatchIteration it{im.patches, im.holds, im.shareGroups, im.shareBuf, im.retry};
+  const double worst = internal::iteratePatches(cx, it);
   return std::max(residual, btScalar(worst));
 }
 
@@ -560,7 +300,7 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
   // BadInput.ZeroSolverIterationsSolveNothingAsInBullet)
   if (!info.m_splitImpulse || info.m_numIterations <= 0) return;
   auto& pool = m_tmpSolverBodyPool;
-  for (int it = 0; it < kPushIterations; ++it) {
+  for (int it = 0; it < internal::kPushIterations; ++it) {
     for (PatchConstraint& pc : impl_->patches) {
       if (pc.targetPush.isZero()) continue;
       const Vec3 c = patchVelocity(pc, [&](const internal::BodyTerms& t, Vec3& v, Vec3& w) {
@@ -568,7 +308,7 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
                        w = internal::toEigen(pool[t.id].m_turnVelocity);
                      }).head<3>();
       const Vec3 lam = parts::solveNormalPosition(
-          pc.k.Winv, pc.lamPush, c, softTarget(pc.targetPush, pc.compliance, pc.lamPush));
+          pc.k.Winv, pc.lamPush, c, internal::softTarget(pc.targetPush, pc.compliance, pc.lamPush));
       Vec6 d = Vec6::Zero();
       d.head<3>() = lam - pc.lamPush;
       pc.lamPush = lam;

@@ -23,7 +23,7 @@ PatchOptIns::Key PatchOptIns::keyOf(const PatchOptions& o) {
           o.rho.has_value(), o.rho.value_or(0.0), o.flatnessTolerance};
 }
 
-void PatchOptIns::enable(btRigidBody& body, const PatchOptions& options) {
+int PatchOptIns::slotOf(const PatchOptions& options) {
   const Key key = keyOf(options);
   auto it = slots_.find(key);
   if (it == slots_.end()) {
@@ -33,8 +33,27 @@ void PatchOptIns::enable(btRigidBody& body, const PatchOptions& options) {
     options_.push_back(options);
     it = slots_.emplace(key, int(options_.size())).first;
   }
+  return it->second;
+}
+
+void PatchOptIns::enable(btRigidBody& body, const PatchOptions& options) {
+  const int slot = slotOf(options);
   if (!optionsOf(&body)) ++optedIn_;
-  body.m_frictionSolverType = (tag_ << kIndexBits) | it->second;
+  body.m_frictionSolverType = (tag_ << kIndexBits) | slot;
+}
+
+void PatchOptIns::enableObject(const btCollisionObject& o, const PatchOptions& options) {
+  const int slot = slotOf(options);
+  if (objects_.insert_or_assign(&o, slot).second) ++optedIn_;
+}
+
+void PatchOptIns::disableObject(const btCollisionObject& o) {
+  if (objects_.erase(&o) > 0) --optedIn_;
+}
+
+const PatchOptions* PatchOptIns::objectOptionsOf(const btCollisionObject* o) const {
+  const auto it = objects_.find(o);
+  return it == objects_.end() ? nullptr : &options_[std::size_t(it->second - 1)];
 }
 
 void PatchOptIns::disable(btRigidBody& body) {

@@ -9,6 +9,9 @@
 // with the distinct options enabled, never with the bodies: a body's opt-in
 // ends with the body, and a new body (at any address) starts with 0, not
 // opted in (BodyLifetime.*).
+// A btMultiBodyLinkCollider (PatchMultiBodySolver) has no such field: its
+// opt-in is kept in this table, by address, until disable (a collider must
+// be opted out before it is deleted; MultiBodyPatches.OptInOfALinkCollider).
 #pragma once
 
 #include <patchspin/bullet/patch_friction_solver.hpp>
@@ -16,6 +19,7 @@
 #include <deque>
 #include <map>
 #include <tuple>
+#include <unordered_map>
 
 namespace patchspin::bullet::internal {
 
@@ -28,12 +32,16 @@ class PatchOptIns {
   void enable(btRigidBody& body, const PatchOptions& options);
   // Opts `body` out if this table opted it in (else leaves it alone).
   void disable(btRigidBody& body);
+  // The same for a collision object that is not a btRigidBody (a link
+  // collider), kept by address.
+  void enableObject(const btCollisionObject& o, const PatchOptions& options);
+  void disableObject(const btCollisionObject& o);
   // The options of `o` if this table opted it in, else null (any other
   // object type, another solver's opt-in, or none). The pointer is stable
   // for the table's life.
   const PatchOptions* optionsOf(const btCollisionObject* o) const {
     const btRigidBody* rb = btRigidBody::upcast(o);
-    if (!rb) return nullptr;
+    if (!rb) return objects_.empty() ? nullptr : objectOptionsOf(o);
     const int code = rb->m_frictionSolverType;
     if (code <= 0 || (code >> kIndexBits) != tag_) return nullptr;
     const std::size_t slot = std::size_t(code & kIndexMask);
@@ -54,6 +62,9 @@ class PatchOptIns {
  private:
   using Key = std::tuple<int, bool, double, bool, double, double>;
   static Key keyOf(const PatchOptions& o);
+  int slotOf(const PatchOptions& options);  // interned, 1-based
+  const PatchOptions* objectOptionsOf(const btCollisionObject* o) const;
+  std::unordered_map<const btCollisionObject*, int> objects_;  // non-rigid opt-ins -> slot
   int tag_;
   std::deque<PatchOptions> options_;  // slot - 1 -> options (deque: stable addresses)
   std::map<Key, int> slots_;          // options -> slot

@@ -9,12 +9,25 @@
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/CollisionShapes/btCollisionShape.h>
 #include <BulletDynamics/Dynamics/btRigidBody.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 
 #include <algorithm>
 #include <cmath>
 
 namespace patchspin::bullet::internal {
 namespace {
+
+// A body that gets patches of its own: a rigid body with a positive inverse
+// mass, or a Featherstone link collider (PatchMultiBodySolver) of a link or
+// of a floating base that is neither static nor kinematic.
+bool isDynamicObject(const btCollisionObject* o) {
+  if (const btRigidBody* rb = btRigidBody::upcast(o)) return rb->getInvMass() > 0;
+  if (const btMultiBodyLinkCollider* c = btMultiBodyLinkCollider::upcast(o))
+    return c->m_multiBody && (c->m_link >= 0 || !c->m_multiBody->hasFixedBase()) &&
+           !o->isStaticOrKinematicObject();
+  return false;
+}
 
 // A face takes part in a patch only while the contact normal is within 45
 // degrees of its normal (cosine): between the faces' own flatness (<= 2 x
@@ -79,8 +92,7 @@ PatchSelection::PatchSelection() {
 // The options of an opted-in dynamic body (a static or kinematic body opted
 // in has no patch of its own: what stands on it decides).
 const PatchOptions* PatchSelection::dynamicOptions(const btCollisionObject* o) {
-  const btRigidBody* rb = btRigidBody::upcast(o);
-  if (!rb || !(rb->getInvMass() > 0)) return nullptr;
+  if (!isDynamicObject(o)) return nullptr;
   return optIns_.optionsOf(o);
 }
 
@@ -243,7 +255,10 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   // normal: from body1 to body0.
   if (opt0 && opt1) {
     const btVector3 nInto0 = m->getContactPoint(0).m_normalWorldOnB;
-    const btVector3 g = btRigidBody::upcast(o0)->getGravity();
+    // (a link has no gravity of its own: the rigid body's, else body0's patch)
+    const btRigidBody* rb0 = btRigidBody::upcast(o0);
+    const btRigidBody* rb1 = btRigidBody::upcast(o1);
+    const btVector3 g = rb0 ? rb0->getGravity() : rb1 ? rb1->getGravity() : btVector3(0, 0, 0);
     if (nInto0.dot(g) > 0)
       opt0 = nullptr;  // body0 is underneath
     else
@@ -336,7 +351,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   long NotPatchedCounts::*reason = haveFaces ? nullptr : &NotPatchedCounts::unsupportedShape;
   std::optional<internal::DetectedPatch> geo;
   bool kept = false;  // st.geometry is this step's patch (geo unset)
-  if (haveFaces && btRigidBody::upcast(A) && btRigidBody::upcast(A)->getInvMass() > 0) {
+  if (haveFaces && isDynamicObject(A)) {
     const double c = std::clamp(-double(faceA_.normal.dot(faceB_.normal)), -1.0, 1.0);
     const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
     // the faces must face the contact, and the contact must be on them (two

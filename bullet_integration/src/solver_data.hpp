@@ -131,6 +131,9 @@ struct PatchConstraint {
   // read outside the iterations only
   Vec3 lamPush = Vec3::Zero(), targetPush = Vec3::Zero();
   btPersistentManifold* manifold = nullptr;  // whose points get the impulses (stage 6)
+  // PatchMultiBodySolver: index of the patch's multibody terms (a side on
+  // a Featherstone link), -1 for a patch between solver bodies
+  int articulated = -1;
 };
 
 // What a PatchReport is made of, kept at the end of the step.

@@ -1,0 +1,225 @@
+// Patch visits (internal): the iteration stage of a patch solver, shared by
+// PatchFrictionSolver (bodies: Bullet's solver bodies) and
+// PatchMultiBodySolver (also Featherstone links, through their Jacobians).
+// What differs between the two is how a patch reads its DOF velocity and
+// applies an impulse, given by a `Bodies` policy:
+//   Vec6 velocity(const PatchConstraint&)        the DOF velocity c (S1)
+//   void apply(const PatchConstraint&, const Vec6& d)   impulse change d
+//   bool settles(const PatchConstraint&)         may be skipped while settled
+//   void snapshot(const PatchConstraint&, btVector3* out)  what "unchanged" means
+// The parts (normal block, friction block, stack holds, load sharing) are
+// the core's; the arithmetic is the one PatchFrictionSolver always did
+// (Determinism.* pins it bit for bit).
+#pragma once
+
+#include "solver_data.hpp"
+
+#include <patchspin/parts/load_sharing.hpp>
+
+#include <algorithm>
+#include <vector>
+
+namespace patchspin::bullet::internal {
+
+// Within a step, a slipping friction block whose input (b, L) changed by
+// less than this, relative, since its last solve keeps that solution (the
+// velocities carry ~6e-8 in float).
+constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-6;
+// Relative residual at which a friction block solve stops: below the
+// precision of the velocities it is computed from.
+constexpr double kBlockRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-9;
+// Pseudo-velocity iterations of the patch position correction per step.
+constexpr int kPushIterations = 4;
+
+parts::FrictionPartSettings frictionSettings(const PatchSolverSettings& s);
+
+// PatchOptions and PatchSolverSettings checked as enablePatchFriction and
+// setSettings document (Error otherwise).
+void checkPatchOptions(const PatchOptions& options);
+void checkSolverSettings(const PatchSolverSettings& settings);
+
+// The target of a compliant normal row, t - (C lambda_z, 0, 0) (S23); t
+// itself on a hard contact.
+inline Vec3 softTarget(const Vec3& target, double compliance, const Vec3& lam) {
+  if (compliance == 0.0) return target;
+  return Vec3(target[0] - compliance * lam[0], target[1], target[2]);
+}
+
+// The Bodies of PatchFrictionSolver's patches, and of the rigid sides of
+// PatchMultiBodySolver's: Bullet's solver bodies, whose velocity in the
+// iterations is the fixed part plus the delta velocities (the line
+// Bullet's rows read too).
+struct SolverBodies {
+  btAlignedObjectArray<btSolverBody>& pool;
+  Vec6 velocity(const PatchConstraint& pc) const {
+    return parts::patchVelocityOf(pc.a.body, pc.b.body, pc.F, pc.fb.rho,
+                                  [&](int side, Vec3& v, Vec3& w) {
+                                    const BodyTerms& t = side == 0 ? pc.a : pc.b;
+                                    v = toEigen(t.v0 + pool[t.id].m_deltaLinearVelocity);
+                                    w = toEigen(t.w0 + pool[t.id].m_deltaAngularVelocity);
+                                  });
+  }
+  void apply(const PatchConstraint& pc, const Vec6& lam) {
+    parts::applyPatchImpulse(pc.a.body, pc.b.body, pc.F, pc.fb.rho, lam,
+                             [&](int side, const Vec3& dv, const Vec3& dw) {
+                               btSolverBody& sb = pool[side == 0 ? pc.a.id : pc.b.id];
+                               sb.m_deltaLinearVelocity += toBt(dv);
+                               sb.m_deltaAngularVelocity += toBt(dw);
+                             });
+  }
+  static bool settles(const PatchConstraint&) { return true; }
+  // the delta velocities of the patch's two solver bodies (a settled patch
+  // is skipped while they are unchanged)
+  void snapshot(const PatchConstraint& pc, btVector3* out) const {
+    const btSolverBody& a = pool[pc.ids[0]];
+    const btSolverBody& b = pool[pc.ids[1]];
+    out[0] = a.m_deltaLinearVelocity;
+    out[1] = a.m_deltaAngularVelocity;
+    out[2] = b.m_deltaLinearVelocity;
+    out[3] = b.m_deltaAngularVelocity;
+  }
+};
+
+// What a visit needs besides its patch.
+template <class Bodies>
+struct VisitContext {
+  Bodies& bodies;
+  const PatchSolverSettings& settings;
+  const parts::FrictionPartSettings& friction;
+  PatchSolverStats& stats;
+};
+
+// One visit of a patch (stage 5), with a support hold (0 none, 1 the
+// support's normal block, 2 all six DOFs; sup: the held patch). False: the
+// held support cannot take its share, and the visit is to be redone with
+// less held (nothing was applied). `worst` gets the largest squared change.
+template <class Bodies>
+bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* sup,
+                const parts::HeldBlocks* hold, int held, double& worst) {
+  const parts::PatchBlocks& k = hold ? static_cast<const parts::PatchBlocks&>(*hold) : pc.k;
+  FrictionPatch& friction = *pc.state->friction;
+  // normal block (S4)-(S6)
+  const Vec6 c = cx.bodies.velocity(pc);
+  // (soft: the compliant row c_n = t_n - C lamN, with (W + C)^-1 in k.Winv (S23))
+  const parts::NormalImpulse normal = parts::solveNormalVelocity(
+      k.Winv, pc.lamN, c.head<3>(), softTarget(pc.targetN, pc.compliance, pc.lamN), pc.shape,
+      friction.shape());
+  pc.interior = normal.interior;
+  pc.tipping = normal.tipping;
+  Vec6 d = Vec6::Zero();
+  d.head<3>() = normal.lamN - pc.lamN;
+  pc.lamN = normal.lamN;
+  // friction block on the slip x_o, with the normal block held (Schur
+  // complement Ks) while it is inside the admissible set (S7)-(S14)
+  const Vec3 s = c.tail<3>() + k.Knf.transpose() * d.head<3>();
+  bool refreshed = false;
+  const Vec3 lamF =
+      parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
+                                   pc.lamF, pc.lamN, held, cx.friction, cx.stats, refreshed);
+  d.tail<3>() = lamF - pc.lamF;
+  pc.lamF = lamF;
+  if (pc.interior) {
+    // the normal block follows the friction impulse: W dN = -Knf dF
+    const Vec3 dn = -k.G * d.tail<3>();
+    d.head<3>() += dn;
+    pc.lamN += dn;
+  }
+  if (held == 2 &&
+      !parts::frictionCanTake(sup->fb, *sup->state->friction, sup->lamN, sup->lamF, hold->gain * d))
+    return false;
+  cx.bodies.apply(pc, d);
+  worst = std::max(worst, d.squaredNorm());
+  if (hold && !d.isZero(0.0)) {
+    // the support takes what keeps its held DOFs where they were (S15)-(S16)
+    const Vec6 ds = hold->gain * d;
+    sup->lamN += ds.head<3>();
+    sup->lamF += ds.tail<3>();
+    sup->settled = false;
+    sup->fb.haveLast = false;
+    cx.bodies.apply(*sup, ds);
+    worst = std::max(worst, ds.squaredNorm());
+  }
+  if (cx.settings.skipSettledPatches && d.isZero(0.0) && !refreshed && cx.bodies.settles(pc)) {
+    pc.settled = true;
+    cx.bodies.snapshot(pc, pc.snapshot);
+  }
+  return true;
+}
+
+// The groups of (S25): per dynamic body, its hard patches on static or
+// kinematic supports with no stack hold, parallel to the body's first such
+// patch; a body with one such patch has none. (A patch's loads are shared
+// only while its impulses leave the support's velocity unchanged.) Only
+// patches between solver bodies (not articulated) take part. `groupOf`:
+// scratch by solver body id.
+void groupSharedPatches(const std::vector<PatchConstraint>& patches, int numBodies,
+                        std::vector<int>& groupOf, std::vector<std::vector<int>>& groups);
+
+// (S25) for one group, in the frame of its first patch; a patch whose
+// loads change is visited again and its friction block re-solved.
+void shareGroupLoads(std::vector<PatchConstraint>& patches, const std::vector<int>& group,
+                     std::vector<parts::SharedPatch>& buf);
+
+// The island's patches and their scratch, for one iteration of stage 5.
+struct PatchIteration {
+  std::vector<PatchConstraint>& patches;
+  const std::vector<parts::StackHold>& holds;
+  const std::vector<std::vector<int>>& shareGroups;
+  std::vector<parts::SharedPatch>& shareBuf;
+  PatchConstraint& retry;  // a stacked patch's state before its visit
+};
+
+// Stage 5, one iteration: every patch visited (a settled one skipped while
+// its bodies are unchanged), stacked patches with their support held, then
+// the load sharing. Returns the largest squared impulse change.
+template <class Bodies>
+double iteratePatches(VisitContext<Bodies>& cx, PatchIteration& it) {
+  PatchSolverStats& stats = cx.stats;
+  double worst = 0.0;
+  for (PatchConstraint& pc : it.patches) {
+    ++stats.visits;
+    if (pc.settled) {
+      btVector3 now[4];
+      cx.bodies.snapshot(pc, now);
+      if (now[0] == pc.snapshot[0] && now[1] == pc.snapshot[1] && now[2] == pc.snapshot[2] &&
+          now[3] == pc.snapshot[3]) {
+        ++stats.skippedVisits;
+        continue;  // same input, same (zero) change
+      }
+      pc.settled = false;
+    }
+    // a stacked patch: its support held while the support is on its patch
+    // (all six DOFs while it sticks and can take its share, else its
+    // normal block); a support on a static body: its load held alike
+    PatchConstraint* sup = nullptr;
+    const parts::StackHold* stackHold = nullptr;
+    if (pc.stack.hold >= 0) {
+      sup = &it.patches[std::size_t(pc.stack.support)];
+      stackHold = &it.holds[std::size_t(pc.stack.hold)];
+    } else if (pc.stack.loadHold >= 0) {
+      sup = &it.patches[std::size_t(pc.stack.load)];
+      stackHold = &it.holds[std::size_t(pc.stack.loadHold)];
+    }
+    const parts::HeldBlocks* normalHold =
+        stackHold && stackHold->normal.valid ? &stackHold->normal : nullptr;
+    if (!stackHold || !sup->interior) {
+      visitPatch(cx, pc, nullptr, nullptr, 0, worst);
+    } else if (sup->fb.sticking && stackHold->all.valid) {
+      it.retry = pc;
+      if (!visitPatch(cx, pc, sup, &stackHold->all, 2, worst)) {
+        const parts::PressureRecord law =
+            pc.fb.law;  // the law is not rolled back: nor is its record
+        pc = it.retry;
+        pc.fb.law = law;
+        visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
+      }
+    } else {
+      visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
+    }
+  }
+  for (const std::vector<int>& group : it.shareGroups)
+    shareGroupLoads(it.patches, group, it.shareBuf);
+  return worst;
+}
+
+}  // namespace patchspin::bullet::internal
