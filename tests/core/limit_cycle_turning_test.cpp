@@ -147,8 +147,7 @@ TEST(LimitCycleTurning, ReferenceTurnOverAFewDecadesFollowsTheCyclesPhase) {
     // phase, to the window's end
     std::size_t k = 0;
     while (k + 1 < s.size() && s[k].decades < d0) ++k;
-    const double predicted =
-        table.predictTurn(table.phaseOf(s[k].w), d0 + kWindow - s[k].decades);
+    const double predicted = table.predictTurn(table.phaseOf(s[k].w), d0 + kWindow - s[k].decades);
     // the phase match (projection on the orbit's chords) and the linear
     // interpolation in decades at the end, each ~1e-4 rad at most (measured:
     // 4e-5 rad), against turns of 0.5 to 2.4 rad
@@ -162,8 +161,8 @@ TEST(LimitCycleTurning, ReferenceTurnOverAFewDecadesFollowsTheCyclesPhase) {
               lo * 180 / M_PI, hi * 180 / M_PI, worst);
   // the windows differ: the phase matters (a window's rate is not Gamma)
   EXPECT_GT(hi - lo, 0.05 * std::abs(cycle.turnPerDecade))
-      << "rates per decade over 3-decade windows: " << lo * 180 / M_PI << " .. "
-      << hi * 180 / M_PI << " deg";
+      << "rates per decade over 3-decade windows: " << lo * 180 / M_PI << " .. " << hi * 180 / M_PI
+      << " deg";
 }
 
 }  // namespace

@@ -64,8 +64,8 @@ class CycleTable {
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3& a = cycle.orbit[i];
       const Vec3& b = cycle.orbit[(i + 1) % n];
-      phi_[i + 1] = phi_[i] + std::remainder(std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x()),
-                                             2.0 * M_PI);
+      phi_[i + 1] =
+          phi_[i] + std::remainder(std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x()), 2.0 * M_PI);
       // the segment's fast time |b - a| / |V*| and its R*, both at the
       // midpoint (the nodes need not be equally spaced in tau)
       const Vec3 m = (a + b).normalized();
@@ -99,20 +99,36 @@ class CycleTable {
     return phase < 0.0 ? phase + double(n) : phase;
   }
 
+  // The cycle's point `decades` on from phase `start` (linear between nodes,
+  // normalised).
+  Vec3 pointAfter(double start, double decades) const {
+    const double p = phaseAfter(start, decades), n = double(cycle_.orbit.size());
+    const double q = p - n * std::floor(p / n);
+    const std::size_t i = std::min(std::size_t(q), cycle_.orbit.size() - 1);
+    const double f = q - double(i);
+    return ((1.0 - f) * cycle_.orbit[i] + f * cycle_.orbit[(i + 1) % cycle_.orbit.size()])
+        .normalized();
+  }
+
   // Turn of phi while the slip falls by `decades` from phase `start`.
   double predictTurn(double start, double decades) const {
-    const double d0 = value(dec_, start), target = d0 + decades;
-    // bisection on the phase (D increases monotonically: R* < 0 on the cycle)
+    return value(phi_, phaseAfter(start, decades)) - value(phi_, start);
+  }
+
+ private:
+  // the phase at which the slip has fallen `decades` from phase `start`
+  // (bisection: D increases monotonically, R* < 0 on the cycle)
+  double phaseAfter(double start, double decades) const {
+    const double target = value(dec_, start) + decades;
     double lo = start, hi = start;
     while (value(dec_, hi) < target) hi += double(cycle_.orbit.size());
     for (int it = 0; it < 80; ++it) {
       const double mid = 0.5 * (lo + hi);
       (value(dec_, mid) < target ? lo : hi) = mid;
     }
-    return value(phi_, 0.5 * (lo + hi)) - value(phi_, start);
+    return 0.5 * (lo + hi);
   }
 
- private:
   // a table continued periodically (plus its per-period increment), linear
   // between nodes
   double value(const std::vector<double>& t, double phase) const {
