@@ -35,8 +35,7 @@ int run(const Args& a, demos::CommonArgs c) {
   std::snprintf(title, sizeof title, "curling: R %g cm, H %g cm, mu %g, v0 %g m/s, spin %+g rad/s",
                 100 * a.radius, 100 * a.height, a.mu, a.v0, a.omega0);
   config.title = title;
-  config.caption =
-      "patch laws: the pressed front drifts the disk against its spin (track.png)";
+  config.caption = "patch laws: the pressed front drifts the disk against its spin (track.png)";
   config.trackPlot = true;
   for (const char* model : {"exact", "ellipsoidal", "stock"}) {
     if (c.model != "all" && c.model != model) continue;
