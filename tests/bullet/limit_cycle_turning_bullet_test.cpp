@@ -71,15 +71,18 @@ struct Fixture {
 };
 
 // One Bullet run from slip state x0 (force frame, (u_x, u_y, rho omega))
-// with step dt, kept until r < rEnd; returns its slip states.
-std::vector<Vec3> bulletRun(const FlatBodyModel& model, const Vec3& x0, double dt, double rEnd) {
+// with step dt, kept until r < rEnd; returns its slip states (and the
+// result, with w recorded at r < rEnd).
+std::vector<Vec3> bulletRun(const FlatBodyModel& model, const Vec3& x0, double dt, double rEnd,
+                            SimulationResult* result = nullptr) {
   SimulationSpec s = thickDiskSpec();
   s.v0 = x0.head<2>();
   s.omega0 = x0.z() / model.rho();
   s.dt = dt;
   s.tMax = 1.2 * x0.norm() / 4.0;  // r falls at ~4.2 m/s^2
-  s.recordAt = 0.5;
+  s.recordAt = rEnd / x0.norm();
   const SimulationResult r = simulate(s);
+  if (result) *result = r;
   std::vector<Vec3> out;
   for (const SimulationSample& q : r.trajectory) {
     out.push_back(q.r * q.w);
@@ -95,8 +98,9 @@ TEST(LimitCycleTurning, BulletFollowsTheCycleOverTheDecadesItResolves) {
   ASSERT_GT(f.cycle.period, 0.0);
   const CycleTable table(f.model, f.cycle);
   constexpr double kR0 = 10.0, kDt = 1e-3;
+  SimulationResult result;
   const std::vector<TurnSample> s =
-      testing::turnSamples(bulletRun(f.model, kR0 * f.cycle.point, kDt, 0.05));
+      testing::turnSamples(bulletRun(f.model, kR0 * f.cycle.point, kDt, 0.05, &result));
   ASSERT_GT(s.size(), 100u);
   // the window: from the first step to r = 0.1 m/s
   const double d0 = s.front().decades, d1 = -std::log10(0.1);
@@ -106,6 +110,10 @@ TEST(LimitCycleTurning, BulletFollowsTheCycleOverTheDecadesItResolves) {
               buildPrecision(), kDt, std::pow(10.0, -d0), measured * 180 / M_PI,
               predicted * 180 / M_PI);
   EXPECT_NEAR(measured, predicted, kTurnTol * std::abs(predicted));
+  // SimulationResult::turn (simulate's "turn") is the trajectory's turn from
+  // the start to the recorded step, the first with r < 0.05 m/s: the same
+  // sums of step increments, to round-off
+  EXPECT_NEAR(result.turn, s.back().phi - s.front().phi, 1e-9);
 }
 
 // Runs chained from slip state x0 (see the top): 2 decades each, dt = 1e-4
@@ -116,7 +124,8 @@ TEST(LimitCycleTurning, BulletFollowsTheCycleOverTheDecadesItResolves) {
 // decades, three quarters of a period.
 std::vector<TurnSample> chain(const FlatBodyModel& model, Vec3 x) {
   constexpr double kDtPerSlip = 1e-4;  // [s per m/s]
-  const double floor = 10.0 * (kDouble ? std::numeric_limits<double>::epsilon() : std::numeric_limits<float>::epsilon());
+  const double floor = 10.0 * (kDouble ? std::numeric_limits<double>::epsilon()
+                                       : std::numeric_limits<float>::epsilon());
   std::vector<Vec3> states;
   while (kDtPerSlip * x.norm() > floor) {
     const std::vector<Vec3> run = bulletRun(model, x, kDtPerSlip * x.norm(), 0.01 * x.norm());
@@ -147,10 +156,11 @@ TEST(LimitCycleTurning, BulletWithTheStepScaledToTheSlipTurnsAtGamma) {
     ASSERT_GT(s.back().decades - s.front().decades, 0.5 * period) << half;
     const double t = testing::phiAt(s, s.front().decades + 0.5 * period) - s.front().phi;
     const double predicted = table.predictTurn(table.phaseOf(s.front().w), 0.5 * period);
-    std::printf("Bullet (double), half period %d (%.3f decades from %g m/s): turn %.4f deg, "
-                "cycle %.4f deg; chain reached %.2f decades\n",
-                half, 0.5 * period, kR0, t * 180 / M_PI, predicted * 180 / M_PI,
-                s.back().decades - s.front().decades);
+    std::printf(
+        "Bullet (double), half period %d (%.3f decades from %g m/s): turn %.4f deg, "
+        "cycle %.4f deg; chain reached %.2f decades\n",
+        half, 0.5 * period, kR0, t * 180 / M_PI, predicted * 180 / M_PI,
+        s.back().decades - s.front().decades);
     turn += t;
   }
   const double rate = turn / period;
