@@ -72,6 +72,48 @@ render::LimitKind kindOf(LimitType t) {
   }
 }
 
+std::string hexColour(const render::Rgb& c) {
+  char s[8];
+  auto byte = [](double v) { return int(std::lround(255.0 * std::clamp(v, 0.0, 1.0))); };
+  std::snprintf(s, sizeof s, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return s;
+}
+
+// <out>/track.png (DemoConfig::trackPlot): the tracks from each start in the
+// body's colour, each patch-law body's reference dynamics dashed black.
+void writeTrackPlot(const DemoConfig& config, const std::vector<SimulationResult>& results,
+                    double dt, double tMax, const fs::path& out) {
+  render::GroundTrackPlot plot;
+  for (std::size_t i = 0; i < config.bodies.size(); ++i) {
+    const DemoBody& b = config.bodies[i];
+    render::GroundTrack bullet;
+    bullet.label = b.label + " (Bullet)";
+    bullet.colour = hexColour(b.colour);
+    for (const SimulationSample& s : results[i].trajectory) bullet.points.push_back(s.position);
+    plot.tracks.push_back(bullet);
+    if (b.spec.model == "stock") continue;
+    SimulationSpec spec = b.spec;
+    spec.engine = "reference";
+    spec.dt = dt;
+    spec.tMax = tMax;
+    spec.keepTrajectory = true;
+    render::GroundTrack reference;
+    reference.label = b.label + " (reference, Eq. (93))";
+    reference.colour = "#000000";
+    reference.dashed = true;
+    for (const SimulationSample& s : simulateReference(spec).trajectory)
+      reference.points.push_back(s.position);
+    plot.tracks.push_back(reference);
+  }
+  render::PlotOptions po;
+  po.title = config.name + ": ground tracks of the patch centre (axes not to the same scale)";
+  try {
+    render::plotGroundTracks(plot, (out / "track.png").string(), po);
+  } catch (const render::RenderError& e) {
+    std::fprintf(stderr, "%s: warning: no plot: %s\n", config.name.c_str(), e.what());
+  }
+}
+
 }  // namespace
 
 void addCommonOptions(CLI::App& app, CommonArgs& a, bool* noPlot, bool* quiet) {
@@ -267,8 +309,10 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
       }
     }
   }
-  std::printf("%s: %d frames, summary.json%s in %s\n", config.name.c_str(), writer.count(),
-              a.plot ? ", sphere_*.png" : "", a.out.c_str());
+  if (a.plot && config.trackPlot) writeTrackPlot(config, results, dt, tMax, out);
+  std::printf("%s: %d frames, summary.json%s%s in %s\n", config.name.c_str(), writer.count(),
+              a.plot ? ", sphere_*.png" : "", a.plot && config.trackPlot ? ", track.png" : "",
+              a.out.c_str());
   return 0;
 }
 

@@ -7,7 +7,8 @@
 //
 // Writes <out>/frame_NNNNN.png, <out>/summary.json and, per body,
 // <out>/sphere_<key>.png: w(t) on the unit sphere with the limit directions of
-// patchspin::findLimitDirections (patch models only) marked by type.
+// patchspin::findLimitDirections (patch models only) marked by type; with
+// DemoConfig::trackPlot also <out>/track.png.
 #pragma once
 
 #include <functional>
@@ -52,6 +53,9 @@ struct DemoConfig {
   std::string caption;  // overlay caption
   std::vector<DemoBody> bodies;
   double forceArrowScale = 0.0;  // metres per newton of the force arrows; 0: automatic
+  // also write <out>/track.png: every body's ground track from its start, with
+  // the reference dynamics (Eq. (93)) of each patch-law body dashed beside it
+  bool trackPlot = false;
 };
 
 // Adds --out, --frames, --fps, --size, --model, --rate, --slowmo, --t-max,

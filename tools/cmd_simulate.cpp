@@ -119,6 +119,7 @@ void run(const SimulateArgs& a) {
     out["eps_stop"] = result.epsStop ? finiteOrNull(*result.epsStop) : nlohmann::json(nullptr);
     out["displacement"] = {result.displacement.x(), result.displacement.y()};
     out["rotation"] = result.rotation;
+    out["turn"] = result.turn;
     std::printf("%s\n", out.dump().c_str());
     return;
   }
@@ -130,6 +131,13 @@ void run(const SimulateArgs& a) {
                 result.wStop.x(), result.wStop.y(), result.wStop.z(), spec.recordAt);
   }
   if (result.epsStop) std::printf("eps_stop  |v|/(R|w|) = %.6g\n", *result.epsStop);
+  if (recorded) {
+    std::printf(
+        "turn      %+.6g deg of the slip velocity's direction until r = %g r0 "
+        "(%+.6g deg per decade; + counter-clockwise)\n",
+        result.turn * 180.0 / std::acos(-1.0), spec.recordAt,
+        result.turn * 180.0 / std::acos(-1.0) / -std::log10(spec.recordAt));
+  }
   std::printf("moved     (%.6g, %.6g) m, turned %.6g rad\n", result.displacement.x(),
               result.displacement.y(), result.rotation);
 }
@@ -159,7 +167,8 @@ const RegisterCommand registration([](CLI::App& app) {
       "float | double (bullet only; default: the precision patchspin::bullet was built with)");
   cmd->add_flag(
       "--json", a->json,
-      "print {stopped, t_stop, w_stop, eps_stop, displacement, rotation} as one JSON object");
+      "print {stopped, t_stop, w_stop, eps_stop, displacement, rotation, turn} as one JSON "
+      "object");
   cmd->callback([a] { run(*a); });
 });
 

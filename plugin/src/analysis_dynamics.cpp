@@ -171,6 +171,7 @@ ReferenceRun integrateReference(const FlatBodyModel& model, const BodyState& ini
       continue;
     }
     double rNew = yNew.tail<3>().norm();
+    const bool recordedBefore = recorded;
     if (!recorded && rNew < options.recordAt * r0) {
       // land the step on r = recordAt r0 (secant on the step length)
       const double target = options.recordAt * r0;
@@ -198,6 +199,12 @@ ReferenceRun integrateReference(const FlatBodyModel& model, const BodyState& ini
         run.recordState = unpack(yNew);
         run.wRecord = yNew.tail<3>() / rNew;
       }
+    }
+    // turn of the slip velocity up to the record (this step's included: it
+    // lands on r = recordAt r0)
+    if (!recordedBefore) {
+      run.turnRecord += std::remainder(std::atan2(yNew[4], yNew[3]) - std::atan2(y[4], y[3]),
+                                       2.0 * std::acos(-1.0));
     }
     t += h;
     y = yNew;
@@ -299,6 +306,7 @@ SimulationResult simulateReference(const SimulationSpec& spec) {
   }
   result.displacement = run.final.position - start.position;
   result.rotation = run.final.psi - start.psi;
+  result.turn = run.turnRecord;
   for (const auto& [time, s] : run.samples) {
     SimulationSample sample;
     sample.t = time;

@@ -860,6 +860,42 @@ void plotPareto(const std::string& csvPath, const std::string& pngPath, const Pa
   runGnuplot(s.str(), pngPath, o);
 }
 
+// ---- (e) ------------------------------------------------------------------------
+
+void plotGroundTracks(const GroundTrackPlot& plot, const std::string& pngPath,
+                      const PlotOptions& o) {
+  if (plot.tracks.empty()) throw RenderError("plotGroundTracks: no tracks");
+  std::ostringstream s;
+  s << header(pngPath, o);
+  std::string plots, dashed, ends;
+  for (std::size_t i = 0; i < plot.tracks.size(); ++i) {
+    const GroundTrack& t = plot.tracks[i];
+    if (t.points.empty()) throw RenderError("plotGroundTracks: track '" + t.label + "' is empty");
+    std::string rows;
+    for (const Vec2& p : t.points) rows += num(p.x()) + " " + num(p.y()) + "\n";
+    datablock(s, "t" + std::to_string(i), rows);
+    const std::string colour = gpString(t.colour.empty() ? paletteColour(i) : t.colour);
+    const std::string line = "$t" + std::to_string(i) + " using 1:2 with lines " +
+                             (t.dashed ? "lw 1.4 dt 2" : "lw 2.6") + " lc rgb " + colour +
+                             " title " + gpString(t.label) + " noenhanced";
+    (t.dashed ? dashed : plots) += ", \\\n     " + line;
+    const Vec2 a = t.points.front(), b = t.points.back();
+    ends += ", \\\n     '+' using (" + num(a.x()) + "):(" + num(a.y()) +
+            ") every ::0::0 with points pt 6 ps 1.2 lc rgb " + colour + " notitle" +
+            ", \\\n     '+' using (" + num(b.x()) + "):(" + num(b.y()) +
+            ") every ::0::0 with points pt 2 ps 1.4 lc rgb " + colour + " notitle";
+  }
+  if (!o.title.empty()) s << "set title " << gpString(o.title) << " noenhanced\n";
+  s << "set grid lc rgb '#dddddd'\nset key bottom left box opaque\n"
+    << "set xlabel " << gpString(plot.xLabel) << "\nset ylabel " << gpString(plot.yLabel)
+    << "\nset offsets graph 0.03, graph 0.03, graph 0.08, graph 0.08\n";
+  if (plot.equalAxes) s << "set size ratio -1\n";
+  // solid tracks first, dashed ones over them
+  std::string all = plots + dashed + ends;
+  s << "plot " << all.erase(0, all.find('$')) << "\n";
+  runGnuplot(s.str(), pngPath, o);
+}
+
 // ---- CSV readers -------------------------------------------------------------
 
 std::vector<TimeSeries> readTimeSeriesCsv(const std::string& csvPath) {

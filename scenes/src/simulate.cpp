@@ -165,6 +165,9 @@ SimulationResult simulate(const SimulationSpec& spec) {
     result.rotation += s.omega * spec.dt;  // Bullet integrates with the new velocity
     record(t, s);
     const double r = s.x.norm();
+    const double dphi = std::remainder(std::atan2(s.velocity.y(), s.velocity.x()) -
+                                           std::atan2(sPrev.velocity.y(), sPrev.velocity.x()),
+                                       2.0 * std::acos(-1.0));
     if (r0 > 0) {
       if (!recorded && r < spec.recordAt * r0) {
         recorded = true;
@@ -172,11 +175,15 @@ SimulationResult simulate(const SimulationSpec& spec) {
         // applied force). If this step is the one that sticks, the slip fell
         // below the threshold within the step, where one step cannot resolve
         // it: record the last slipping step's direction instead.
-        const State& at = (r <= kStopFraction * r0 && sPrev.x.norm() > 0) ? sPrev : s;
+        const bool stickStep = r <= kStopFraction * r0 && sPrev.x.norm() > 0;
+        const State& at = stickStep ? sPrev : s;
+        if (!stickStep) result.turn += dphi;
         const double rAt = at.x.norm();
         result.wStop = rAt > 0 ? Vec3(at.x / rAt) : Vec3::Zero();
         if (cylinder && at.omega != 0.0)
           result.epsStop = at.velocity.norm() / (spec.R * std::abs(at.omega));
+      } else if (!recorded) {
+        result.turn += dphi;
       }
       if (r <= kStopFraction * r0) {
         // stop part way through the step at the previous decrement rate

@@ -118,6 +118,26 @@ TEST(Plot, SlipRatioAgainstTime) {
   expectValidPng(dir + "/ratio_log.png");
 }
 
+TEST(Plot, GroundTracks) {
+  GroundTrackPlot plot;
+  for (int k = 0; k < 2; ++k) {
+    GroundTrack t;
+    t.label = k == 0 ? "bullet" : "reference";
+    t.dashed = k == 1;
+    if (k == 1) t.colour = "#000000";
+    for (int i = 0; i <= 50; ++i) t.points.emplace_back(0.02 * i, -0.001 * (1 + k) * i * i / 50.0);
+    plot.tracks.push_back(t);
+  }
+  const std::string dir = tempDir("tracks");
+  plotGroundTracks(plot, dir + "/tracks.png", smallOptions());
+  expectValidPng(dir + "/tracks.png");
+  plot.equalAxes = true;
+  plotGroundTracks(plot, dir + "/tracks_equal.png", smallOptions());
+  expectValidPng(dir + "/tracks_equal.png");
+  plot.tracks[1].points.clear();
+  EXPECT_THROW(plotGroundTracks(plot, dir + "/empty.png", smallOptions()), RenderError);
+}
+
 TEST(Plot, BifurcationAgainstForceAndOverPlane) {
   const std::string dir = tempDir("bifurcation");
   const std::vector<SweepPanel> sweeps = writeSweeps(dir);

@@ -189,6 +189,7 @@ TEST(SimulateToolTest, ReferenceFreeDiskJson) {
   const SimulationResult r = simulateReference(spec);
   EXPECT_NEAR(j["t_stop"].get<double>(), r.tStop, kPrintTol);
   EXPECT_NEAR(j["w_stop"][2].get<double>(), r.wStop.z(), kPrintTol);
+  EXPECT_NEAR(j["turn"].get<double>(), r.turn, kPrintTol);
 }
 
 // A box pushed along y by less than mu m g stays put; w_stop is expressed in

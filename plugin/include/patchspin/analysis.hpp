@@ -202,6 +202,9 @@ struct ReferenceRun {
   Vec3 wRecord = Vec3::Zero();  // ground-frame w at the recording instant (zero if never)
   double tRecord = 0.0;
   BodyState recordState;
+  // turn of the slip velocity's direction (ground axes, unwrapped, > 0
+  // counter-clockwise) from the start to the recording instant [rad]
+  double turnRecord = 0.0;
   BodyState final;
   int steps = 0;
   // smallest pressure on the patch over the run's steps, over the mean pressure

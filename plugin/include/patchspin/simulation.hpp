@@ -55,6 +55,11 @@ struct SimulationResult {
   std::optional<double> epsStop;     // |v| / (R |omega|) at that instant (cylinders)
   Vec2 displacement = Vec2::Zero();  // [m]
   double rotation = 0.0;             // [rad]
+  // turn of the slip velocity's direction (ground frame, unwrapped step by
+  // step, > 0 counter-clockwise) from the start until w is recorded (r first
+  // below recordAt r0) [rad]; on a limit cycle, -turn / decades of r fallen
+  // approaches LimitCycle::turnPerDecade over whole periods
+  double turn = 0.0;
   std::vector<SimulationSample> trajectory;
 };
 

@@ -150,6 +150,28 @@ void plotPareto(const std::string& csvPath, const std::string& pngPath,
                 const ParetoOptions& pareto = ParetoOptions(),
                 const PlotOptions& options = PlotOptions());
 
+// ---- (e) ground tracks: where bodies slid, seen from above ---------------------
+
+struct GroundTrack {
+  std::string label;         // key entry
+  std::vector<Vec2> points;  // positions in time order [m]
+  bool dashed = false;       // thinner and dashed, drawn over the solid ones
+  std::string colour;        // "#rrggbb"; empty: the palette's colour of its index
+};
+
+struct GroundTrackPlot {
+  std::vector<GroundTrack> tracks;
+  std::string xLabel = "x [m]", yLabel = "y [m]";  // gnuplot enhanced text
+  // true: both axes to the same scale; false: each axis fitted to the data
+  // (shows a sideways drift much smaller than the travel)
+  bool equalAxes = false;
+};
+
+// The tracks as lines in the plane; a small circle marks each start, a cross
+// each end.
+void plotGroundTracks(const GroundTrackPlot& plot, const std::string& pngPath,
+                      const PlotOptions& options = PlotOptions());
+
 // ---- CSV readers for scripts (same CSV rules as above) ----------------------
 
 // label,t,slipRatio,r  -> one TimeSeries per label (first-appearance order);

@@ -15,6 +15,7 @@
 namespace patchspin::render {
 
 using Vec3 = Eigen::Vector3d;
+using Vec2 = Eigen::Vector2d;
 
 // Every rendering or plotting failure (bad input, missing font, missing
 // gnuplot, unwritable file) throws this with a message saying what to do.

@@ -16,8 +16,9 @@
 // instant is extrapolated within that step from the previous decrement, and
 // the run ends there. A run started at rest runs to tMax; it reports
 // stopped = (r <= 1e-6 m/s at the end) and tStop = the last time r exceeded
-// 1e-6 m/s (0 if never). w_stop, eps_stop as in simulation.hpp; the tilt of
-// each trajectory sample is |(omega_x, omega_y)| of the body.
+// 1e-6 m/s (0 if never). w_stop, eps_stop, turn as in simulation.hpp (turn
+// summed over the steps up to the recorded one); the tilt of each
+// trajectory sample is |(omega_x, omega_y)| of the body.
 #pragma once
 
 #include <patchspin/simulation.hpp>
