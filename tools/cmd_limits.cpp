@@ -139,14 +139,16 @@ nlohmann::json cyclesToJson(const CycleAnalysis& c, int seeds) {
                       {"turn_per_decade", y.turnPerDecade}});
   }
   auto ends = [](const std::vector<SeedEnd>& list, const std::vector<Vec3>& unresolved) {
-    int fixed = 0, cycle = 0;
+    int fixed = 0, cycle = 0, continuum = 0;
     for (const SeedEnd& e : list) {
       fixed += e.kind == SeedEnd::FixedPoint ? 1 : 0;
       cycle += e.kind == SeedEnd::Cycle ? 1 : 0;
+      continuum += e.kind == SeedEnd::Continuum ? 1 : 0;
     }
     nlohmann::json none = nlohmann::json::array();
     for (const Vec3& w : unresolved) none.push_back(vec(w));
-    return nlohmann::json{{"fixed_point", fixed}, {"cycle", cycle}, {"unresolved", none}};
+    return nlohmann::json{
+        {"fixed_point", fixed}, {"cycle", cycle}, {"continuum", continuum}, {"unresolved", none}};
   };
   return {{"limit_cycles", cycles},
           {"cycle_search",
@@ -165,7 +167,7 @@ void printCycles(const CycleAnalysis& c, int seeds) {
       "backward in the fast time tau, dt = r dtau):\n",
       seeds);
   if (!c.searched) {
-    std::printf("no search: the fixed points form a continuum (or F_o = 0)\n");
+    std::printf("no search: every direction is a fixed point (or F_o = 0)\n");
     return;
   }
   if (c.cycles.empty()) std::printf("none\n");
@@ -182,12 +184,14 @@ void printCycles(const CycleAnalysis& c, int seeds) {
   }
   auto report = [](const char* dir, const char* what, const std::vector<SeedEnd>& list,
                    const std::vector<Vec3>& unresolved) {
-    int fixed = 0, cycle = 0;
+    int fixed = 0, cycle = 0, continuum = 0;
     for (const SeedEnd& e : list) {
       fixed += e.kind == SeedEnd::FixedPoint ? 1 : 0;
       cycle += e.kind == SeedEnd::Cycle ? 1 : 0;
+      continuum += e.kind == SeedEnd::Continuum ? 1 : 0;
     }
     std::printf("%s: %d seeds end at a fixed point, %d on a cycle", dir, fixed, cycle);
+    if (continuum > 0) std::printf(", %d on a continuum", continuum);
     if (unresolved.empty()) {
       std::printf("\n");
       return;

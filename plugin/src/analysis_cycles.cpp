@@ -270,6 +270,16 @@ SeedEnd runSeed(const FlatBodyModel& model, const LimitAnalysis& fixed, const Ve
         return end;
       }
     }
+    // a circle of fixed points n.w = offset, closed on in direction d
+    for (std::size_t c = 0; c < fixed.continua.size(); ++c) {
+      const LimitContinuum& k = fixed.continua[c];
+      const double off = k.normal.dot(y.w) - k.offset;
+      if (std::abs(off) < kCapture &&
+          off * k.normal.dot(evalField(model, y.w, nullptr, d).V) < 0.0) {
+        end.kind = SeedEnd::Continuum, end.index = static_cast<int>(c), end.last = y.w;
+        return end;
+      }
+    }
     if (steps % 16 == 0) {
       for (std::size_t c = 0; c < cycles.size(); ++c) {
         const bool attractsHere = d > 0.0 ? cycles[c].attracting : !cycles[c].attracting;
@@ -327,8 +337,10 @@ CycleAnalysis findLimitCycles(const FlatBodyModel& model, const LimitAnalysis& f
   CycleAnalysis out;
   const std::vector<Vec3> seeds = internal::fibonacciSphere(std::max(options.seeds, 2));
   for (const Vec3& w : seeds) out.fieldScale = std::max(out.fieldScale, model.limitField(w).norm());
-  if (!(out.fieldScale > 0.0) || !std::isfinite(out.fieldScale) || !fixed.continua.empty()) {
-    // F_o = 0 or a continuum of fixed points: no isolated cycle to find
+  const bool everyDirectionFixed = std::any_of(fixed.continua.begin(), fixed.continua.end(),
+                                               [](const LimitContinuum& c) { return c.sphere; });
+  if (!(out.fieldScale > 0.0) || !std::isfinite(out.fieldScale) || everyDirectionFixed) {
+    // F_o = 0 or every direction fixed: no isolated cycle to find
     return out;
   }
   out.searched = true;

@@ -164,6 +164,61 @@ TEST(LimitCycles, ThickDiskWithADominantDirectionHasNoCycle) {
   EXPECT_LT(nearest, 1e-6);
 }
 
+// The free thick disk (F = 0) is axisymmetric: its fixed directions are
+// the poles (unstable foci on the sphere) and the equator (pure sliding, a
+// circle of fixed points), and its slip direction ends on a circle of
+// latitude around each pole, turning along it: the curl of the curling
+// demo. The oracle places the circle where the meridional component of its
+// field V* changes sign, V*(w(t)) . e_t = 0 with w(t) = (sin t, 0, cos t),
+// e_t = (cos t, 0, -sin t) (bisection to 1e-10 rad), and gives the period
+// 2 pi sin t / |V*_phi| (speed along the circle). 16 seeds keep it short.
+TEST(LimitCycles, FreeThickDiskCurlsOnACircleOfLatitude) {
+  const FlatBodyModel model(thickDisk(0.0), Model::Exact);
+  const LimitAnalysis fixed = findLimitDirections(model);
+  ASSERT_EQ(fixed.continua.size(), 1u);
+  EXPECT_FALSE(fixed.continua[0].sphere);
+  CycleOptions options;
+  options.seeds = 16;
+  const CycleAnalysis cycles = findLimitCycles(model, fixed, options);
+  ASSERT_TRUE(cycles.searched);
+  EXPECT_TRUE(cycles.complete());
+  const LimitCycle* up = nullptr;
+  for (const LimitCycle& c : cycles.cycles)
+    if (c.attracting && c.w3Max > 0.0) up = &c;
+  ASSERT_NE(up, nullptr);
+  for (const SeedEnd& e : cycles.forward) EXPECT_NE(e.kind, SeedEnd::Unresolved);
+
+  auto meridional = [](double t) {
+    const Vec3 w(std::sin(t), 0.0, std::cos(t));
+    return oracleV(w, 0.0).dot(Vec3(std::cos(t), 0.0, -std::sin(t)));
+  };
+  // the sign change from away from the pole (> 0) to back towards it (< 0)
+  double lo = NAN, hi = NAN;
+  for (double t = 0.05; t < 1.5; t += 0.05) {
+    if (meridional(t) > 0.0 && meridional(t + 0.05) < 0.0) {
+      lo = t, hi = t + 0.05;
+      break;
+    }
+  }
+  ASSERT_TRUE(std::isfinite(lo));
+  while (hi - lo > 1e-10) {
+    const double mid = 0.5 * (lo + hi);
+    (meridional(mid) > 0.0 ? lo : hi) = mid;
+  }
+  const double t = 0.5 * (lo + hi);
+  // (as in ThickDiskExactLawEndsOnACycleAroundEachPole: RK4 and the
+  // oracle's 1e-6 quadrature move the circle by ~1e-6)
+  constexpr double kExtentTol = 1e-5;
+  EXPECT_NEAR(up->w3Min, std::cos(t), kExtentTol);
+  EXPECT_NEAR(up->w3Max, std::cos(t), kExtentTol);
+  const Vec3 w(std::sin(t), 0.0, std::cos(t));
+  const double vPhi = oracleV(w, 0.0).y();  // e_phi = (0, 1, 0) at phi = 0
+  ASSERT_GT(std::abs(vPhi), 0.1);           // turning: a cycle, not fixed points
+  constexpr double kPeriodTol = 1e-4;       // relative
+  EXPECT_NEAR(up->period, 2.0 * M_PI * std::sin(t) / std::abs(vPhi), kPeriodTol * up->period);
+  EXPECT_NEAR(std::abs(up->turn), 2.0 * M_PI, 1e-9);
+}
+
 // The ellipsoidal law at the issue's force has dominant foci: no cycle.
 TEST(LimitCycles, EllipsoidalLawAtTheIssuesForceHasNoCycle) {
   const FlatBodyModel model(thickDisk(0.4469), Model::Ellipsoidal);

@@ -66,10 +66,11 @@ struct LimitCycle {
 // Where the orbit from one seed ends (forward: attractors; backward in tau:
 // repellers).
 struct SeedEnd {
-  enum Kind { FixedPoint, Cycle, Unresolved };
+  enum Kind { FixedPoint, Cycle, Continuum, Unresolved };
   Vec3 seed = Vec3::Zero();
   Kind kind = Unresolved;
-  int index = -1;            // into LimitAnalysis::directions or CycleAnalysis::cycles
+  // into LimitAnalysis::directions, CycleAnalysis::cycles or LimitAnalysis::continua
+  int index = -1;
   Vec3 last = Vec3::Zero();  // w at the end of the run
 };
 
@@ -83,8 +84,11 @@ struct CycleAnalysis {
   std::vector<Vec3> unresolvedForward;
   std::vector<Vec3> unresolvedBackward;
   double fieldScale = 0.0;  // max |F_o| over the seeds [m/s^2]; 1 / fieldScale is the unit of tau
-  // false: no search (F_o = 0, or a continuum of fixed points, where no
-  // cycle is isolated); the lists above are then empty
+  // false: no search (F_o = 0, or every direction a fixed point); the
+  // lists above are then empty. A circle of fixed points (a free
+  // axisymmetric body's pure sliding) does not stop the search: a seed that
+  // closes on it ends there (SeedEnd::Continuum), and a cycle can still
+  // surround a pole (LimitCycles.FreeThickDiskCurlsOnACircleOfLatitude)
   bool searched = false;
   bool complete() const { return unresolvedForward.empty() && unresolvedBackward.empty(); }
 };
