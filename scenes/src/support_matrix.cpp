@@ -158,8 +158,7 @@ btRigidBody* addBodyOnTop(Scene& scene, BodyShape b) {
       parts[1].pose.setOrigin(bt(0, 0, 0.06));
       parts[1].mass = 0.2;
       parts[1].inertia = cylinderInertia(0.2, 0.02, 0.06);
-      btRigidBody* b = scene.addCompound(std::move(parts), at(0, 0, -kSetDown), 0.3);
-      return b;
+      return scene.addCompound(std::move(parts), at(0, 0, -kSetDown), 0.3);
     }
     case BodyShape::Sphere:
       return scene.addSphere(0.05, 1.0, bt(0, 0, 0.05 - kSetDown), 0.3);
