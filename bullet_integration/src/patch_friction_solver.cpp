@@ -27,6 +27,7 @@
 
 #include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
+#include "patch_push.hpp"
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
 #include "patch_solver_shared.hpp"
@@ -42,14 +43,6 @@ using parts::Vec6;
 
 namespace {
 
-// The velocity of a patch's dynamic body in the iterations: its fixed part
-// plus the solver body's delta velocities (the line Bullet's rows read too).
-template <class Velocity>
-Vec6 patchVelocity(const PatchConstraint& pc, Velocity velocity) {
-  return parts::patchVelocityOf(
-      pc.a.body, pc.b.body, pc.F, pc.fb.rho,
-      [&](int side, Vec3& v, Vec3& w) { velocity(side == 0 ? pc.a : pc.b, v, w); });
-}
 Vec6 constraintVelocity(const PatchConstraint& pc, btAlignedObjectArray<btSolverBody>& pool) {
   return internal::SolverBodies{pool}.velocity(pc);
 }
@@ -299,27 +292,7 @@ void PatchFrictionSolver::solveGroupCacheFriendlySplitImpulseIterations(
   // (zero iterations: Bullet solves nothing, nor does the patch;
   // BadInput.ZeroSolverIterationsSolveNothingAsInBullet)
   if (!info.m_splitImpulse || info.m_numIterations <= 0) return;
-  auto& pool = m_tmpSolverBodyPool;
-  for (int it = 0; it < internal::kPushIterations; ++it) {
-    for (PatchConstraint& pc : impl_->patches) {
-      if (pc.targetPush.isZero()) continue;
-      const Vec3 c = patchVelocity(pc, [&](const internal::BodyTerms& t, Vec3& v, Vec3& w) {
-                       v = internal::toEigen(pool[t.id].m_pushVelocity);
-                       w = internal::toEigen(pool[t.id].m_turnVelocity);
-                     }).head<3>();
-      const Vec3 lam = parts::solveNormalPosition(
-          pc.k.Winv, pc.lamPush, c, internal::softTarget(pc.targetPush, pc.compliance, pc.lamPush));
-      Vec6 d = Vec6::Zero();
-      d.head<3>() = lam - pc.lamPush;
-      pc.lamPush = lam;
-      parts::applyPatchImpulse(pc.a.body, pc.b.body, pc.F, pc.fb.rho, d,
-                               [&](int side, const Vec3& dv, const Vec3& dw) {
-                                 btSolverBody& sb = pool[side == 0 ? pc.a.id : pc.b.id];
-                                 sb.m_pushVelocity += internal::toBt(dv);
-                                 sb.m_turnVelocity += internal::toBt(dw);
-                               });
-    }
-  }
+  internal::pushPatches(impl_->patches, m_tmpSolverBodyPool);
 }
 
 // Stage 6.

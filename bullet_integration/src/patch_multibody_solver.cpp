@@ -9,6 +9,7 @@
 #include "link_sides.hpp"
 #include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
+#include "patch_push.hpp"
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
 #include "patch_solver_shared.hpp"
@@ -309,30 +310,7 @@ void PatchMultiBodySolver::solveGroupCacheFriendlySplitImpulseIterations(
   btMultiBodyConstraintSolver::solveGroupCacheFriendlySplitImpulseIterations(
       bodies, numBodies, manifolds, numManifolds, constraints, numConstraints, info, debugDrawer);
   if (!info.m_splitImpulse || info.m_numIterations <= 0) return;
-  auto& pool = m_tmpSolverBodyPool;
-  for (int it = 0; it < internal::kPushIterations; ++it) {
-    for (PatchConstraint& pc : impl_->patches) {
-      if (pc.articulated >= 0 || pc.targetPush.isZero()) continue;
-      const Vec3 c = parts::patchVelocityOf(pc.a.body, pc.b.body, pc.F, pc.fb.rho,
-                                            [&](int side, Vec3& v, Vec3& w) {
-                                              const int id = side == 0 ? pc.a.id : pc.b.id;
-                                              v = internal::toEigen(pool[id].m_pushVelocity);
-                                              w = internal::toEigen(pool[id].m_turnVelocity);
-                                            })
-                         .head<3>();
-      const Vec3 lam = parts::solveNormalPosition(
-          pc.k.Winv, pc.lamPush, c, internal::softTarget(pc.targetPush, pc.compliance, pc.lamPush));
-      Vec6 d = Vec6::Zero();
-      d.head<3>() = lam - pc.lamPush;
-      pc.lamPush = lam;
-      parts::applyPatchImpulse(pc.a.body, pc.b.body, pc.F, pc.fb.rho, d,
-                               [&](int side, const Vec3& dv, const Vec3& dw) {
-                                 btSolverBody& sb = pool[side == 0 ? pc.a.id : pc.b.id];
-                                 sb.m_pushVelocity += internal::toBt(dv);
-                                 sb.m_turnVelocity += internal::toBt(dw);
-                               });
-    }
-  }
+  internal::pushPatches(impl_->patches, m_tmpSolverBodyPool);
 }
 
 // Stage 6; a link side also gets the patch's force as its constraint force
