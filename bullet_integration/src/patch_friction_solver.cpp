@@ -27,10 +27,12 @@
 
 #include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
+#include "patch_finish.hpp"
 #include "patch_push.hpp"
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
 #include "patch_solver_shared.hpp"
+#include "patch_stacks.hpp"
 #include "patch_visit.hpp"
 
 #include <algorithm>
@@ -66,12 +68,11 @@ struct PatchFrictionSolver::Impl {
   // solver), or its own in a pool (merged by PatchSolverShared::endStep)
   internal::PatchReports* reports;
   PatchSolverStats* stats;
-  std::vector<internal::Candidate> candidates;    // of the chunk in hand
-  std::vector<PatchConstraint> patches;           // of the island
-  std::vector<parts::StackHold> holds;            // of the island's stacked patches
-  std::vector<parts::StackPatchView> stackViews;  // scratch of stage 3 (link stacks)
-  std::vector<parts::StackLinks> stackLinks;      // scratch of stage 3 (link stacks)
-  std::vector<char> otherRows;                    // by solver body id: in one of Bullet's rows
+  std::vector<internal::Candidate> candidates;  // of the chunk in hand
+  std::vector<PatchConstraint> patches;         // of the island
+  std::vector<parts::StackHold> holds;          // of the island's stacked patches
+  internal::StackScratch stacks;                // scratch of stage 3 (link stacks)
+  std::vector<char> otherRows;                  // by solver body id: in one of Bullet's rows
   // stage 3b: one body's hard, unstacked patches on static supports in one
   // plane, their loads shared after every iteration (S25); indices in patches
   std::vector<std::vector<int>> shareGroups;
@@ -239,23 +240,8 @@ void PatchFrictionSolver::convertContacts(btPersistentManifold** manifolds, int 
         im.otherRows[std::size_t((*pool)[i].m_solverBodyIdA)] = 1;
         im.otherRows[std::size_t((*pool)[i].m_solverBodyIdB)] = 1;
       }
-    im.stackViews.clear();
-    for (const PatchConstraint& pc : im.patches)
-      im.stackViews.push_back({pc.a.id, pc.b.id, &pc.a.body, &pc.b.body, &pc.F, pc.fb.rho});
-    parts::linkStackedPatches(im.stackViews, m_tmpSolverBodyPool.size(), im.otherRows,
-                              im.stackLinks, im.holds);
-    // a soft patch is solved on its own: the held blocks fold K6 without
-    // its compliance (SoftContact.StackOfSoftBoxes)
-    for (std::size_t i = 0; i < im.patches.size(); ++i) {
-      parts::StackLinks& l = im.stackLinks[i];
-      if (l.support < 0) continue;
-      parts::StackLinks& s = im.stackLinks[std::size_t(l.support)];
-      if (im.patches[i].compliance == 0.0 && im.patches[std::size_t(l.support)].compliance == 0.0)
-        continue;
-      if (s.load == int(i)) s.load = s.loadHold = -1;
-      l.support = l.hold = -1;
-    }
-    for (std::size_t i = 0; i < im.patches.size(); ++i) im.patches[i].stack = im.stackLinks[i];
+    internal::linkPatchStacks(im.patches, m_tmpSolverBodyPool.size(), im.otherRows, im.stacks,
+                              im.holds);
   }
   // 3b share loads (S25)
   internal::groupSharedPatches(im.patches, m_tmpSolverBodyPool.size(), im.shareGroupOf,
@@ -302,26 +288,10 @@ btScalar PatchFrictionSolver::solveGroupCacheFriendlyFinish(btCollisionObject** 
   Impl& im = *impl_;
   PatchSolverStats& stats = *im.stats;
   stats.patches += long(im.patches.size());
-  for (PatchConstraint& pc : im.patches) {
-    stats.stackHolds += pc.stack.hold >= 0 || pc.stack.loadHold >= 0;
-    const Vec6 c = constraintVelocity(pc, m_tmpSolverBodyPool);
-    internal::storePatchState(pc, c, im.selection.step());
-    im.reports->record(pc, c);
-    if (internal::writeManifoldImpulses(pc, *pc.manifold))
-      im.selection.markWritten(*pc.state);
-    else
-      ++stats.patchesWithoutPoints;
-    const PatchLoads l = parts::toLoads(pc.lamN);
-    if (l.Pz > 0.0 && pc.fb.mu > 0.0) {
-      const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
-      stats.maxPressureLag =
-          std::max(stats.maxPressureLag, (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
-    }
-  }
-  im.flushBodies.clear();
-  for (const PatchConstraint& pc : im.patches)
-    if (btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(pc.state->body)))
-      im.flushBodies.push_back(body);
+  for (PatchConstraint& pc : im.patches)
+    internal::finishPatch(pc, constraintVelocity(pc, m_tmpSolverBodyPool), im.selection,
+                          *im.reports, stats);
+  internal::collectFlushBodies(im.patches, im.flushBodies);
   im.patches.clear();
   im.shareGroups.clear();
   const btScalar out =

@@ -9,10 +9,12 @@
 #include "link_sides.hpp"
 #include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
+#include "patch_finish.hpp"
 #include "patch_push.hpp"
 #include "patch_reports.hpp"
 #include "patch_selection.hpp"
 #include "patch_solver_shared.hpp"
+#include "patch_stacks.hpp"
 #include "patch_visit.hpp"
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
@@ -45,10 +47,8 @@ struct PatchMultiBodySolver::Impl {
   std::vector<PatchConstraint> patches;
   std::vector<LinkTerms> terms;  // of the patches with a link side
   std::vector<btScalar> jac, resp, scratch;
-  std::vector<parts::StackHold> holds;            // of the island's stacked patches (stage 3)
-  std::vector<parts::StackPatchView> stackViews;  // scratch of stage 3
-  std::vector<parts::StackLinks> stackLinks;      // scratch of stage 3
-  std::vector<int> stackIndex;                    // stage 3: view -> patch index
+  std::vector<parts::StackHold> holds;  // of the island's stacked patches (stage 3)
+  internal::StackScratch stacks;        // scratch of stage 3
   std::vector<char> otherRows;  // by solver body id: in one of Bullet's rows or a link's patch
   std::vector<std::vector<int>> shareGroups;
   std::vector<parts::SharedPatch> shareBuf;
@@ -243,38 +243,8 @@ void PatchMultiBodySolver::linkRigidStacks(Impl& im) {
       mark((*rows)[i].m_solverBodyIdA);
       mark((*rows)[i].m_solverBodyIdB);
     }
-  im.stackViews.clear();
-  im.stackIndex.clear();
-  for (std::size_t i = 0; i < im.patches.size(); ++i) {
-    const PatchConstraint& pc = im.patches[i];
-    if (pc.articulated >= 0) {
-      mark(pc.a.id);
-      mark(pc.b.id);
-      continue;
-    }
-    im.stackIndex.push_back(int(i));
-    im.stackViews.push_back({pc.a.id, pc.b.id, &pc.a.body, &pc.b.body, &pc.F, pc.fb.rho});
-  }
-  parts::linkStackedPatches(im.stackViews, m_tmpSolverBodyPool.size(), im.otherRows, im.stackLinks,
+  internal::linkPatchStacks(im.patches, m_tmpSolverBodyPool.size(), im.otherRows, im.stacks,
                             im.holds);
-  auto patchOf = [&](int view) { return view < 0 ? -1 : im.stackIndex[std::size_t(view)]; };
-  // a soft patch is solved on its own (as in PatchFrictionSolver)
-  for (std::size_t v = 0; v < im.stackLinks.size(); ++v) {
-    parts::StackLinks& l = im.stackLinks[v];
-    if (l.support < 0) continue;
-    parts::StackLinks& sl = im.stackLinks[std::size_t(l.support)];
-    if (im.patches[std::size_t(patchOf(int(v)))].compliance == 0.0 &&
-        im.patches[std::size_t(patchOf(l.support))].compliance == 0.0)
-      continue;
-    if (sl.load == int(v)) sl.load = sl.loadHold = -1;
-    l.support = l.hold = -1;
-  }
-  for (std::size_t v = 0; v < im.stackLinks.size(); ++v) {
-    parts::StackLinks l = im.stackLinks[v];
-    l.support = patchOf(l.support);
-    l.load = patchOf(l.load);
-    im.patches[std::size_t(im.stackIndex[v])].stack = l;
-  }
 }
 
 // Stage 5, after Bullet's rows (joint limits and motors included) in each
@@ -325,20 +295,7 @@ btScalar PatchMultiBodySolver::solveGroupCacheFriendlyFinish(btCollisionObject**
       {m_tmpSolverBodyPool}, im.terms, im.jac, im.resp, m_data.m_deltaVelocities};
   const double dt = double(info.m_timeStep);
   for (PatchConstraint& pc : im.patches) {
-    stats.stackHolds += pc.stack.hold >= 0 || pc.stack.loadHold >= 0;
-    const Vec6 c = bodiesOf.velocity(pc);
-    internal::storePatchState(pc, c, im.selection.step());
-    im.shared->reports.record(pc, c);
-    if (internal::writeManifoldImpulses(pc, *pc.manifold))
-      im.selection.markWritten(*pc.state);
-    else
-      ++stats.patchesWithoutPoints;
-    const PatchLoads l = parts::toLoads(pc.lamN);
-    if (l.Pz > 0.0 && pc.fb.mu > 0.0) {
-      const Vec2 cop(l.Ty / l.Pz, -l.Tx / l.Pz);
-      stats.maxPressureLag =
-          std::max(stats.maxPressureLag, (cop - pc.fb.law.pressureCop).norm() / pc.shape.diameter);
-    }
+    internal::finishPatch(pc, bodiesOf.velocity(pc), im.selection, im.shared->reports, stats);
     if (pc.articulated < 0) continue;
     // force f at O and couple m on A (minus both on B), as forces over dt
     const Vec3 f = pc.F * Vec3(pc.lamF[0], pc.lamF[1], pc.lamN[0]) / dt;
@@ -368,10 +325,7 @@ btScalar PatchMultiBodySolver::solveGroupCacheFriendlyFinish(btCollisionObject**
     for (const LinkSide& s : t.side)
       if (s.body) s.body->setCompanionId(-1);
   }
-  im.flushBodies.clear();
-  for (const PatchConstraint& pc : im.patches)
-    if (btRigidBody* body = btRigidBody::upcast(const_cast<btCollisionObject*>(pc.state->body)))
-      im.flushBodies.push_back(body);
+  internal::collectFlushBodies(im.patches, im.flushBodies);
   im.patches.clear();
   im.terms.clear();
   im.shareGroups.clear();
