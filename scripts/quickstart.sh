@@ -19,6 +19,7 @@ packages=(
   libeigen3-dev libbullet-dev libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libboost-math-dev
   libosmesa6-dev libcairo2-dev libpng-dev gnuplot-nox fonts-dejavu-core
+  valgrind  # scripts/count_instructions.sh: instruction counts, and the header it needs
 )
 
 missing=()
