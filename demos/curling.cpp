@@ -13,6 +13,7 @@
 // The patch is a disk: annuli (a rock's running band, an upturned glass)
 // are not supported by the patch shapes.
 #include "demo_common.hpp"
+#include "disk_args.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -21,14 +22,18 @@ namespace {
 
 using namespace patchspin;
 
-struct Args {
-  double radius = 0.15, height = 0.12, mass = 1.0, mu = 0.5, v0 = 2.0, omega0 = 15.0, g = 9.81;
-};
+// a thick disk (h / R = 0.4) launched along +x
+demos::DiskArgs curlingDisk() {
+  demos::DiskArgs d;
+  d.radius = 0.15, d.height = 0.12, d.mass = 1.0, d.mu = 0.5, d.v0 = 2.0, d.v0Angle = 0.0,
+  d.omega0 = 15.0;
+  return d;
+}
 
-int run(const Args& a, demos::CommonArgs c) {
+int run(const demos::DiskArgs& a, demos::CommonArgs c) {
   demos::validateCommonArgs(c);
-  if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu > 0 && a.v0 > 0))
-    throw CLI::ValidationError("parameters", "need radius, height, mass, g, mu, v0 > 0");
+  demos::requireDiskArgs(a, demos::kDiskHeight, false);
+  if (!(a.v0 > 0)) throw CLI::ValidationError("--v0", "must be > 0");
   demos::DemoConfig config;
   config.name = "curling";
   char title[200];
@@ -37,22 +42,12 @@ int run(const Args& a, demos::CommonArgs c) {
   config.title = title;
   config.caption = "patch laws: the pressed front drifts the disk against its spin (track.png)";
   config.trackPlot = true;
-  for (const char* model : {"exact", "ellipsoidal", "stock"}) {
-    if (c.model != "all" && c.model != model) continue;
+  for (const std::string& model : demos::modelsToShow(c.model, true)) {
     demos::DemoBody b;
     b.key = model;
     b.label = model;
     b.colour = demos::rowColour(model);
-    SimulationSpec& s = b.spec;
-    s.model = model;
-    s.shape = SimulationSpec::Shape::Cylinder;
-    s.R = a.radius;
-    s.H = a.height;
-    s.mass = a.mass;
-    s.mu = a.mu;
-    s.g = a.g;
-    s.v0 = Vec2(a.v0, 0.0);
-    s.omega0 = a.omega0;
+    b.spec = demos::diskSpec(a, model);
     config.bodies.push_back(b);
   }
   return demos::runDemo(config, c);
@@ -61,7 +56,7 @@ int run(const Args& a, demos::CommonArgs c) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  Args a;
+  demos::DiskArgs a = curlingDisk();
   demos::CommonArgs c;
   c.out = "demo-out/curling";
   c.model = "all";
@@ -73,14 +68,7 @@ int main(int argc, char** argv) {
       "by side (headless, PNG frames, sphere_*.png, track.png)"};
   bool noPlot = false, quiet = false;
   demos::addCommonOptions(app, c, &noPlot, &quiet);
-  app.add_option("--radius", a.radius, "disk radius R [m] (default 0.15)");
-  app.add_option("--height", a.height, "disk height H [m] (default 0.12: h/R = 0.4)");
-  app.add_option("--mass", a.mass, "mass [kg] (default 1)");
-  app.add_option("--mu", a.mu, "friction coefficient (default 0.5)");
-  app.add_option("--g", a.g, "gravity [m/s^2] (default 9.81)");
-  app.add_option("--v0", a.v0, "initial speed along +x [m/s] (default 2)");
-  app.add_option("--omega0", a.omega0,
-                 "initial spin [rad/s], > 0 counter-clockwise seen from above (default 15)");
+  demos::addDiskOptions(app, a, demos::kDiskHeight);  // (launched along +x)
   return demos::runMain(app, argc, argv, "curling", [&] {
     c.plot = !noPlot;
     c.progress = !quiet;

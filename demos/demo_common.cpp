@@ -117,15 +117,18 @@ void writeTrackPlot(const DemoConfig& config, const std::vector<SimulationResult
 }  // namespace
 
 void addCommonOptions(CLI::App& app, CommonArgs& a, bool* noPlot, bool* quiet) {
-  app.add_option("--out", a.out, "output directory (frames, summary.json, sphere_*.png)");
-  app.add_option("--frames", a.frames, "number of frames");
-  app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
-  app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
+  // (the defaults shown are the demo's own: CommonArgs as the demo set it)
+  app.add_option("--out", a.out, "output directory (frames, summary.json, sphere_*.png)")
+      ->capture_default_str();
+  app.add_option("--frames", a.frames, "number of frames")->capture_default_str();
+  app.add_option("--fps", a.fps, "frames per second of the video")->capture_default_str();
+  app.add_option("--size", a.size, "frame size WxH [px]")->capture_default_str();
   app.add_option("--model", a.model,
-                 "friction model: exact | ellipsoidal | stock (| all where side by side)");
-  app.add_option("--rate", a.rate, "simulation steps per second (default 240)");
-  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 2)");
-  app.add_option("--t-max", a.tMax, "simulated time limit [s] (default 3)");
+                 "friction model: exact | ellipsoidal | stock (| all where side by side)")
+      ->capture_default_str();
+  app.add_option("--rate", a.rate, "simulation steps per second")->capture_default_str();
+  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second")->capture_default_str();
+  app.add_option("--t-max", a.tMax, "simulated time limit [s]")->capture_default_str();
   app.add_flag("--no-plot", *noPlot, "skip the slip-sphere plots (need gnuplot)");
   app.add_flag("--quiet", *quiet, "no progress bar");
 }

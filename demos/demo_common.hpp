@@ -1,7 +1,7 @@
-// Shared machinery of the scene demos (pushed_disk, thick_disk, disk_torque;
-// issue 5): each body runs through patchspin::scenes::simulate itself (with
-// its trajectory kept), so the physics and the summary are exactly those of
-// `patchspin simulate --engine bullet`. Frames are drawn from the trajectory
+// Shared machinery of the scene demos (pushed_disk, thick_disk, disk_torque,
+// curling; issue 5; their disk parameters: disk_args.hpp): each body runs through
+// patchspin::scenes::simulate itself (with its trajectory kept), so the physics and the summary are
+// exactly those of `patchspin simulate --engine bullet`. Frames are drawn from the trajectory
 // (patch centre and rotation psi about z; the body is drawn upright, tilt is
 // not shown); after a stop the body is held at its stopping pose.
 //

@@ -7,6 +7,7 @@
 // Bullet's applyTorque and patchspin::FlatBody::torque; the paper's Eq. (3)
 // sign flips T, see analysis.hpp).
 #include "demo_common.hpp"
+#include "disk_args.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -15,18 +16,18 @@ namespace {
 
 using namespace patchspin;
 
+constexpr unsigned kDiskOptions = demos::kDiskHeight | demos::kDiskV0Angle;
+
 struct Args {
-  double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, v0Angle = 90.0,
-         omega0 = 20.0;
-  double g = 9.81;
-  double zeta = 0.15;  // T / (m g R)
-  double force = 0.1;  // F / (mu m g)
+  demos::DiskArgs disk;  // (its defaults: 5 cm, 5 mm, 30 g, mu 0.3, 0.5 m/s at 90 deg, 20 rad/s)
+  double zeta = 0.15;    // T / (m g R)
+  double force = 0.1;    // F / (mu m g)
 };
 
 int run(const Args& a, demos::CommonArgs c) {
   demos::validateCommonArgs(c);
-  if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu > 0))
-    throw CLI::ValidationError("parameters", "need radius, height, mass, g, mu > 0");
+  const demos::DiskArgs& d = a.disk;
+  demos::requireDiskArgs(d, kDiskOptions, false);
   const double fCrit = 16 * a.zeta * a.zeta / std::sqrt(1 + 144 * a.zeta * a.zeta);  // / (mu m g)
   demos::DemoConfig config;
   config.name = "disk_torque";
@@ -35,35 +36,19 @@ int run(const Args& a, demos::CommonArgs c) {
       title, sizeof title,
       "disk with torque (Sect. 6.3, Case 4) R = %g cm, zeta = T/(mgR) = %g, F = %g mu m g "
       "(F_crit = %.3g mu m g)",
-      100 * a.radius, a.zeta, a.force, fCrit);
+      100 * d.radius, a.zeta, a.force, fCrit);
   config.title = title;
   config.caption =
       "paper (Case 4): force and parallel in-plane torque; see sphere_*.png for the limit "
       "directions";
-  const double angle = a.v0Angle * std::acos(-1.0) / 180.0;
-  struct M {
-    const char* model;
-    render::Rgb colour;
-  };
-  for (const M& m : {M{"ellipsoidal", {0.25, 0.50, 0.90}}, M{"exact", {0.90, 0.60, 0.15}},
-                     M{"stock", {0.60, 0.60, 0.62}}}) {
-    if (c.model == "all" ? std::string(m.model) == "stock" : c.model != m.model) continue;
+  for (const std::string& model : demos::modelsToShow(c.model, false)) {
     demos::DemoBody b;
-    b.key = m.model;
-    b.label = m.model;
-    b.colour = m.colour;
-    SimulationSpec& s = b.spec;
-    s.model = m.model;
-    s.shape = SimulationSpec::Shape::Cylinder;
-    s.R = a.radius;
-    s.H = a.height;
-    s.mass = a.mass;
-    s.mu = a.mu;
-    s.g = a.g;
-    s.force = Vec2(a.force * a.mu * a.mass * a.g, 0.0);
-    s.torque = Vec3(a.zeta * a.mass * a.g * a.radius, 0.0, 0.0);
-    s.v0 = a.v0 * Vec2(std::cos(angle), std::sin(angle));
-    s.omega0 = a.omega0;
+    b.key = model;
+    b.label = model;
+    b.colour = demos::rowColour(model);
+    b.spec = demos::diskSpec(d, model);
+    b.spec.force = Vec2(a.force * d.mu * d.mass * d.g, 0.0);
+    b.spec.torque = Vec3(a.zeta * d.mass * d.g * d.radius, 0.0, 0.0);
     config.bodies.push_back(b);
   }
   return demos::runDemo(config, c);
@@ -81,16 +66,9 @@ int main(int argc, char** argv) {
       "Sect. 6.3; ellipsoidal and exact side by side (headless, PNG frames)"};
   bool noPlot = false, quiet = false;
   demos::addCommonOptions(app, c, &noPlot, &quiet);
-  app.add_option("--radius", a.radius, "disk radius R [m] (default 0.05)");
-  app.add_option("--height", a.height, "disk thickness H [m] (default 0.005)");
-  app.add_option("--mass", a.mass, "mass [kg] (default 0.03)");
-  app.add_option("--mu", a.mu, "friction coefficient (default 0.3)");
-  app.add_option("--g", a.g, "gravity [m/s^2] (default 9.81)");
-  app.add_option("--v0", a.v0, "initial speed [m/s] (default 0.5)");
-  app.add_option("--v0-angle", a.v0Angle, "angle of v0 from the force [deg] (default 90)");
-  app.add_option("--omega0", a.omega0, "initial spin [rad/s] (default 20)");
-  app.add_option("--zeta", a.zeta, "torque T / (m g R), about +x (default 0.15)");
-  app.add_option("--force", a.force, "force F / (mu m g) along +x (default 0.1)");
+  demos::addDiskOptions(app, a.disk, kDiskOptions);
+  app.add_option("--zeta", a.zeta, "torque T / (m g R), about +x")->capture_default_str();
+  app.add_option("--force", a.force, "force F / (mu m g) along +x")->capture_default_str();
   return demos::runMain(app, argc, argv, "disk_torque", [&] {
     c.plot = !noPlot;
     c.progress = !quiet;

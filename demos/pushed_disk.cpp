@@ -5,6 +5,7 @@
 //   Case 3  F = 0.05 mu m g (|F| < mu m g / 9: stops sliding and spinning)
 // Each disk runs through patchspin::scenes::simulate (demo_common.hpp).
 #include "demo_common.hpp"
+#include "disk_args.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -13,10 +14,10 @@ namespace {
 
 using namespace patchspin;
 
+constexpr unsigned kDiskOptions = demos::kDiskHeight | demos::kDiskV0Angle;
+
 struct Args {
-  double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, v0Angle = 90.0,
-         omega0 = 20.0;
-  double g = 9.81;
+  demos::DiskArgs disk;  // (its defaults: 5 cm, 5 mm, 30 g, mu 0.3, 0.5 m/s at 90 deg, 20 rad/s)
   double case1 = 1.2, case2 = 0.5, case3 = 0.05;  // F / (mu m g)
 };
 
@@ -24,21 +25,19 @@ int run(const Args& a, const demos::CommonArgs& c) {
   demos::validateCommonArgs(c);
   if (c.model == "all")
     throw CLI::ValidationError("--model", "must be exact, ellipsoidal or stock");
-  if (!(a.radius > 0 && a.height > 0 && a.mass > 0 && a.g > 0 && a.mu >= 0))
-    throw CLI::ValidationError("parameters", "need radius, height, mass, g > 0, mu >= 0");
+  const demos::DiskArgs& d = a.disk;
+  demos::requireDiskArgs(d, kDiskOptions, true);
   demos::DemoConfig config;
   config.name = "pushed_disk";
   char title[200];
   std::snprintf(title, sizeof title,
                 "pushed disk (Sect. 6.1) R = %g cm, H = %g mm, mu = %g, v0 = %g m/s at %g deg, "
                 "omega0 = %g rad/s",
-                100 * a.radius, 1000 * a.height, a.mu, a.v0, a.v0Angle, a.omega0);
+                100 * d.radius, 1000 * d.height, d.mu, d.v0, d.v0Angle, d.omega0);
   config.title = title;
   config.caption =
       "paper: Case 1 never sticks; Case 2 stops sliding along F (w1); Case 3 stops in slip and "
       "spin (w3, w4)";
-  const double pi = std::acos(-1.0);
-  const double angle = a.v0Angle * pi / 180.0;
   const double factors[3] = {a.case1, a.case2, a.case3};
   const render::Rgb colours[3] = {{0.85, 0.30, 0.25}, {0.25, 0.50, 0.90}, {0.90, 0.60, 0.15}};
   for (int i = 0; i < 3; ++i) {
@@ -48,17 +47,8 @@ int run(const Args& a, const demos::CommonArgs& c) {
     std::snprintf(label, sizeof label, "Case %d: F = %g mu m g", i + 1, factors[i]);
     b.label = label;
     b.colour = colours[i];
-    SimulationSpec& s = b.spec;
-    s.model = c.model;
-    s.shape = SimulationSpec::Shape::Cylinder;
-    s.R = a.radius;
-    s.H = a.height;
-    s.mass = a.mass;
-    s.mu = a.mu;
-    s.g = a.g;
-    s.force = Vec2(factors[i] * a.mu * a.mass * a.g, 0.0);
-    s.v0 = a.v0 * Vec2(std::cos(angle), std::sin(angle));
-    s.omega0 = a.omega0;
+    b.spec = demos::diskSpec(d, c.model);
+    b.spec.force = Vec2(factors[i] * d.mu * d.mass * d.g, 0.0);
     config.bodies.push_back(b);
   }
   return demos::runDemo(config, c);
@@ -76,17 +66,10 @@ int main(int argc, char** argv) {
       "(headless, PNG frames)"};
   bool noPlot = false, quiet = false;
   demos::addCommonOptions(app, c, &noPlot, &quiet);
-  app.add_option("--radius", a.radius, "disk radius R [m] (default 0.05)");
-  app.add_option("--height", a.height, "disk thickness H [m] (default 0.005)");
-  app.add_option("--mass", a.mass, "mass [kg] (default 0.03)");
-  app.add_option("--mu", a.mu, "friction coefficient (default 0.3)");
-  app.add_option("--g", a.g, "gravity [m/s^2] (default 9.81)");
-  app.add_option("--v0", a.v0, "initial speed [m/s] (default 0.5)");
-  app.add_option("--v0-angle", a.v0Angle, "angle of v0 from the force [deg] (default 90)");
-  app.add_option("--omega0", a.omega0, "initial spin [rad/s] (default 20)");
-  app.add_option("--case1", a.case1, "Case 1 force F / (mu m g) (default 1.2)");
-  app.add_option("--case2", a.case2, "Case 2 force F / (mu m g) (default 0.5)");
-  app.add_option("--case3", a.case3, "Case 3 force F / (mu m g) (default 0.05)");
+  demos::addDiskOptions(app, a.disk, kDiskOptions);
+  app.add_option("--case1", a.case1, "Case 1 force F / (mu m g)")->capture_default_str();
+  app.add_option("--case2", a.case2, "Case 2 force F / (mu m g)")->capture_default_str();
+  app.add_option("--case3", a.case3, "Case 3 force F / (mu m g)")->capture_default_str();
   return demos::runMain(app, argc, argv, "pushed_disk", [&] {
     c.plot = !noPlot;
     c.progress = !quiet;
