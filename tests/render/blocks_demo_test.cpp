@@ -46,15 +46,6 @@ const char* kSceneFlags =
 // spin within 0.17 s), the sphere rolls after 15 ms.
 constexpr double kTMax = 1.0;
 
-// A blank (uniform) frame has variance 0; sky, ground, blocks and text give far
-// more than a standard deviation of 10 grey levels.
-constexpr double kMinVariance = 100.0;
-// Consecutive frames 1/30 s apart (--slowmo 1): the blocks move and turn by
-// centimetres and tenths of a radian and the overlay numbers change, which
-// alters far more than 50 of 19200 pixels by more than 8 levels (the renderer
-// is deterministic, so any change is real).
-constexpr int kMinChangedPixels = 50;
-constexpr int kChangeThreshold = 8;
 // The demo builds the tracked rectangle's world exactly as `patchspin
 // simulate --engine bullet` (ground, body, margin, friction, solver) and the
 // other bodies never touch it, so the numbers agree to the 17 significant
@@ -181,25 +172,9 @@ class BlocksDemo : public ::testing::Test {
 };
 
 TEST_F(BlocksDemo, FramesAreValidPngsNotBlankChangingAndIdenticalOnRerun) {
-  Image previous;
-  for (int i = 0; i < kFrames; ++i) {
-    const std::string path =
-        (fs::path(dir_) / ("frame_0000" + std::to_string(i) + ".png")).string();
-    ASSERT_TRUE(fs::exists(path)) << path;
-    const Image frame = readPng(path);  // throws on an invalid PNG
-    EXPECT_EQ(frame.width, kWidth);
-    EXPECT_EQ(frame.height, kHeight);
-    EXPECT_GT(pixelVariance(frame), kMinVariance) << path;
-    if (i > 0) {
-      EXPECT_GT(countDifferentPixels(previous, frame, kChangeThreshold), kMinChangedPixels) << path;
-    }
-    previous = frame;
-  }
-  EXPECT_FALSE(fs::exists(fs::path(dir_) / ("frame_0000" + std::to_string(kFrames) + ".png")));
+  expectDemoFrames(dir_, kFrames, kWidth, kHeight);
   // the progress bar goes to stderr and ends complete
-  EXPECT_NE(run_.err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
-            std::string::npos)
-      << run_.err;
+  expectCompleteProgress(run_.err, kFrames);
 
   // a second run gives the same bytes
   const std::string again = tempDir("run1");

@@ -37,15 +37,6 @@ const char* kSimulateFlags =
 // after about 0.52 s.
 constexpr double kTMax = 1.0;
 
-// A blank (uniform) frame has variance 0; sky, ground, coins and text give far
-// more than a standard deviation of 10 grey levels.
-constexpr double kMinVariance = 100.0;
-// Consecutive frames: the coins move about a third of their radius and the
-// overlay numbers change, which alters far more than 50 of 19200 pixels by
-// more than 8 levels (PNG round-off and anti-aliasing noise is 0 here: the
-// renderer is deterministic, so any change is real).
-constexpr int kMinChangedPixels = 50;
-constexpr int kChangeThreshold = 8;
 // The demo and `patchspin simulate --engine bullet` build the same Bullet
 // world (ground, coin, margin, friction, solver) and step it identically, so
 // they agree to the 17 significant digits of the JSON round trip; 1e-12
@@ -94,25 +85,9 @@ class CoinDemo : public ::testing::Test {
 };
 
 TEST_F(CoinDemo, FramesAreValidPngsOfTheRequestedSizeNotBlankAndChanging) {
-  Image previous;
-  for (int i = 0; i < kFrames; ++i) {
-    const std::string path =
-        (fs::path(dirs_[0]) / ("frame_0000" + std::to_string(i) + ".png")).string();
-    ASSERT_TRUE(fs::exists(path)) << path;
-    const Image frame = readPng(path);  // throws on an invalid PNG
-    EXPECT_EQ(frame.width, kWidth);
-    EXPECT_EQ(frame.height, kHeight);
-    EXPECT_GT(pixelVariance(frame), kMinVariance) << path;
-    if (i > 0) {
-      EXPECT_GT(countDifferentPixels(previous, frame, kChangeThreshold), kMinChangedPixels) << path;
-    }
-    previous = frame;
-  }
-  EXPECT_FALSE(fs::exists(fs::path(dirs_[0]) / ("frame_0000" + std::to_string(kFrames) + ".png")));
+  expectDemoFrames(dirs_[0], kFrames, kWidth, kHeight);
   // the progress bar goes to stderr and ends complete
-  EXPECT_NE(runs_[0].err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
-            std::string::npos)
-      << runs_[0].err;
+  expectCompleteProgress(runs_[0].err, kFrames);
 }
 
 TEST_F(CoinDemo, TwoRunsGiveIdenticalBytes) {

@@ -1,9 +1,11 @@
-// Helpers shared by the demo tests (coin, scene demos, blocks): where the
-// build put the programs, file bytes, pixel differences, exact numbers for
-// command lines.
+// Helpers shared by the demo tests (coin, scene demos, blocks, terrain): where
+// the build put the programs, file bytes, pixel differences, the frames'
+// checks, exact numbers for command lines.
 #pragma once
 
 #include <patchspin/render/image.hpp>
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -51,6 +53,47 @@ inline int countDifferentPixels(const Image& a, const Image& b, int threshold) {
     }
   }
   return n;
+}
+
+// What every frame of a demo run must be (expectDemoFrames):
+//  * not blank: a uniform frame has variance 0; sky, ground, bodies and text
+//    give far more than a standard deviation of 10 grey levels;
+//  * changed from the frame before: frames 1/30 s of simulated time apart
+//    (--slowmo 1) move the bodies by centimetres and change the overlay
+//    numbers, which alters far more than 50 of a 160 x 120 frame's 19200
+//    pixels by more than 8 levels (the renderer is deterministic, so any
+//    change is real).
+constexpr double kMinFrameVariance = 100.0;
+constexpr int kMinChangedPixels = 50;
+constexpr int kChangeThreshold = 8;
+
+// <dir>/frame_00000.png ... (fewer than 10 frames): each a valid PNG of
+// width x height, not blank and changed from the one before, and no frame
+// beyond `frames`. False if a frame is missing (the failure is recorded).
+inline bool expectDemoFrames(const std::filesystem::path& dir, int frames, int width, int height) {
+  Image previous;
+  for (int i = 0; i < frames; ++i) {
+    const std::string path = (dir / ("frame_0000" + std::to_string(i) + ".png")).string();
+    EXPECT_TRUE(std::filesystem::exists(path)) << path;
+    if (!std::filesystem::exists(path)) return false;
+    const Image frame = readPng(path);  // throws on an invalid PNG
+    EXPECT_EQ(frame.width, width) << path;
+    EXPECT_EQ(frame.height, height) << path;
+    EXPECT_GT(pixelVariance(frame), kMinFrameVariance) << path;
+    if (i > 0) {
+      EXPECT_GT(countDifferentPixels(previous, frame, kChangeThreshold), kMinChangedPixels) << path;
+    }
+    previous = frame;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / ("frame_0000" + std::to_string(frames) + ".png")));
+  return true;
+}
+
+// The progress bar went to stderr and ended complete.
+inline void expectCompleteProgress(const std::string& err, int frames) {
+  EXPECT_NE(err.find(std::to_string(frames) + "/" + std::to_string(frames) + " frames"),
+            std::string::npos)
+      << err;
 }
 
 // A double with all 17 significant digits, for command-line flags.

@@ -32,14 +32,6 @@ constexpr int kFrames = 2;
 // Simulated time [s]: long enough for the stopping disks (0.2-0.5 s with the
 // flags below), short enough to keep each demo run well under a second.
 constexpr double kTMax = 1.0;
-// A blank (uniform) frame has variance 0; sky, ground, disks and text give far
-// more than a standard deviation of 10 grey levels.
-constexpr double kMinVariance = 100.0;
-// Consecutive frames 1/30 s of simulated time apart: the disks move and turn
-// and the overlay time changes, far more than 50 pixels by more than 8 levels
-// (the renderer is deterministic, so any change is real).
-constexpr int kMinChangedPixels = 50;
-constexpr int kChangeThreshold = 8;
 // The demos run patchspin::scenes::simulate itself with the parameters they
 // report, so they agree with the tool to the 17 significant digits of the
 // JSON round trip; 1e-12 relative leaves room for the last printed digit.
@@ -62,24 +54,8 @@ nlohmann::json runDemo(const std::string& name, const std::string& flags) {
   const auto run = testing::runTool(demo, args.str());
   EXPECT_EQ(run.exitCode, 0) << run.err;
   if (run.exitCode != 0) return nullptr;
-  Image previous;
-  for (int i = 0; i < kFrames; ++i) {
-    const std::string path = (dir / ("frame_0000" + std::to_string(i) + ".png")).string();
-    EXPECT_TRUE(fs::exists(path)) << path;
-    if (!fs::exists(path)) return nullptr;
-    const Image frame = readPng(path);  // throws on an invalid PNG
-    EXPECT_EQ(frame.width, kWidth);
-    EXPECT_EQ(frame.height, kHeight);
-    EXPECT_GT(pixelVariance(frame), kMinVariance) << path;
-    if (i > 0) {
-      EXPECT_GT(countDifferentPixels(previous, frame, kChangeThreshold), kMinChangedPixels) << path;
-    }
-    previous = frame;
-  }
-  EXPECT_FALSE(fs::exists(dir / ("frame_0000" + std::to_string(kFrames) + ".png")));
-  EXPECT_NE(run.err.find(std::to_string(kFrames) + "/" + std::to_string(kFrames) + " frames"),
-            std::string::npos)
-      << run.err;
+  if (!expectDemoFrames(dir, kFrames, kWidth, kHeight)) return nullptr;
+  expectCompleteProgress(run.err, kFrames);
   const nlohmann::json s = nlohmann::json::parse(fileBytes((dir / "summary.json").string()));
   // every body: finite stopping data (t_stop null only if it never stopped)
   for (const auto& [key, m] : s["bodies"].items()) {
