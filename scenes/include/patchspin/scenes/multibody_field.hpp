@@ -1,7 +1,8 @@
 // Fields of many grippers or feet in one btMultiBodyDynamicsWorld, the
 // scenes of the multibody world benchmark (issue 33's speed goal;
 // bench/bench_bullet_multibody.cpp), built from MultiBodyScene's gripper
-// and leg on a square grid far enough apart that no two ever touch.
+// and leg on a square grid far enough apart that none touches another in
+// the episode (stock Bullet's cubes, which slip, move at most 7 cm).
 //
 //   grippers  n two-finger grippers (addGripper: 4 x 4 cm pads, friction 1,
 //             squeezing with 20 N) each closing on a 6 cm, 1 kg cube
@@ -15,8 +16,8 @@
 //
 // dbar is the mean distance of the contact rectangle (pad, sole) from its
 // centre, for the uniform pressure both scenes press with; both torques are
-// below the limit, so under the patch law every cube and foot holds (tests/
-// bullet/multibody_field_test.cpp). A variant (speed_matrix.hpp's) picks
+// below the limit, so under the patch law every cube and foot holds
+// (guarded by tests/bullet/multibody_field_test.cpp). A variant (speed_matrix.hpp's) picks
 // the solver: stock btMultiBodyConstraintSolver, or PatchMultiBodySolver
 // with no collider opted in, or every finger pad / foot opted in,
 // ellipsoidal or exact.
