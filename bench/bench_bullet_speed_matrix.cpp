@@ -27,19 +27,12 @@
 #include <benchmark/benchmark.h>
 
 #include "capturing_reporter.hpp"
+#include "episode_clock.hpp"
 #include "interleaving.hpp"
+#include "repetition_stats.hpp"
 
-#if __has_include(<valgrind/callgrind.h>)
-#include <valgrind/callgrind.h>
-#define PATCHSPIN_HAVE_CALLGRIND 1
-#else
-#define PATCHSPIN_HAVE_CALLGRIND 0
-#endif
-
-#include <time.h>
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -50,6 +43,8 @@
 namespace {
 
 using namespace patchspin::scenes;
+using patchspin::bench::median;
+using patchspin::bench::ratioCell;
 
 constexpr SpeedVariant kVariants[] = {SpeedVariant::Stock, SpeedVariant::StockControl,
                                       SpeedVariant::NoneOptedIn, SpeedVariant::Ellipsoidal,
@@ -57,12 +52,6 @@ constexpr SpeedVariant kVariants[] = {SpeedVariant::Stock, SpeedVariant::StockCo
 constexpr int kSizes[] = {10, 100, 1000, 10000};
 constexpr SpeedScene kScenes[] = {SpeedScene::Slipping, SpeedScene::ToRest, SpeedScene::Pile};
 constexpr SpeedBroadphase kBroadphases[] = {SpeedBroadphase::Default, SpeedBroadphase::Tight};
-
-double threadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
 
 struct RunResult {
   double seconds = 0.0;
@@ -76,16 +65,10 @@ RunResult runEpisode(const SpeedCell& cell, SpeedVariant v, bool countInstructio
   btDiscreteDynamicsWorld& world = w.scene->world();
   const int steps = episodeSteps(cell.scene);
   RunResult r;
-#if PATCHSPIN_HAVE_CALLGRIND
-  if (countInstructions) CALLGRIND_START_INSTRUMENTATION;
-#endif
-  const double t0 = threadSeconds();
+  patchspin::bench::EpisodeClock clock(countInstructions);
+  clock.start();
   for (int k = 0; k < steps; ++k) world.stepSimulation(btScalar(kSpeedDt), 0);
-  r.seconds = threadSeconds() - t0;
-#if PATCHSPIN_HAVE_CALLGRIND
-  if (countInstructions) CALLGRIND_STOP_INSTRUMENTATION;
-#endif
-  (void)countInstructions;
+  r.seconds = clock.stop();
   r.outcome = speedOutcome(w);
   return r;
 }
@@ -119,20 +102,6 @@ void BM_Matrix(benchmark::State& state, SpeedCell cell) {
 
 // Per cell, every repetition's counters (their median and range go in the table).
 std::map<std::string, std::map<std::string, std::vector<double>>> gSamples;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// "1.23 (1.10-1.31)": median and range over the repetitions.
-std::string ratioCell(const std::vector<double>& v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.2f (%.2f-%.2f)", median(v),
-                *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end()));
-  return buf;
-}
 
 int writeMarkdown(const std::string& path, int repetitions) {
   std::ofstream out(path);
@@ -180,19 +149,6 @@ int writeMarkdown(const std::string& path, int repetitions) {
   out << worst;
   std::printf("%s", worst);
   return 0;
-}
-
-int envInt(const char* name, int fallback, int lo, int hi) {
-  const char* e = std::getenv(name);
-  if (!e) return fallback;
-  char* end = nullptr;
-  const long v = std::strtol(e, &end, 10);
-  if (end == e || *end != '\0' || v < lo || v > hi) {
-    std::fprintf(stderr, "bench_bullet_speed_matrix: %s must be an integer in %d..%d, got '%s'\n",
-                 name, lo, hi, e);
-    std::exit(2);
-  }
-  return int(v);
 }
 
 // --count mode: one run under callgrind's toggles.
@@ -246,8 +202,10 @@ int main(int argc, char** argv) {
   // the variants are interleaved inside each repetition; Google Benchmark's
   // own interleaving then shuffles the cells' repetitions too
   if (!patchspin::bench::initializeInterleaved(args)) return 1;
-  const int maxN = envInt("PATCHSPIN_MATRIX_MAX_N", 10000, 1, 100000);
-  const int repetitions = envInt("PATCHSPIN_MATRIX_REPETITIONS", 5, 1, 100);
+  const int maxN = patchspin::bench::envInt("bench_bullet_speed_matrix", "PATCHSPIN_MATRIX_MAX_N",
+                                            10000, 1, 100000);
+  const int repetitions = patchspin::bench::envInt("bench_bullet_speed_matrix",
+                                                   "PATCHSPIN_MATRIX_REPETITIONS", 5, 1, 100);
   for (SpeedBroadphase bp : kBroadphases)
     for (SpeedScene s : kScenes)
       for (int n : kSizes) {

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
-# The speed matrix (bench/bench_bullet_speed_matrix.cpp) as instruction
-# counts: each cell's episode under callgrind, once per variant, and the
+# The speed matrix (bench/bench_bullet_speed_matrix.cpp) and the multibody
+# world (bench/bench_bullet_multibody.cpp) as instruction counts: each
+# cell's or field's episode under callgrind, once per variant, and the
 # patch variants' counts against stock Bullet's. Counts, unlike times, are
 # the same on every run of the same build whatever else the machine does,
 # so a change can be judged on a busy or noisy machine. Refreshes the
-# section bench-matrix-ir-float (or -double, from the program's
-# --precision) of docs/benchmarks.md. Not part of the tests.
+# sections bench-matrix-ir-float and bench-multibody-ir-float (or -double,
+# from the programs' --precision) of docs/benchmarks.md. Not part of the
+# tests.
 #   bash scripts/count_instructions.sh [BUILD_DIR]
 # Environment:
+#   COUNT=multibody  only the multibody world (or COUNT=matrix: only the
+#                  speed matrix; default both)
 #   MAX_N=1000     largest N (default 1000: under callgrind the N = 1000
 #                  pile takes about 2 minutes per variant on one core;
 #                  10000 is possible, and slow)
@@ -19,12 +23,67 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
-prog=$build/bench/bench_bullet_speed_matrix
 doc=${BENCH_DOC:-$root/docs/benchmarks.md}
 max_n=${MAX_N:-1000}
+what=${COUNT:-matrix multibody}
 command -v valgrind >/dev/null || { echo "count_instructions: valgrind is not installed (apt-get install valgrind)" >&2; exit 2; }
-[[ -x $prog ]] || { echo "count_instructions: $prog is not built (cmake --build $build --target bench_bullet_speed_matrix)" >&2; exit 2; }
 [[ $max_n =~ ^[0-9]+$ ]] || { echo "count_instructions: MAX_N must be an integer, got '$max_n'" >&2; exit 2; }
+for p in $what; do
+  [[ $p == matrix || $p == multibody ]] || { echo "count_instructions: COUNT lists matrix and/or multibody, got '$p'" >&2; exit 2; }
+  exe=$build/bench/$([[ $p == matrix ]] && echo bench_bullet_speed_matrix || echo bench_bullet_multibody)
+  [[ -x $exe ]] || { echo "count_instructions: $exe is not built (cmake --build $build --target $(basename "$exe"))" >&2; exit 2; }
+done
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+start=$SECONDS
+# shellcheck source=scripts/doc_section.sh
+source "$root/scripts/doc_section.sh"
+
+# instructions of one --count run: program, --count value, variant
+count_run() {
+  local out=$tmp/cg.out
+  if ! valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$out" \
+    "$1" --count="$2" --variant="$3" >"$tmp/run.txt" 2>"$tmp/run.err"; then
+    echo "count_instructions: $(basename "$1") $2 $3 failed:" >&2
+    cat "$tmp/run.err" >&2
+    return 1
+  fi
+  local ir
+  ir=$(awk '/^totals:/ { print $2; exit }' "$out")
+  [[ -n $ir ]] || { echo "count_instructions: no totals in callgrind's output for $2 $3" >&2; return 1; }
+  echo "$ir"
+}
+
+# the multibody world: 100 grippers and 100 feet, 180 steps each
+if [[ " $what " == *" multibody "* ]]; then
+  prog=$build/bench/bench_bullet_multibody
+  precision=$("$prog" --precision)
+  table=$tmp/multibody.md
+  {
+    echo "Bullet in $precision; instructions of each field's whole episode (180 steps; callgrind, \`bash scripts/count_instructions.sh\`), the patch variants against stock btMultiBodyConstraintSolver's."
+    echo
+    echo "| field | N | stock [instructions per step] | none opted in | ellipsoidal | exact |"
+    echo "|---|---|---|---|---|---|"
+  } >"$table"
+  for field in grippers:100 feet:100; do
+    declare -A ir=()
+    for v in stock none-opted-in ellipsoidal exact; do
+      echo "[multibody] $field $v ($((SECONDS - start)) s so far)" >&2
+      ir[$v]=$(count_run "$prog" "$field" "$v")
+    done
+    IFS=: read -r name n <<<"$field"
+    awk -v f="$name" -v n="$n" -v s="${ir[stock]}" -v o="${ir[none-opted-in]}" \
+      -v e="${ir[ellipsoidal]}" -v x="${ir[exact]}" \
+      'BEGIN { printf "| %s | %s | %.0f | %.3f | %.3f | %.3f |\n", f, n, s / 180, o / s, e / s, x / s }' >>"$table"
+    unset ir
+  done
+  cat "$table"
+  replace_doc_section "$doc" "bench-multibody-ir-$precision" "$table" &&
+    echo "section bench-multibody-ir-$precision of $doc refreshed" >&2
+fi
+[[ " $what " == *" matrix "* ]] || { echo "done in $((SECONDS - start)) s" >&2; exit 0; }
+
+prog=$build/bench/bench_bullet_speed_matrix
 precision=$("$prog" --precision)
 variants=(stock none-opted-in ellipsoidal exact)
 if [[ -n ${CELLS:-} ]]; then
@@ -39,11 +98,8 @@ else
     done
   done
 fi
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 total=$((${#cells[@]} * ${#variants[@]}))
 done_runs=0
-start=$SECONDS
 table=$tmp/table.md
 {
   echo "Bullet in $precision; instructions of each cell's whole episode (callgrind, \`bash scripts/count_instructions.sh\`), the patch variants against stock Bullet's."
@@ -57,15 +113,7 @@ for cell in "${cells[@]}"; do
   for v in "${variants[@]}"; do
     done_runs=$((done_runs + 1))
     echo "[$done_runs/$total] $cell $v ($((SECONDS - start)) s so far)" >&2
-    out=$tmp/cg.out
-    if ! valgrind --tool=callgrind --instr-atstart=no --callgrind-out-file="$out" \
-      "$prog" --count="$cell" --variant="$v" >"$tmp/run.txt" 2>"$tmp/run.err"; then
-      echo "count_instructions: $cell $v failed:" >&2
-      cat "$tmp/run.err" >&2
-      exit 1
-    fi
-    ir[$v]=$(awk '/^totals:/ { print $2; exit }' "$out")
-    [[ -n ${ir[$v]} ]] || { echo "count_instructions: no totals in callgrind's output for $cell $v" >&2; exit 1; }
+    ir[$v]=$(count_run "$prog" "$cell" "$v")
   done
   IFS=: read -r scene n bp <<<"$cell"
   steps=$(case $scene in slipping) echo 48 ;; to-rest) echo 120 ;; *) echo 240 ;; esac)
@@ -87,8 +135,6 @@ name=bench-matrix-ir-$precision
 if [[ -n ${CELLS:-} ]]; then
   echo "(CELLS given: section $name of $doc not refreshed)" >&2
 else
-  # shellcheck source=scripts/doc_section.sh
-  source "$root/scripts/doc_section.sh"
   replace_doc_section "$doc" "$name" "$table" && echo "section $name of $doc refreshed" >&2
 fi
 echo "done in $((SECONDS - start)) s" >&2

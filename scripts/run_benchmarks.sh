@@ -11,6 +11,9 @@
 #   PATCHSPIN_SCALE_MAX_N=1000  skip the 10000-body world (bench_bullet_scale)
 #   PATCHSPIN_MATRIX_MAX_N=1000 skip the 10000-body cells of the speed matrix
 #   PATCHSPIN_MATRIX_REPETITIONS=5  repetitions per speed-matrix cell
+#   PATCHSPIN_MULTIBODY_REPETITIONS=7  repetitions per multibody field
+#   ONLY="bench_bullet_multibody ..."  run only these programs (sections of the others
+#                             are left as they are)
 #   PATCHSPIN_SCALE_REPETITIONS=3  world scale: fastest of 3 repetitions, not 9
 #                             (a third of its time; ratios +-20 % on a noisy machine)
 #   BENCH_DOC=path            refresh this file instead of docs/benchmarks.md (to try the script)
@@ -25,6 +28,9 @@
 #   <!-- bench-matrix-float:begin --> (or -double, the build's precision)
 #                                   the speed matrix (bench_bullet_speed_matrix;
 #                                   its instruction counts: scripts/count_instructions.sh)
+#   <!-- bench-multibody-float:begin --> (or -double)
+#                                   the multibody world (bench_bullet_multibody: 100
+#                                   grippers, 100 feet; its counts: count_instructions.sh)
 # CSVs: docs/bench/patch_error.csv, simulation_error.csv, world_scale.csv
 # (scripts/make_gallery.sh plots the first two).
 set -euo pipefail
@@ -50,13 +56,25 @@ declare -A csv_of=([bench_patch_error]=patch_error.csv [bench_bullet_simulation]
 declare -A args_of=([bench_patch_error]="--benchmark_min_time=$min_time")
 error_benches=(bench_patch_error bench_bullet_simulation bench_bullet_scale)
 matrix=bench_bullet_speed_matrix
+multibody=bench_bullet_multibody
 # anything else named bench_* in the build joins the raw section
 for exe in "$build"/bench/bench_*; do
   b=$(basename "$exe")
   [[ -x $exe && -f $exe ]] || continue
-  [[ " ${micro[*]} ${error_benches[*]} $matrix " == *" $b "* ]] || micro+=("$b")
+  [[ " ${micro[*]} ${error_benches[*]} $matrix $multibody " == *" $b "* ]] || micro+=("$b")
 done
-all=("${micro[@]}" "${error_benches[@]}" "$matrix")
+# ONLY: keep the listed programs of each group
+if [[ -n ${ONLY:-} ]]; then
+  keep() { for b in "$@"; do [[ " $ONLY " == *" $b "* ]] && echo "$b"; done; }
+  mapfile -t micro < <(keep "${micro[@]}")
+  mapfile -t error_benches < <(keep "${error_benches[@]}")
+  [[ " $ONLY " == *" $matrix "* ]] || matrix=""
+  [[ " $ONLY " == *" $multibody "* ]] || multibody=""
+fi
+tables=()
+[[ -z $matrix ]] || tables+=("$matrix")
+[[ -z $multibody ]] || tables+=("$multibody")
+all=("${micro[@]}" "${error_benches[@]}" "${tables[@]}")
 total=${#all[@]}
 count=0
 start=$SECONDS
@@ -114,8 +132,9 @@ for b in "${micro[@]}"; do
   } >>"$section"
 done
 # a partial run would drop tables: then the section stays as it was
-if ((incomplete)); then
-  echo "   some micro-benchmarks did not run: section bench of $doc left as it was" >&2
+if ((incomplete)) || [[ -n ${ONLY:-} ]]; then
+  ((${#micro[@]} == 0)) ||
+    echo "   some micro-benchmarks did not run: section bench of $doc left as it was" >&2
 else
   replace_section bench "$section"
 fi
@@ -141,20 +160,24 @@ for b in "${error_benches[@]}"; do
   replace_section "${section_of[$b]}" "$section.$b"
 done
 
-# (3) the speed matrix: its own markdown table, per precision
-if [[ ! -x $build/bench/$matrix ]]; then
-  count=$((count + 1))
-  echo "[$count/$total] $matrix: not built, skipped" >&2
-elif run "$matrix" --markdown="$section.matrix"; then
-  {
-    echo "$stamp. Regenerate with \`bash scripts/run_benchmarks.sh\`."
-    echo
-    cat "$section.matrix"
-  } >"$section.matrix.md"
-  replace_section "bench-matrix-$("$build/bench/$matrix" --precision)" "$section.matrix.md"
-else
-  failed=1
-fi
+# (3) the speed matrix and the multibody world: their own markdown tables,
+# per precision
+for b in "${tables[@]}"; do
+  name=$([[ $b == "$matrix" ]] && echo bench-matrix || echo bench-multibody)
+  if [[ ! -x $build/bench/$b ]]; then
+    count=$((count + 1))
+    echo "[$count/$total] $b: not built, skipped" >&2
+  elif run "$b" --markdown="$section.$name"; then
+    {
+      echo "$stamp. Regenerate with \`bash scripts/run_benchmarks.sh\`."
+      echo
+      cat "$section.$name"
+    } >"$section.$name.md"
+    replace_section "$name-$("$build/bench/$b" --precision)" "$section.$name.md"
+  else
+    failed=1
+  fi
+done
 
 echo "done in $((SECONDS - start)) s: results in $out, CSVs in $csvdir" >&2
 echo "plots: bash scripts/make_gallery.sh $build" >&2

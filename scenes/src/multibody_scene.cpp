@@ -180,11 +180,11 @@ MultiBodyScene::Prismatic MultiBodyScene::addPrismaticBox(const btVector3& half,
 
 MultiBodyScene::Gripper MultiBodyScene::addGripper(const btVector3& pad, double fingerMass,
                                                    double gap, double squeeze, double friction,
-                                                   double margin) {
+                                                   double margin, const btVector3& origin) {
   constexpr double kClosing = 0.05;  // [m/s]
   btMultiBody* body =
       addMultiBody(std::make_unique<btMultiBody>(2, btScalar(1), bt(1, 1, 1), true, false));
-  body->setBasePos(bt(0, 0, 0));
+  body->setBasePos(origin);
   body->setWorldToBaseRot(btQuaternion::getIdentity());
   const btVector3 inertia =
       boxInertia(fingerMass, 2 * double(pad.x()), 2 * double(pad.y()), 2 * double(pad.z()));
@@ -199,8 +199,8 @@ MultiBodyScene::Gripper MultiBodyScene::addGripper(const btVector3& pad, double 
   for (int i = 0; i < 2; ++i) {
     auto shape = std::make_unique<btBoxShape>(pad);
     shape->setMargin(btScalar(margin));
-    addCollider(body, i, std::move(shape), at(bt(0, i == 0 ? -offset : offset, 0)), friction,
-                false);
+    addCollider(body, i, std::move(shape), at(origin + bt(0, i == 0 ? -offset : offset, 0)),
+                friction, false);
     const double closing = i == 0 ? kClosing : -kClosing;
     auto motor =
         std::make_unique<btMultiBodyJointMotor>(body, i, 0, btScalar(closing), btScalar(0));

@@ -58,18 +58,20 @@ class MultiBodyScene {
   };
   Prismatic addPrismaticBox(const btVector3& half, double mass, const btVector3& position,
                             double friction, double speed, double maxForce, double margin = 1e-3);
-  // A two-finger gripper: a fixed base (no collider) at the origin and two
+  // A two-finger gripper: a fixed base (no collider) at `origin` and two
   // finger links, boxes with half extents `pad`, on prismatic joints along
   // y, their inner faces (the pads, normal +-y) `gap` [m] from the x-z
   // plane; each finger's velocity motor closes at 0.05 m/s with at most
   // `squeeze` [N], so a finger blocked by an object presses on it with
-  // exactly that force. Link 0 is on the -y side.
+  // exactly that force. Link 0 is on the -y side (y and the x-z plane
+  // relative to `origin`).
   struct Gripper {
     btMultiBody* body = nullptr;
     btMultiBodyJointMotor* motors[2] = {nullptr, nullptr};
   };
   Gripper addGripper(const btVector3& pad, double fingerMass, double gap, double squeeze,
-                     double friction, double margin = 1e-3);
+                     double friction, double margin = 1e-3,
+                     const btVector3& origin = btVector3(0, 0, 0));
   // A short leg: a floating base, a box `shin` (no collider), and fixed
   // below it link 0, the foot, a box with half extents `foot`, its centre
   // at `footCentre`, the shin's centre straight above it.
