@@ -2,8 +2,9 @@
 // on Featherstone links against the ground, a rigid body and another link,
 // each against an independent prediction and, where there is one, the
 // rigid-body twin under PatchFrictionSolver; stock Bullet's figure printed
-// beside ours. Scenes: scenes/multibody_scene.hpp.
+// beside ours. Scenes: scenes/multibody_scene.hpp, scenes/grasp.hpp.
 #include <patchspin/bullet/patch_multibody_solver.hpp>
+#include <patchspin/scenes/grasp.hpp>
 #include <patchspin/scenes/multibody_scene.hpp>
 #include <patchspin/scenes/scene.hpp>
 
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 
 namespace patchspin::bullet {
 namespace {
@@ -427,24 +429,22 @@ struct GripRun {
 // Settles the grasp for 0.25 s, then twists for `seconds`; alpha from the
 // spin at 0.1 s and at the end of the twist.
 GripRun runGripper(bool patch, double tau, double seconds) {
-  MultiBodyScene scene(0.0, 10, patch);
-  const btVector3 pad = bt(kPadHalf, 0.01, kPadHalf);
-  // the fingers start 1 mm off the cube and close on it
-  const MultiBodyScene::Gripper gripper =
-      scene.addGripper(pad, 0.1, kCubeHalf + 1e-3, kSqueeze, 1.0);
-  const btVector3 half = bt(kCubeHalf, kCubeHalf, kCubeHalf);
-  btRigidBody* cube = scene.addBox(half, kCubeMass, bt(0, 0, 0), kGripMu);
-  if (patch)
-    for (int i = 0; i < 2; ++i)
-      scene.solver().enablePatchFriction(MultiBodyScene::collider(gripper.body, i), {Model::Exact});
-  for (int k = 0; k < int(0.25 / kDt); ++k) scene.step(kDt);
+  scenes::GraspSpec spec;  // (pads 4 x 4 x 2 cm, 0.1 kg, starting 1 mm off the cube)
+  spec.cubeHalf = kCubeHalf;
+  spec.cubeMass = kCubeMass;
+  spec.mu = kGripMu;
+  spec.padHalf = kPadHalf;
+  spec.squeeze = kSqueeze;
+  scenes::Grasp grasp(scenes::GraspWorld::MultiBody, spec,
+                      patch ? std::optional<Model>(Model::Exact) : std::nullopt);
+  btRigidBody* cube = grasp.cube();
+  for (int k = 0; k < int(0.25 / kDt); ++k) grasp.step(kDt, 0.0);
   const btQuaternion q0 = cube->getWorldTransform().getRotation();
   const double J = kCubeMass * (2 * kCubeHalf) * (2 * kCubeHalf) / 6.0;
   const int k0 = int(std::lround(0.1 / kDt)), k1 = int(std::lround(seconds / kDt));
   double w0 = 0.0;
   for (int k = 1; k <= k1; ++k) {
-    cube->applyTorque(bt(0, tau, 0));
-    scene.step(kDt);
+    grasp.step(kDt, tau);
     if (k == k0) w0 = double(cube->getAngularVelocity().y());
   }
   const double w1 = double(cube->getAngularVelocity().y());
@@ -452,7 +452,7 @@ GripRun runGripper(bool patch, double tau, double seconds) {
   run.rotation = double((cube->getWorldTransform().getRotation() * q0.inverse()).getAngle());
   run.rotation = std::min(run.rotation, 2 * M_PI - run.rotation);
   run.torque = 0.5 * (tau - J * (w1 - w0) / ((k1 - k0) * kDt));
-  if (patch) run.reports = int(scene.solver().patchReports().size());
+  run.reports = grasp.reportCount();
   return run;
 }
 
