@@ -1,5 +1,6 @@
 // MultiBodyField (multibody_field.hpp).
 #include <patchspin/scenes/multibody_field.hpp>
+#include <patchspin/scenes/turn_angle.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -19,15 +20,6 @@ const btVector3 kShinHalf(btScalar(0.03), btScalar(0.03), btScalar(0.1));
 btVector3 gridPoint(int i, int n, double spacing) {
   const int side = int(std::ceil(std::sqrt(double(n))));
   return bt(spacing * (i % side), spacing * (i / side), 0.0);
-}
-
-// The angle of the turn q, in [0, pi], from its vector part, 2 asin |v|,
-// rather than btQuaternion::getAngle's 2 acos w: in float, w rounds to 1
-// for any turn below about 7e-4 rad.
-double foldedAngle(const btQuaternion& q) {
-  const double v = std::sqrt(double(q.x()) * double(q.x()) + double(q.y()) * double(q.y()) +
-                             double(q.z()) * double(q.z()));
-  return 2 * std::asin(std::min(1.0, v));
 }
 
 }  // namespace
@@ -104,7 +96,7 @@ void MultiBodyField::step() {
 double MultiBodyField::largestTurn() const {
   double turn = 0.0;
   for (std::size_t i = 0; i < atTwist_.size(); ++i)
-    turn = std::max(turn, foldedAngle(orientation(int(i)) * atTwist_[i].inverse()));
+    turn = std::max(turn, foldedTurnAngle(orientation(int(i)), atTwist_[i]));
   return turn;
 }
 

@@ -7,6 +7,7 @@
 #include <patchspin/scenes/grasp.hpp>
 #include <patchspin/scenes/multibody_scene.hpp>
 #include <patchspin/scenes/scene.hpp>
+#include <patchspin/scenes/turn_angle.hpp>
 
 #include "closed_forms.hpp"
 
@@ -449,8 +450,7 @@ GripRun runGripper(bool patch, double tau, double seconds) {
   }
   const double w1 = double(cube->getAngularVelocity().y());
   GripRun run;
-  run.rotation = double((cube->getWorldTransform().getRotation() * q0.inverse()).getAngle());
-  run.rotation = std::min(run.rotation, 2 * M_PI - run.rotation);
+  run.rotation = scenes::foldedTurnAngle(cube->getWorldTransform().getRotation(), q0);
   run.torque = 0.5 * (tau - J * (w1 - w0) / ((k1 - k0) * kDt));
   run.reports = grasp.reportCount();
   return run;
@@ -527,8 +527,7 @@ FootRun runFoot(bool patch, double tau, double seconds) {
     if (k == k0) w0 = double(leg->getBaseOmega().z());
   }
   FootRun run;
-  run.rotation = double((leg->getWorldToBaseRot() * q0.inverse()).getAngle());
-  run.rotation = std::min(run.rotation, 2 * M_PI - run.rotation);
+  run.rotation = scenes::foldedTurnAngle(leg->getWorldToBaseRot(), q0);
   run.torque = tau - J * (double(leg->getBaseOmega().z()) - w0) / ((k1 - k0) * kDt);
   if (patch) run.patch = scene.solver().findPatchReport(foot) != nullptr;
   return run;
