@@ -5,6 +5,8 @@
 // stock btMultiBodyConstraintSolver's figures printed beside them.
 #include <patchspin/scenes/multibody_field.hpp>
 
+#include "oracle.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,24 +18,13 @@ namespace {
 constexpr bool kDouble = sizeof(btScalar) == sizeof(double);
 constexpr int kN = 100;  // the benchmark's field size
 
-// dbar of [-a, a] x [-b, b] by the midpoint rule on 2 k x k cells, the
-// independent check of the closed form the fields' twists are built on.
-double quadratureMeanDistance(double a, double b) {
-  constexpr int k = 400;
-  double sum = 0.0;
-  for (int i = 0; i < 2 * k; ++i)
-    for (int j = 0; j < k; ++j)
-      sum += std::hypot(((i + 0.5) / (2 * k) * 2 - 1) * a, ((j + 0.5) / k * 2 - 1) * b);
-  return sum / (2.0 * k * k);
-}
-
 TEST(MultiBodyField, MeanDistanceOfRectangleMatchesQuadrature) {
   // the midpoint rule's error is ~1e-6 relative here (smooth but at the
   // centre); 1e-5 leaves room and still catches a wrong term (each log term
   // is >= 10 % of the total for these shapes)
   for (const auto& [a, b] : {std::pair{0.02, 0.02}, {0.08, 0.04}, {0.04, 0.08}, {0.1, 0.01}})
-    EXPECT_NEAR(meanDistanceOfRectangle(a, b), quadratureMeanDistance(a, b),
-                1e-5 * quadratureMeanDistance(a, b))
+    EXPECT_NEAR(meanDistanceOfRectangle(a, b), testing::rectangleMeanDistance(a, b),
+                1e-5 * testing::rectangleMeanDistance(a, b))
         << a << " x " << b;
   // the square's known closed form h (sqrt 2 + asinh 1) / 3
   EXPECT_NEAR(meanDistanceOfRectangle(0.02, 0.02), 0.02 * (std::sqrt(2.0) + std::asinh(1.0)) / 3,

@@ -10,6 +10,7 @@
 #include <patchspin/scenes/turn_angle.hpp>
 
 #include "closed_forms.hpp"
+#include "oracle.hpp"
 
 #include <gtest/gtest.h>
 
@@ -411,16 +412,6 @@ TEST(MultiBodyPatches, OptInOfALinkCollider) {
 constexpr double kCubeHalf = 0.03, kCubeMass = 1.0, kSqueeze = 20.0, kPadHalf = 0.02;
 constexpr double kGripMu = 0.5;
 
-// dbar of a square of side 2 h by the midpoint rule on 400 x 400 cells
-// (error ~1e-6 relative: the integrand is smooth but at the centre).
-double meanDistanceOfSquare(double h) {
-  constexpr int kN = 400;
-  double sum = 0.0;
-  for (int i = 0; i < kN; ++i)
-    for (int j = 0; j < kN; ++j) sum += std::hypot((i + 0.5) / kN * 2 - 1, (j + 0.5) / kN * 2 - 1);
-  return h * sum / (double(kN) * kN);
-}
-
 struct GripRun {
   double rotation = 0.0;  // cube's turn over the twist, folded into [0, pi] [rad]
   double torque = 0.0;    // friction torque per pad, tau - J alpha over the window, / 2 [N m]
@@ -457,7 +448,7 @@ GripRun runGripper(bool patch, double tau, double seconds) {
 }
 
 TEST(MultiBodyPatches, GripperHoldsBelowTheTwistLimitAndSlipsAtItAbove) {
-  const double dbar = meanDistanceOfSquare(kPadHalf);
+  const double dbar = testing::rectangleMeanDistance(kPadHalf, kPadHalf);
   // (closed form of dbar: h (sqrt 2 + asinh 1) / 3, to the quadrature's 1e-5)
   EXPECT_NEAR(dbar, kPadHalf * (std::sqrt(2.0) + std::asinh(1.0)) / 3.0, 1e-5 * kPadHalf);
   const double limit = kGripMu * kSqueeze * dbar;           // per pad
@@ -485,20 +476,10 @@ TEST(MultiBodyPatches, GripperHoldsBelowTheTwistLimitAndSlipsAtItAbove) {
 // on the ground (mu = 0.6), its weight straight over the sole's centre:
 // uniform pressure, so under a yaw torque tau the foot holds while
 // tau < mu M g dbar and spins with the friction torque mu M g dbar above
-// (dbar of the sole's rectangle by quadrature).
+// (dbar of the sole's rectangle by quadrature, testing::rectangleMeanDistance).
 constexpr double kFootMu = 0.6, kFootMass = 1.0, kShinMass = 2.0;
 const btVector3 kFootHalf(btScalar(0.08), btScalar(0.04), btScalar(0.01));
 const btVector3 kShinHalf(btScalar(0.03), btScalar(0.03), btScalar(0.1));
-
-// dbar of the rectangle [-a, a] x [-b, b] by the midpoint rule (800 x 400).
-double meanDistanceOfRectangle(double a, double b) {
-  constexpr int kN = 400;
-  double sum = 0.0;
-  for (int i = 0; i < 2 * kN; ++i)
-    for (int j = 0; j < kN; ++j)
-      sum += std::hypot(((i + 0.5) / (2 * kN) * 2 - 1) * a, ((j + 0.5) / kN * 2 - 1) * b);
-  return sum / (2.0 * kN * kN);
-}
 
 struct FootRun {
   double rotation = 0.0;  // yaw turn over the torque, folded into [0, pi] [rad]
@@ -537,7 +518,7 @@ FootRun runFoot(bool patch, double tau, double seconds) {
 // torque within 2 % (the gripper tolerance).
 TEST(MultiBodyPatches, FlatFootDoesNotSpinBelowItsYawLimit) {
   const double limit = kFootMu * (kFootMass + kShinMass) * kG *
-                       meanDistanceOfRectangle(double(kFootHalf.x()), double(kFootHalf.y()));
+                       testing::rectangleMeanDistance(double(kFootHalf.x()), double(kFootHalf.y()));
   const FootRun hold = runFoot(true, 0.8 * limit, 2.0);
   const FootRun spin = runFoot(true, 1.25 * limit, 0.4);
   const FootRun stockHold = runFoot(false, 0.8 * limit, 2.0);

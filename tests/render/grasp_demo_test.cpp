@@ -22,6 +22,7 @@
 #include <string>
 
 #include "demo_test_util.hpp"
+#include "oracle.hpp"
 #include "run_tool.hpp"
 
 namespace patchspin::render {
@@ -32,17 +33,6 @@ using namespace demo_test;
 
 bool graspBuilt() {
   return !buildPath("demos/grasp").empty() && fs::exists(buildPath("demos/grasp"));
-}
-
-// Mean distance of the square [-h, h]^2 from its centre by the midpoint
-// rule on 400 x 400 cells (relative error ~1e-6: the integrand is smooth
-// except at the centre).
-double meanDistanceOfSquare(double h) {
-  constexpr int kN = 400;
-  double sum = 0.0;
-  for (int i = 0; i < kN; ++i)
-    for (int j = 0; j < kN; ++j) sum += std::hypot((i + 0.5) / kN * 2 - 1, (j + 0.5) / kN * 2 - 1);
-  return h * sum / (double(kN) * kN);
 }
 
 TEST(GraspDemo, PatchGraspHoldsBelowTheLimitAndSlipsAtItAbove) {
@@ -68,7 +58,9 @@ TEST(GraspDemo, PatchGraspHoldsBelowTheLimitAndSlipsAtItAbove) {
 
   const nlohmann::json& p = s["parameters"];
   const double mu = p["mu"].get<double>(), squeeze = p["squeeze"].get<double>();
-  const double limit = mu * squeeze * meanDistanceOfSquare(0.5 * p["pad_side"].get<double>());
+  const double limit = mu * squeeze *
+                       testing::rectangleMeanDistance(0.5 * p["pad_side"].get<double>(),
+                                                      0.5 * p["pad_side"].get<double>());
   // the demo's closed form against the quadrature
   EXPECT_NEAR(s["limit"]["per_pad"].get<double>(), limit, 1e-5 * limit);
   // the default torques lie on either side of the grasp's limit 2 mu N dbar

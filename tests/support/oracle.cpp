@@ -437,4 +437,13 @@ ScalarField hertzField(const Vec2& centre, double radius, double Pz) {
   };
 }
 
+double rectangleMeanDistance(double a, double b) {
+  constexpr int k = 400;
+  double sum = 0.0;
+  for (int i = 0; i < 2 * k; ++i)
+    for (int j = 0; j < k; ++j)
+      sum += std::hypot(((i + 0.5) / (2 * k) * 2 - 1) * a, ((j + 0.5) / k * 2 - 1) * b);
+  return sum / (2.0 * k * k);
+}
+
 }  // namespace patchspin::testing

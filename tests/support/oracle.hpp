@@ -79,4 +79,11 @@ ScalarField linearField(const LinearPressure& pressure);
 // Hertz pressure (57) with total load Pz on a disk of radius R centred at C.
 ScalarField hertzField(const Vec2& centre, double radius, double Pz);
 
+// Mean distance from its centre of the rectangle [-a, a] x [-b, b] [m], by
+// the midpoint rule on 2k x k cells, k = 400 (relative error ~1e-6: the
+// integrand is smooth except at the centre): mu N times it is the twist a
+// flat pad under uniform pressure holds, and it checks the closed form the
+// scenes use (MultiBodyField.MeanDistanceOfRectangleMatchesQuadrature).
+double rectangleMeanDistance(double a, double b);
+
 }  // namespace patchspin::testing
