@@ -29,6 +29,7 @@
 #include "episode_clock.hpp"
 #include "interleaving.hpp"
 #include "repetition_stats.hpp"
+#include "world_bench_args.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -161,29 +162,11 @@ int countOne(const std::string& fieldText, const std::string& variantText) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string markdown, count, variant;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--markdown=", 11) == 0)
-      markdown = argv[i] + 11;
-    else if (std::strncmp(argv[i], "--count=", 8) == 0)
-      count = argv[i] + 8;
-    else if (std::strncmp(argv[i], "--variant=", 10) == 0)
-      variant = argv[i] + 10;
-    else if (std::strcmp(argv[i], "--precision") == 0) {
-      std::printf("%s\n", sizeof(btScalar) == 8 ? "double" : "float");
-      return 0;
-    } else
-      args.push_back(argv[i]);
-  }
-  if (!count.empty() || !variant.empty()) {
-    if (count.empty() || variant.empty()) {
-      std::fprintf(stderr, "%s: --count and --variant go together\n", kProgram);
-      return 2;
-    }
-    return countOne(count, variant);
-  }
-  if (!patchspin::bench::initializeInterleaved(args)) return 1;
+  patchspin::bench::WorldBenchArgs a;
+  if (const int code = patchspin::bench::parseWorldBenchArgs(kProgram, argc, argv, a); code >= 0)
+    return code;
+  if (!a.count.empty()) return countOne(a.count, a.variant);
+  if (!patchspin::bench::initializeInterleaved(a.benchmarkArgs)) return 1;
   const int n = patchspin::bench::envInt(kProgram, "PATCHSPIN_MULTIBODY_N", 100, 1, 10000);
   const int repetitions =
       patchspin::bench::envInt(kProgram, "PATCHSPIN_MULTIBODY_REPETITIONS", 7, 1, 100);
@@ -200,5 +183,5 @@ int main(int argc, char** argv) {
   });
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
-  return markdown.empty() ? 0 : writeMarkdown(markdown, n, repetitions);
+  return a.markdown.empty() ? 0 : writeMarkdown(a.markdown, n, repetitions);
 }

@@ -30,6 +30,7 @@
 #include "episode_clock.hpp"
 #include "interleaving.hpp"
 #include "repetition_stats.hpp"
+#include "world_bench_args.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -177,31 +178,15 @@ int countOne(const std::string& cellText, const std::string& variantText) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string markdown, count, variant;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--markdown=", 11) == 0)
-      markdown = argv[i] + 11;
-    else if (std::strncmp(argv[i], "--count=", 8) == 0)
-      count = argv[i] + 8;
-    else if (std::strncmp(argv[i], "--variant=", 10) == 0)
-      variant = argv[i] + 10;
-    else if (std::strcmp(argv[i], "--precision") == 0) {
-      std::printf("%s\n", sizeof(btScalar) == 8 ? "double" : "float");
-      return 0;
-    } else
-      args.push_back(argv[i]);
-  }
-  if (!count.empty() || !variant.empty()) {
-    if (count.empty() || variant.empty()) {
-      std::fprintf(stderr, "bench_bullet_speed_matrix: --count and --variant go together\n");
-      return 2;
-    }
-    return countOne(count, variant);
-  }
+  patchspin::bench::WorldBenchArgs a;
+  if (const int code =
+          patchspin::bench::parseWorldBenchArgs("bench_bullet_speed_matrix", argc, argv, a);
+      code >= 0)
+    return code;
+  if (!a.count.empty()) return countOne(a.count, a.variant);
   // the variants are interleaved inside each repetition; Google Benchmark's
   // own interleaving then shuffles the cells' repetitions too
-  if (!patchspin::bench::initializeInterleaved(args)) return 1;
+  if (!patchspin::bench::initializeInterleaved(a.benchmarkArgs)) return 1;
   const int maxN = patchspin::bench::envInt("bench_bullet_speed_matrix", "PATCHSPIN_MATRIX_MAX_N",
                                             10000, 1, 100000);
   const int repetitions = patchspin::bench::envInt("bench_bullet_speed_matrix",
@@ -224,5 +209,5 @@ int main(int argc, char** argv) {
   });
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
-  return markdown.empty() ? 0 : writeMarkdown(markdown, repetitions);
+  return a.markdown.empty() ? 0 : writeMarkdown(a.markdown, repetitions);
 }
