@@ -19,7 +19,9 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
-const std::string kDir = std::string(__FILE__).substr(0, std::string(__FILE__).rfind('/'));
+// (the tests directory, from the source tree CMake configured: __FILE__ is
+// relative where a compiler cache rewrites the paths)
+const std::string kDir = std::string(PATCHSPIN_SOURCE_DIR) + "/tests/bullet";
 
 TEST(ReadmeExample, RunsAndTheCoinComesToRest) {
   EXPECT_EQ(readmeExampleMain(), 0);
