@@ -31,7 +31,8 @@ int main() {
   // 1 kg (16 x 8 x 2 cm) as link 0, fixed under it
   const btVector3 footHalf(btScalar(0.08), btScalar(0.04), btScalar(0.01));
   const btScalar footMass = 1, shinMass = 2, rise = btScalar(0.11);
-  btBoxShape footShape(footHalf), shinShape(btVector3(btScalar(0.03), btScalar(0.03), btScalar(0.1)));
+  btBoxShape footShape(footHalf),
+      shinShape(btVector3(btScalar(0.03), btScalar(0.03), btScalar(0.1)));
   footShape.setMargin(btScalar(0.001));
   btVector3 footInertia, shinInertia;
   footShape.calculateLocalInertia(footMass, footInertia);
@@ -46,8 +47,7 @@ int main() {
   foot.setCollisionShape(&footShape);
   foot.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, 0, btScalar(0.01))));
   foot.setFriction(btScalar(0.6));
-  world.addCollisionObject(&foot, btBroadphaseProxy::DefaultFilter,
-                           btBroadphaseProxy::AllFilter);
+  world.addCollisionObject(&foot, btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter);
   leg.getLink(0).m_collider = &foot;
 
   // opt in every link with a collider (a URDF model's too), exact law
@@ -67,11 +67,13 @@ int main() {
     world.stepSimulation(btScalar(1.0 / 240.0), 0);
   }
   const btQuaternion q = leg.getWorldToBaseRot() * q0.inverse();
-  const double turn = 2 * std::asin(std::min(  // the turn's angle, from its vector part
-                               1.0, std::sqrt(double(q.x() * q.x() + q.y() * q.y() + q.z() * q.z()))));
+  // the turn's angle, from its vector part
+  const double v = std::sqrt(double(q.x() * q.x() + q.y() * q.y() + q.z() * q.z()));
+  const double turn = 2 * std::asin(std::min(1.0, v));
   const patchspin::bullet::PatchReport* patch = solver.findPatchReport(&foot);
-  std::printf("yaw torque %.3f N m (limit %.3f): foot turned %.2e rad in 2 s, patch %s, Pz %.2f N\n",
-              0.8 * limit, limit, turn, patch ? "yes" : "no", patch ? patch->loads.Pz : 0.0);
+  std::printf(
+      "yaw torque %.3f N m (limit %.3f): foot turned %.2e rad in 2 s, patch %s, Pz %.2f N\n",
+      0.8 * limit, limit, turn, patch ? "yes" : "no", patch ? patch->loads.Pz : 0.0);
   world.removeCollisionObject(&foot);
   world.removeMultiBody(&leg);
   world.removeRigidBody(&ground);

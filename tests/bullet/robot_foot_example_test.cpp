@@ -30,7 +30,9 @@ std::string trimmed(const std::string& line) {
 // relative where a compiler cache rewrites the paths)
 const std::string kDir = std::string(PATCHSPIN_SOURCE_DIR) + "/tests/bullet";
 
-TEST(RobotFootExample, RunsAndTheFootHolds) { EXPECT_EQ(robotFootExampleMain(), 0); }
+TEST(RobotFootExample, RunsAndTheFootHolds) {
+  EXPECT_EQ(robotFootExampleMain(), 0);
+}
 
 // The code block after the README's "Robots" paragraph: every line of it is
 // a line of the program (indentation aside), so what the README shows builds.
