@@ -28,6 +28,9 @@ namespace {
 // relative slack of the KKT tests for round-off (the old candidate search
 // accepted feasibility to the same 1e-12)
 constexpr double kKktSlack = 1e-12;
+// The result's own admissibility check: of the mean pressure; normal
+// cases: ~1e-12
+constexpr double kVerifyTol = 1e-6;
 
 void requireFiniteLoads(const PatchLoads& loads) {
   if (std::isfinite(loads.Pz) && std::isfinite(loads.Tx) && std::isfinite(loads.Ty)) return;
@@ -128,7 +131,8 @@ Vec3 projectDisk(const Vec2& C, double R, double rho, const Vec3& y) {
   } else {
     // Moreau: y minus its projection onto the polar cone, which is
     // {y^T H^-1 y <= 0, v0 . y <= 0}
-    const Vec3 q = projectOntoQuadricCone(Vec3(1.0 / al0, 1.0 / al1, 1.0), Vec3(-yh[0], yh[1], yh[2]));
+    const Vec3 q =
+        projectOntoQuadricCone(Vec3(1.0 / al0, 1.0 / al1, 1.0), Vec3(-yh[0], yh[1], yh[2]));
     ph = yh - Vec3(-q[0], q[1], q[2]);
   }
   const double pa = v0.x() * ph[0] + v1.x() * ph[1];
@@ -213,7 +217,7 @@ enum class KktResult { kFound, kInside, kNone };
 // K's boundary to round-off, where the kern test rounded the other way);
 // kNone: no candidate passes to round-off (the fallback search decides).
 KktResult projectPolygonByKkt(const PatchShape& shape, const Mat3& M, const Vec3& y, double rho,
-                         std::size_t worst, Vec3& out) {
+                              std::size_t worst, Vec3& out) {
   const std::size_t n = shape.vertices().size();
   const VertexRows row(shape, M, rho);
   // a walk from the most negative vertex: where face i's projection leaves
@@ -342,7 +346,8 @@ double lowestVertexPressure(const PatchShape& shape, const PatchLoads& loads, st
   const double bound =
       std::abs(c[0]) + (std::abs(c[1]) + std::abs(c[2])) * shape.maxDistanceFromOrigin();
   worst = 0;
-  if (!(bound <= std::numeric_limits<double>::max())) return std::numeric_limits<double>::quiet_NaN();
+  if (!(bound <= std::numeric_limits<double>::max()))
+    return std::numeric_limits<double>::quiet_NaN();
   const LinearPressure p{c[0], c[1], c[2]};
   const std::vector<Vec2>& v = shape.vertices();
   const std::size_t n = v.size(), stride = n > 16 ? n / 8 : 1;
@@ -392,8 +397,11 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
   const KktResult found = projectPolygonByKkt(shape, M, y, rho, worst, out);
   // (the former search returned an edge ray or the uniform pressure's ray
   // here, however far: AdmissibleLoads.MatchesSearchAndKkt, idempotence)
-  if (found == KktResult::kInside) return loads;
-  if (found == KktResult::kNone) out = projectPolygonBySearch(shape, M, y, rho);
+  // (only within the result's own check: on a sliver 1e10 m long the rows
+  // said inside where the vertex pressure was -2e14 times the mean; found
+  // by fuzzing)
+  if (found == KktResult::kInside && lowest >= -kVerifyTol * loads.Pz / shape.area()) return loads;
+  if (found != KktResult::kFound) out = projectPolygonBySearch(shape, M, y, rho);
   return PatchLoads{out[0], out[1] * rho, out[2] * rho};
 }
 
@@ -457,7 +465,6 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   // round-off test and it returned inadmissible loads; say so instead (also
   // for a result with Pz < 0: torques 1e154 times Pz rho gave Pz = -4.9e138,
   // round-off of the 1e154-sized scaled torque)
-  constexpr double kVerifyTol = 1e-6;  // of the mean pressure; normal cases: ~1e-12
   // (for polygons with Pz > 0 isAdmissible's decision, cheaper)
   auto admissible = [&] {
     return shape.isDisk() || !(out.Pz > 0.0) ? isAdmissible(shape, out, kVerifyTol)

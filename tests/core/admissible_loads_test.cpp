@@ -154,7 +154,8 @@ double polarViolation(const Kern& k, const Vec3& r, double rho) {
   double worst = -INFINITY;
   const int n = k.corners.empty() ? 4096 : int(k.corners.size());
   for (int i = 0; i < n; ++i) {
-    const Vec3 u = rayThrough(k.corners.empty() ? kernPoint(k, 2.0 * kPi * i / n) : k.corners[i], rho);
+    const Vec3 u =
+        rayThrough(k.corners.empty() ? kernPoint(k, 2.0 * kPi * i / n) : k.corners[i], rho);
     worst = std::max(worst, r.dot(u) / u.norm());
   }
   return worst;
@@ -285,8 +286,8 @@ TEST(AdmissibleLoads, KernTestAgreesWithIsAdmissible) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const std::vector<PatchShape> shapes = {
       cutDisk(0.05, 0.3, Vec2(0.01, 0.0), 64), PatchShape::regularPolygon(64, 0.1, Vec2(0.3, 0.1)),
-      cutDisk(1.0, -0.6, Vec2(-0.5, 2.0), 40), PatchShape::rectangle(0.3, 0.1, Vec2(0.05, 0.0), 0.3),
-      PatchShape::regularPolygon(6, 0.05)};
+      cutDisk(1.0, -0.6, Vec2(-0.5, 2.0), 40),
+      PatchShape::rectangle(0.3, 0.1, Vec2(0.05, 0.0), 0.3), PatchShape::regularPolygon(6, 0.05)};
   int moved = 0, kept = 0;
   for (const PatchShape& shape : shapes) {
     SCOPED_TRACE(shape.describe());
