@@ -14,6 +14,8 @@
 // idempotence) and pressure_test.cpp; fuzz/pressure_fuzz.cpp.
 #include <patchspin/pressure.hpp>
 
+#include "planar_norm.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -37,16 +39,6 @@ void requireFiniteLoads(const PatchLoads& loads) {
   internal::requireFinite(loads.Pz, "normal force Pz");
   internal::requireFinite(loads.Tx, "tipping torque Tx");
   internal::requireFinite(loads.Ty, "tipping torque Ty");
-}
-
-// |(x, y)| as pressure.cpp's planarNorm: the plain root where the sum of
-// squares is a normal double, std::hypot (~50 instructions) only beyond
-double planarNorm(double x, double y) {
-  const double s = x * x + y * y;
-  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max())
-    return std::sqrt(s);
-  if (x == 0.0 && y == 0.0) return 0.0;
-  return std::hypot(x, y);
 }
 
 // the scaled loads with Pz = 1 whose centre of pressure (Ty, -Tx) / Pz is k
@@ -113,16 +105,16 @@ Vec3 projectDisk(const Vec2& C, double R, double rho, const Vec3& y) {
   const Vec2 w(y[2], -y[1]);
   const double a = y[0], wc = e.dot(w), wp = e.x() * w.y() - e.y() * w.x();
   // the polar cone {a + c.w + kappa |w| <= 0} projects to the apex
-  if (a + s * wc + kappa * planarNorm(wc, wp) <= 0.0) return Vec3::Zero();
+  if (a + s * wc + kappa * internal::planarNorm(wc, wp) <= 0.0) return Vec3::Zero();
   // H = [[s^2 - kappa^2, -s, 0], [-s, 1, 0], [0, 0, 1]] in (a, wc, wp):
   // eigenvalues al0 = -kappa^2 / al1 < 0 < al1 and 1; the axis v0 of the cone
   // (each root from the sum without cancellation, the other from the
   // product -kappa^2: half < 0 where kappa > 1, rho below R / 4)
   const double half = 0.5 * (s * s - kappa * kappa + 1.0);
-  const double root = planarNorm(half, kappa);
+  const double root = internal::planarNorm(half, kappa);
   const double al1 = half >= 0.0 ? half + root : -(kappa / (half - root)) * kappa;
   const double al0 = half >= 0.0 ? -(kappa / al1) * kappa : half - root;
-  const double vn = planarNorm(1.0 - al0, s);
+  const double vn = internal::planarNorm(1.0 - al0, s);
   const Vec2 v0((1.0 - al0) / vn, s / vn), v1(-v0.y(), v0.x());
   const Vec3 yh(v0.x() * a + v0.y() * wc, v1.x() * a + v1.y() * wc, wp);
   Vec3 ph;

@@ -2,6 +2,8 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/models.hpp>
 
+#include "planar_norm.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -50,21 +52,10 @@ Vec3 unitDirection(const Vec3& w, double* invNorm = nullptr) {
   return scaled / n;
 }
 
-// |(x, y)| (as in pressure.cpp): sqrt(x^2 + y^2) where the sum of squares
-// is a normal double (within ~2 ulps of the exact value), the scaled
-// std::hypot (a slow libm call) only where it under- or overflows.
-double planarNorm(double x, double y) {
-  const double s = x * x + y * y;
-  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max())
-    return std::sqrt(s);
-  if (x == 0.0 && y == 0.0) return 0.0;
-  return std::hypot(x, y);
-}
-
 // Largest |p| of a linear pressure on the closed patch.
 double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
   if (shape.isDisk())
-    return std::abs(p.at(shape.centre())) + shape.radius() * planarNorm(p.cx, p.cy);
+    return std::abs(p.at(shape.centre())) + shape.radius() * internal::planarNorm(p.cx, p.cy);
   double m = 0.0;
   for (const Vec2& v : shape.vertices()) m = std::max(m, std::abs(p.at(v)));
   return m;

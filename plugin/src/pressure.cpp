@@ -4,6 +4,8 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/pressure.hpp>
 
+#include "planar_norm.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -13,18 +15,6 @@
 namespace patchspin {
 
 namespace {
-
-// |(x, y)|: sqrt(x^2 + y^2) where that sum of squares is a normal double
-// (then it is within ~2 ulps of the exact value, as hypot is within 1), the
-// scaled std::hypot only where it under- or overflows. glibc's hypot costs
-// ~50 instructions and a long-latency call on every pressure check.
-double planarNorm(double x, double y) {
-  const double s = x * x + y * y;
-  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max())
-    return std::sqrt(s);
-  if (x == 0.0 && y == 0.0) return 0.0;
-  return std::hypot(x, y);
-}
 
 // (each visit of a patch refreshes its pressure: the common, finite case
 // tests inline and calls out only to name the offending value)
@@ -74,7 +64,7 @@ double minPressure(const PatchShape& shape, const LinearPressure& p) {
   double lowest = std::numeric_limits<double>::infinity();
   if (shape.isDisk()) {
     // min over the disk of an affine function: p(C) - R |grad p|
-    lowest = p.at(shape.centre()) - shape.radius() * planarNorm(p.cx, p.cy);
+    lowest = p.at(shape.centre()) - shape.radius() * internal::planarNorm(p.cx, p.cy);
   } else {
     for (const Vec2& v : shape.vertices()) {
       double at = p.at(v);

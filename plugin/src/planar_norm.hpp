@@ -1,0 +1,22 @@
+// |(x, y)| for the core's pressure code (pressure.cpp, models.cpp,
+// admissible_loads.cpp): sqrt(x^2 + y^2) where that sum of squares is a
+// normal double (then it is within ~2 ulps of the exact value, as hypot is
+// within 1), the scaled std::hypot only where it under- or overflows.
+// glibc's hypot costs ~50 instructions and a long-latency call on every
+// pressure check.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+namespace patchspin::internal {
+
+inline double planarNorm(double x, double y) {
+  const double s = x * x + y * y;
+  if (s >= std::numeric_limits<double>::min() && s <= std::numeric_limits<double>::max())
+    return std::sqrt(s);
+  if (x == 0.0 && y == 0.0) return 0.0;
+  return std::hypot(x, y);
+}
+
+}  // namespace patchspin::internal
