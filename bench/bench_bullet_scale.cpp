@@ -55,6 +55,7 @@
 
 #include "capturing_reporter.hpp"
 #include "interleaving.hpp"
+#include "repetition_stats.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -271,22 +272,11 @@ int main(int argc, char** argv) {
       args.push_back(argv[i]);
   }
   if (!patchspin::bench::initializeInterleaved(args)) return 1;
-  int maxN = 10000;
-  if (const char* e = std::getenv("PATCHSPIN_SCALE_MAX_N")) maxN = std::atoi(e);
+  const int maxN =
+      patchspin::bench::envInt("bench_bullet_scale", "PATCHSPIN_SCALE_MAX_N", 10000, 1, 100000);
   // more repetitions: the fastest of them is steadier on a noisy machine
-  int repetitions = kRepetitions;
-  if (const char* e = std::getenv("PATCHSPIN_SCALE_REPETITIONS")) {
-    char* end = nullptr;
-    const long r = std::strtol(e, &end, 10);
-    if (end == e || *end != '\0' || r < 1 || r > 100) {
-      std::fprintf(stderr,
-                   "bench_bullet_scale: PATCHSPIN_SCALE_REPETITIONS must be an integer in 1..100, "
-                   "got '%s'\n",
-                   e);
-      return 1;
-    }
-    repetitions = int(r);
-  }
+  const int repetitions = patchspin::bench::envInt(
+      "bench_bullet_scale", "PATCHSPIN_SCALE_REPETITIONS", kRepetitions, 1, 100);
 
   for (Phase phase : {kImpact, kRest})
     for (int n : kSizes) {

@@ -43,7 +43,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include <time.h>
+#include "episode_clock.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -145,14 +145,6 @@ struct References {
   SimulationResult exact, ellipsoidal;
 };
 
-// CPU time of this thread [s]: the machine is shared, and a run is
-// single-threaded, so this is the wall time the run takes on an idle core
-double threadSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
 SimulationResult runReference(SimulationSpec spec, const std::string& model) {
   spec.engine = "reference";
   spec.model = model;
@@ -174,9 +166,9 @@ void runSetting(benchmark::State& state, const Scene& scene, const References& r
   std::vector<SimulationResult> runs;
   double best = INFINITY;
   for (auto _ : state) {
-    const double t0 = threadSeconds();
+    const double t0 = patchspin::bench::threadSeconds();
     runs.push_back(step ? patchspin::scenes::simulate(spec) : runReference(spec, model));
-    best = std::min(best, threadSeconds() - t0);
+    best = std::min(best, patchspin::bench::threadSeconds() - t0);
   }
   const SimulationResult& result = runs.back();
   Row row;

@@ -38,7 +38,9 @@
 #include <patchspin/render/plot.hpp>
 #include <patchspin/render/renderer.hpp>
 #include <patchspin/scenes/grasp.hpp>
+#include <patchspin/scenes/mean_distance.hpp>
 #include <patchspin/scenes/simulate.hpp>
+#include <patchspin/scenes/turn_angle.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -61,7 +63,6 @@ namespace demos = patchspin::demos;
 namespace scenes = patchspin::scenes;
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
 // alpha of the friction torque measurement from the spin this long into the
 // twist (the pads' slip has started) to its end [s]
 constexpr double kAlphaFrom = 0.1;
@@ -130,17 +131,6 @@ scenes::GraspSpec specOf(const Args& a) {
   return s;
 }
 
-// Mean distance of a square of half side h from its centre (closed form).
-double meanDistanceOfSquare(double h) {
-  return h * (std::sqrt(2.0) + std::asinh(1.0)) / 3.0;
-}
-
-// The angle of the rotation q (folded into [0, pi]).
-double turnOf(const btQuaternion& q) {
-  const double angle = double(q.getAngle());
-  return std::min(angle, 2 * kPi - angle);
-}
-
 void simulate(const Args& a, Run& run, double dt, long settleSteps, long twistSteps) {
   std::optional<patchspin::Model> model;
   if (run.model != "stock")
@@ -175,7 +165,7 @@ void simulate(const Args& a, Run& run, double dt, long settleSteps, long twistSt
       if (dq.w() < 0) dq = -dq;
       angle += 2.0 * std::atan2(double(dq.y()), double(dq.w()));
       prev = q;
-      run.maxTurn = std::max(run.maxTurn, turnOf(q * q0.inverse()));
+      run.maxTurn = std::max(run.maxTurn, scenes::foldedTurnAngle(q, q0));
     }
     if (k == k0) w0 = double(cube->getAngularVelocity().y());
     const btVector3 moved = cube->getWorldTransform().getOrigin() - start;
@@ -185,7 +175,7 @@ void simulate(const Args& a, Run& run, double dt, long settleSteps, long twistSt
     }
     sample(k, angle);
   }
-  run.turn = turnOf(cube->getWorldTransform().getRotation() * q0.inverse());
+  run.turn = scenes::foldedTurnAngle(cube->getWorldTransform().getRotation(), q0);
   const double jy = a.cubeMass * a.cubeSide * a.cubeSide / 6.0;
   const double w1 = double(cube->getAngularVelocity().y());
   run.frictionTorque = 0.5 * (run.tau - jy * (w1 - w0) / (double(k1 - k0) * dt));
@@ -474,7 +464,8 @@ int run(const Args& a) {
   const long settleSteps = std::lround(a.tSettle / dt), twistSteps = std::lround(a.tTwist / dt);
   const long steps = settleSteps + twistSteps;
   // per pad, mu N dbar
-  const double dbar = meanDistanceOfSquare(0.5 * a.padSide), limit = a.mu * a.squeeze * dbar;
+  const double dbar = scenes::meanDistanceOfRectangle(0.5 * a.padSide, 0.5 * a.padSide),
+               limit = a.mu * a.squeeze * dbar;
 
   std::vector<Run> runs;
   std::vector<std::string> columns;

@@ -25,7 +25,6 @@
 // trajectories bit for bit.
 #include <patchspin/bullet/patch_friction_solver.hpp>
 
-#include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
 #include "patch_finish.hpp"
 #include "patch_push.hpp"

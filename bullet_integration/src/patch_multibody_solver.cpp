@@ -7,7 +7,6 @@
 #include <patchspin/bullet/patch_multibody_solver.hpp>
 
 #include "link_sides.hpp"
-#include "manifold_impulses.hpp"
 #include "patch_constraint.hpp"
 #include "patch_finish.hpp"
 #include "patch_push.hpp"

@@ -14,7 +14,7 @@
 // idempotence) and pressure_test.cpp; fuzz/pressure_fuzz.cpp.
 #include <patchspin/pressure.hpp>
 
-#include "planar_norm.hpp"
+#include "pressure_numerics.hpp"
 
 #include <Eigen/Dense>
 
@@ -34,20 +34,14 @@ constexpr double kKktSlack = 1e-12;
 // cases: ~1e-12
 constexpr double kVerifyTol = 1e-6;
 
-void requireFiniteLoads(const PatchLoads& loads) {
-  if (std::isfinite(loads.Pz) && std::isfinite(loads.Tx) && std::isfinite(loads.Ty)) return;
-  internal::requireFinite(loads.Pz, "normal force Pz");
-  internal::requireFinite(loads.Tx, "tipping torque Tx");
-  internal::requireFinite(loads.Ty, "tipping torque Ty");
-}
-
 // the scaled loads with Pz = 1 whose centre of pressure (Ty, -Tx) / Pz is k
 Vec3 rayThrough(const Vec2& k, double rho) {
   return Vec3(1.0, -k.y() / rho, k.x() / rho);
 }
 
-Vec3 scaledToLoads(const Vec3& l, double rho) {
-  return Vec3(l[0], l[1] * rho, l[2] * rho);
+// the loads of scaled loads l
+PatchLoads loadsOfScaled(const Vec3& l, double rho) {
+  return PatchLoads{l[0], l[1] * rho, l[2] * rho};
 }
 
 // ---- disks ------------------------------------------------------------------
@@ -379,8 +373,7 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
     // errors), then the former search
     if (isAdmissible(shape, loads, 0.0)) return loads;
     const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
-    const Vec3 out = projectPolygonBySearch(shape, scaledLoadMatrix(shape, rho), y, rho);
-    return PatchLoads{out[0], out[1] * rho, out[2] * rho};
+    return loadsOfScaled(projectPolygonBySearch(shape, scaledLoadMatrix(shape, rho), y, rho), rho);
   }
   if (lowest >= -0.0) return loads;  // isAdmissible(shape, loads, 0)
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
@@ -394,7 +387,7 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
   // by fuzzing)
   if (found == KktResult::kInside && lowest >= -kVerifyTol * loads.Pz / shape.area()) return loads;
   if (found != KktResult::kFound) out = projectPolygonBySearch(shape, M, y, rho);
-  return PatchLoads{out[0], out[1] * rho, out[2] * rho};
+  return loadsOfScaled(out, rho);
 }
 
 PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads,
@@ -420,8 +413,7 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
     const double sPerp = std::hypot(y[1], y[2]);
     if (kappa * sPerp <= -y[0]) return PatchLoads{};
     const double t = (y[0] + kappa * sPerp) / (1.0 + kappa * kappa);
-    const Vec3 l = scaledToLoads(Vec3(t, t * kappa * y[1] / sPerp, t * kappa * y[2] / sPerp), rho);
-    return PatchLoads{l[0], l[1], l[2]};
+    return loadsOfScaled(Vec3(t, t * kappa * y[1] / sPerp, t * kappa * y[2] / sPerp), rho);
   }
   // the uniform pressure's ray (admissible by construction) and the zero
   // load as backstops, as for polygons
@@ -430,14 +422,13 @@ PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads&
   const Vec3 onRay = std::max(0.0, uniform.dot(y) / uniform.squaredNorm()) * uniform;
   if ((onRay - y).norm() < (best - y).norm()) best = onRay;
   if (y.norm() < (best - y).norm()) best = Vec3::Zero();
-  const Vec3 l = scaledToLoads(best, rho);
-  return PatchLoads{l[0], l[1], l[2]};
+  return loadsOfScaled(best, rho);
 }
 
 }  // namespace
 
 PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loads, double rho) {
-  requireFiniteLoads(loads);
+  internal::requireFiniteLoads(loads);
   internal::requirePositive(rho, "length scale rho");
   // as for FrictionPatch: within 1e12 of Eq. (11) either way; beyond, the
   // metric's torque terms under- or overflow (found by fuzzing: rho = 1e308)

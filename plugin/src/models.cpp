@@ -2,7 +2,7 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/models.hpp>
 
-#include "planar_norm.hpp"
+#include "pressure_numerics.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/pressure.hpp>
 
-#include "planar_norm.hpp"
+#include "pressure_numerics.hpp"
 
 #include <Eigen/Dense>
 
@@ -15,19 +15,6 @@
 namespace patchspin {
 
 namespace {
-
-// (each visit of a patch refreshes its pressure: the common, finite case
-// tests inline and calls out only to name the offending value)
-bool finite3(double a, double b, double c) {
-  return std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
-}
-
-void requireFiniteLoads(const PatchLoads& loads) {
-  if (finite3(loads.Pz, loads.Tx, loads.Ty)) return;
-  internal::requireFinite(loads.Pz, "normal force Pz");
-  internal::requireFinite(loads.Tx, "tipping torque Tx");
-  internal::requireFinite(loads.Ty, "tipping torque Ty");
-}
 
 // (Pz, Tx, Ty) <-> the right-hand side (Pz, Ty, -Tx) of Eq. (94).
 Vec3 loadsToRhs(const PatchLoads& l) {
@@ -40,7 +27,7 @@ PatchLoads rhsToLoads(const Vec3& r) {
 }  // namespace
 
 LinearPressure LinearPressure::fromLoads(const PatchShape& shape, const PatchLoads& loads) {
-  requireFiniteLoads(loads);
+  internal::requireFiniteLoads(loads);
   // Eq. (94): [Pz, Ty, -Tx] = G (p0, cx, cy)
   const Vec3 c = shape.solveLoadMatrix(loadsToRhs(loads));
   if (!c.allFinite()) {  // found by fuzzing: loads ~1e308 gave p = -inf
@@ -105,7 +92,7 @@ double minPressure(const PatchShape& shape, const LinearPressure& p) {
 }
 
 bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTol) {
-  requireFiniteLoads(loads);
+  internal::requireFiniteLoads(loads);
   if (loads.Pz < 0.0) return false;
   const LinearPressure p = LinearPressure::fromLoads(shape, loads);
   return minPressure(shape, p) >= -relTol * loads.Pz / shape.area();
@@ -114,7 +101,7 @@ bool isAdmissible(const PatchShape& shape, const PatchLoads& loads, double relTo
 // nearestAdmissibleLoads: admissible_loads.cpp
 
 PiMoments piMoments(const PatchShape& shape, const LinearPressure& pressure) {
-  if (!finite3(pressure.p0, pressure.cx, pressure.cy))
+  if (!(std::isfinite(pressure.p0) && std::isfinite(pressure.cx) && std::isfinite(pressure.cy)))
     internal::requireFinite(pressure.coefficients(), "pressure (p0, cx, cy)");
   // every integral of Eq. (36) is m.row(f) (p0, cx, cy) (DESIGN item 1)
   const Eigen::Matrix<double, 6, 1> v = shape.momentTable().m * pressure.coefficients();

@@ -1,4 +1,5 @@
 // MultiBodyField (multibody_field.hpp).
+#include <patchspin/scenes/mean_distance.hpp>
 #include <patchspin/scenes/multibody_field.hpp>
 #include <patchspin/scenes/turn_angle.hpp>
 
@@ -32,12 +33,6 @@ MultiBodyFieldKind multiBodyFieldKindFromString(const std::string& name) {
   if (name == "grippers") return MultiBodyFieldKind::Grippers;
   if (name == "feet") return MultiBodyFieldKind::Feet;
   throw Error("multibody field must be grippers or feet: got " + name);
-}
-
-double meanDistanceOfRectangle(double a, double b) {
-  const double d = std::hypot(a, b);
-  return (d + a * a / (2 * b) * std::log((b + d) / a) + b * b / (2 * a) * std::log((a + d) / b)) /
-         3.0;
 }
 
 MultiBodyField::MultiBodyField(MultiBodyFieldKind kind, int n, SpeedVariant variant)

@@ -3,6 +3,7 @@
 // cubes hold against their twist, 100 feet that do not spin under theirs,
 // every pad and foot a patch, under the patch law (exact and ellipsoidal);
 // stock btMultiBodyConstraintSolver's figures printed beside them.
+#include <patchspin/scenes/mean_distance.hpp>
 #include <patchspin/scenes/multibody_field.hpp>
 
 #include "oracle.hpp"

@@ -38,12 +38,6 @@ const char* toString(MultiBodyFieldKind k);
 // "grippers" or "feet"; Error on anything else.
 MultiBodyFieldKind multiBodyFieldKindFromString(const std::string& name);
 
-// Mean distance from the centre of the rectangle [-a, a] x [-b, b] [m], in
-// closed form: (d + a^2/(2b) ln((b + d)/a) + b^2/(2a) ln((a + d)/b)) / 3,
-// d = sqrt(a^2 + b^2) (checked against quadrature in
-// multibody_field_test.cpp).
-double meanDistanceOfRectangle(double a, double b);
-
 class MultiBodyField {
  public:
   static constexpr double kDt = 1.0 / 240.0;
