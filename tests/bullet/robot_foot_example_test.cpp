@@ -3,7 +3,8 @@
 // lines are its own.
 #include <gtest/gtest.h>
 
-#include <fstream>
+#include "source_file.hpp"
+
 #include <set>
 #include <sstream>
 #include <string>
@@ -14,21 +15,10 @@
 
 namespace {
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string trimmed(const std::string& line) {
   const auto b = line.find_first_not_of(' ');
   return b == std::string::npos ? "" : line.substr(b);
 }
-
-// (the tests directory, from the source tree CMake configured: __FILE__ is
-// relative where a compiler cache rewrites the paths)
-const std::string kDir = std::string(PATCHSPIN_SOURCE_DIR) + "/tests/bullet";
 
 TEST(RobotFootExample, RunsAndTheFootHolds) {
   EXPECT_EQ(robotFootExampleMain(), 0);
@@ -37,9 +27,8 @@ TEST(RobotFootExample, RunsAndTheFootHolds) {
 // The code block after the README's "Robots" paragraph: every line of it is
 // a line of the program (indentation aside), so what the README shows builds.
 TEST(RobotFootExample, ReadmeRoboticsLinesAreTheProgramsOwn) {
-  const std::string program =
-      readFile(kDir + "/../../bullet_integration/examples/robot_foot_example.cpp");
-  const std::string readme = readFile(kDir + "/../../README.md");
+  const std::string program = sourceFile("bullet_integration/examples/robot_foot_example.cpp");
+  const std::string readme = sourceFile("README.md");
   ASSERT_FALSE(program.empty());
   const auto robots = readme.find("Robots (`btMultiBodyDynamicsWorld`");
   ASSERT_NE(robots, std::string::npos) << "README.md has no robotics paragraph";
