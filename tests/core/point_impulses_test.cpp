@@ -157,6 +157,30 @@ TEST(PointImpulses, TwistOnOneLoadedPointKeepsTheForceExact) {
   }
 }
 
+// One point (a coin on a plane: Bullet keeps one): it carries the whole
+// load and the force; the couple and the twist only where they are those
+// of the load and force at that point.
+TEST(PointImpulses, OnePointCarriesTheLoadAndTheForce) {
+  const std::vector<Vec2> r = {Vec2(0.039, -0.002)};
+  const double P = 0.49, rho = 0.03;
+  const Vec2 f(0.2, -0.1);
+  for (const bool atPoint : {true, false}) {
+    const Vec2 c = atPoint ? r[0] : Vec2(-0.002, 0.0024);
+    const double M = atPoint ? r[0].x() * f.y() - r[0].y() * f.x() : 0.004;
+    const PointImpulses s = spreadPatchImpulse(r.data(), 1, Vec3(P, P * c.y(), -P * c.x()),
+                                               Vec3(f.x(), f.y(), M / rho), rho);
+    EXPECT_EQ(s.momentMatched, atPoint);
+    EXPECT_EQ(s.twistMatched, atPoint);
+    const Sums got = sums(r, s);
+    EXPECT_NEAR(got.P, P, kSumTol);
+    EXPECT_NEAR((got.force - f).norm(), 0.0, kSumTol);
+    if (atPoint) {
+      EXPECT_NEAR((got.moment - P * Vec2(c.y(), -c.x())).norm(), 0.0, kSumTol);
+      EXPECT_NEAR(got.twist, M, kSumTol);
+    }
+  }
+}
+
 TEST(PointImpulses, RefusesNoPointsAndTooMany) {
   const std::vector<Vec2> many(kMaxPoints + 1, Vec2::Zero());
   EXPECT_THROW(spreadPatchImpulse(many.data(), 0, Vec3(1, 0, 0), Vec3::Zero(), 0.1), Error);

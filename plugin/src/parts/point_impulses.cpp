@@ -136,9 +136,17 @@ PointImpulses spreadPatchImpulse(const Vec2* points, int n, const Vec3& lamN, co
   if (P > 0.0) {
     const Vec2 c(-lamN[2] / P, lamN[1] / P);
     const double tol = kRelTol * (extent + c.norm() + 1e-300);  // [m]
-    out.momentMatched = spreadNormal(points, n, P, c, tol, out.normal.data());
-    if (!out.momentMatched)
-      spreadNormal(points, n, P, nearestHullPoint(points, n, c), tol, out.normal.data());
+    if (n == 1) {
+      // one point carries it all (a coin on a plane: Bullet's manifold
+      // keeps one point), the couple only if c is on it; what the search
+      // below finds for one point, without it
+      out.normal[0] = P;
+      out.momentMatched = !((points[0] - c).norm() > tol);
+    } else {
+      out.momentMatched = spreadNormal(points, n, P, c, tol, out.normal.data());
+      if (!out.momentMatched)
+        spreadNormal(points, n, P, nearestHullPoint(points, n, c), tol, out.normal.data());
+    }
   } else {
     out.momentMatched = lamN[1] == 0.0 && lamN[2] == 0.0;
   }
