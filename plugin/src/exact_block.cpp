@@ -70,8 +70,8 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // inside L times it, |Pi^-1 lambda0|_1 <= L, sticks without the gauge test
   // (a body at rest in a pile, the common case there)
   {
-    const Mat3 Pinv = patch.Pi().inverse();
-    const Vec3 c = Pinv * lambda0;
+    const Vec3 c =
+        in.piInverse ? Vec3(*in.piInverse * lambda0) : Vec3(patch.Pi().inverse() * lambda0);
     if (c.allFinite() && c.lpNorm<1>() <= in.L) {
       out.sticking = true;
       out.impulse = stickImpulse();

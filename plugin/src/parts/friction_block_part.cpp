@@ -124,6 +124,7 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction,
     }
     if (!quick && !reuseSlip) {
       ++counters.blockSolves;
+      if (fb.model == Model::Exact) in.piInverse = &piInverse(fb.law, friction);
       const FrictionBlockResult solved = solveFrictionBlock(friction, fb.model, in);
       fb.lastImpulse = solved.impulse;
       fb.lastSlip = solved.slip;
