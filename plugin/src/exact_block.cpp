@@ -70,8 +70,8 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // inside L times it, |Pi^-1 lambda0|_1 <= L, sticks without the gauge test
   // (a body at rest in a pile, the common case there)
   {
-    const Mat3 Pinv = patch.Pi().inverse();
-    const Vec3 c = Pinv * lambda0;
+    const Vec3 c =
+        in.piInverse ? Vec3(*in.piInverse * lambda0) : Vec3(patch.Pi().inverse() * lambda0);
     if (c.allFinite() && c.lpNorm<1>() <= in.L) {
       out.sticking = true;
       out.impulse = stickImpulse();
@@ -281,10 +281,16 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     const Vec3 d = (x - in.b).cwiseAbs();
     return kPotentialRoundOff * (d.dot(absKinv * d) + in.L * qx.cwiseAbs().dot(x.cwiseAbs()));
   };
+  // |K grad D| at a converged iterate s whose q is the law at s (else -1)
+  double convergedStep = -1.0;
   for (int it = 0; it < kMaxIterations; ++it) {
     ++out.iterations;
     // converged: the slip b + K L q(s^) equals s to ~1e-14 of the slip scale
-    if ((in.K * grad).norm() <= tol * scale) break;
+    const double kGrad = (in.K * grad).norm();
+    if (kGrad <= tol * scale) {
+      convergedStep = kGrad;
+      break;
+    }
     const Mat3 H = Kinv - (in.L / s.norm()) * 0.5 * (J + J.transpose());
     Vec3 dir = -(H.inverse() * grad);  // 3x3: cofactors; non-descent caught below
     const bool newton = dir.allFinite() && dir.dot(grad) < 0.0;
@@ -368,10 +374,19 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // (J: the law's Jacobian on the unit sphere at the last iterate, so
   // |dq/ds| = |J| / |s|.) The result is kept only if it does not raise the
   // potential D (FrictionBlockTest.NeverAddsEnergy).
+  // A converged iterate needs no polish where its q is already the law at
+  // the returned slip to the polish's own tol: s_out = b + K L q = s - K grad
+  // turns the direction by at most |K grad| / |s|, so q(s_out^) differs from
+  // q = q(s^) by at most |J| |K grad| / |s| to first order (kPolishMargin
+  // leaves room for the second-order term, |J'| times that angle squared)
+  // (ExactBlock.WarmStartedSlipIsTheLawAtItsSlip).
+  constexpr double kPolishMargin = 0.5;
+  const bool lawAtSlip =
+      convergedStep >= 0.0 && J.norm() * convergedStep <= kPolishMargin * tol * q.norm() * s.norm();
   constexpr double kContraction = 0.5;    // error at least halved per step
   constexpr int kMaxFixedPointSteps = 8;  // 2^-8 of it at least, then stop
   Vec3 qPolished = q;
-  for (int k = 0; k < kMaxFixedPointSteps; ++k) {
+  for (int k = 0; k < kMaxFixedPointSteps && !lawAtSlip; ++k) {
     const Vec3 sOut = in.b + in.K * (in.L * qPolished);
     if (!(sOut.norm() > 0.0) || !sOut.allFinite()) break;
     if (!(in.K.norm() * in.L * J.norm() < kContraction * sOut.norm())) break;

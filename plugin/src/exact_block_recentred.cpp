@@ -59,6 +59,7 @@ bool solveExactRecentred(const FrictionPatch& patch, const FrictionBlockInput& i
     localIn.K = T * in.K * T.transpose();
     localIn.warmSlip = T * in.warmSlip;
     localIn.warmGauge = T * in.warmGauge;
+    localIn.piInverse = nullptr;  // (the recentred patch's Pi is not the caller's)
     const double pzRatio = recentred.Pz() / patch.Pz();
     localIn.L = in.L * pzRatio;
     if (!localIn.b.allFinite() || !localIn.K.allFinite() || !std::isfinite(localIn.L)) return false;

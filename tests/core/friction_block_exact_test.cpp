@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 #include "error_matchers.hpp"
 #include "oracle.hpp"
@@ -233,6 +234,62 @@ TEST(ExactBlock, VerifiedBlockIsTheLawAtItsSlip) {
   ASSERT_FALSE(r.sticking);
   expectSlipIsBPlusKImpulse(input, r);
   expectImpulseIsTheLaw(input, r, diskLawByQuadrature(patch, p, r.slip), 1.0 + lever);
+}
+
+// A coin-sized disk sliding and spinning (|K| L |dq/ds| / |s| well below 1/2,
+// the fixed-point polish's regime), solved cold and then warm-started: at the
+// answer itself, one fixed-point step on from a nearby impulse (b + K L q of
+// the answer turned by 1e-4: the Bullet adapter's s = b + K lamF), and the
+// answer turned by 0.7 and 0.3 of the tolerance across itself (a first
+// iterate that meets the stopping rule at once, its q the law at s, not at
+// the returned slip). At tolerances from coarse to the default, four slips
+// from translation to spin and two with the ICR at the rim, where q turns
+// fastest (there a first iterate returned without the polish misses the law
+// at its slip by 1.5 times the tolerance, measured at 1e-3, 1e-6, 1e-9; the
+// polish is skipped only where |J| |K grad D| / |s| bounds that miss by half
+// the tolerance). Asserted: the impulse is the law at its slip by quadrature
+// to the tolerance of |q| (the polish's own criterion; kQuadrature for the
+// oracle's 1e-12 and the law's round-off), and the slip is the cold one to
+// kAgree times the tolerance of the slip scale |b| + L |K| (the stopping
+// rule |K grad D| <= tol scale with the potential's Hessian K^-1 to within a
+// factor 2 here; measured: 0.005 of it at most).
+TEST(ExactBlock, WarmStartedSlipIsTheLawAtItsSlip) {
+  const double radius = 0.012;
+  const PatchShape coin = PatchShape::disk(radius, Vec2::Zero());
+  const LinearPressure p = LinearPressure::fromLoads(coin, PatchLoads{0.02, 4e-5, -2e-5});
+  const FrictionPatch patch(coin, p, 0.5, coin.defaultRho());
+  ASSERT_GE(minPressure(coin, patch.pressure()), 0.0);
+  constexpr double kQuadrature = 1e-11, kAgree = 2.0;
+  FrictionBlockInput input;
+  input.K << 80.0, 1.0, -2.0, 1.0, 70.0, 0.5, -2.0, 0.5, 150.0;
+  input.L = 0.5 * 0.02 / 240.0;
+  const double rimIcr = radius / patch.rho();  // |s_xy| / s_z with the ICR at the rim
+  for (const Vec3& b : {Vec3(1.2, -0.4, 0.9), Vec3(-0.3, 0.05, 1.4), Vec3(0.8, 0.7, -0.1),
+                        Vec3(0.05, -0.02, 1.0), Vec3(rimIcr, 0.0, 1.0), Vec3(0.0, rimIcr, 1.0)}) {
+    for (const double tol : {1e-3, 1e-6, 1e-9, 1e-12, 0.0}) {
+      SCOPED_TRACE(::testing::Message() << "b " << b.transpose() << ", tol " << tol);
+      input.b = b;
+      input.tolerance = tol;
+      input.warmSlip.setZero();
+      const FrictionBlockResult cold = solveFrictionBlock(patch, Model::Exact, input);
+      ASSERT_FALSE(cold.sticking);
+      const double t = tol > 0.0 ? tol : 1e-14;
+      const Vec3 across = cold.slip.unitOrthogonal();
+      const Eigen::AngleAxisd nearImpulse(1e-4, Vec3(0.3, -0.5, 0.8).normalized()),
+          first(0.7 * t, across), second(0.3 * t, cold.slip.normalized().cross(across));
+      for (const Vec3& warm : {cold.slip, Vec3(b + input.K * (nearImpulse * cold.impulse)),
+                               Vec3(first * cold.slip), Vec3(second * cold.slip)}) {
+        input.warmSlip = warm;
+        const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, input);
+        ASSERT_FALSE(r.sticking);
+        expectSlipIsBPlusKImpulse(input, r);
+        const Vec3 q = diskLawByQuadrature(patch, p, r.slip);
+        EXPECT_LT((r.impulse / input.L - q).norm(), (t + kQuadrature) * q.norm());
+        EXPECT_LT((r.slip - cold.slip).norm(),
+                  kAgree * t * (input.b.norm() + input.L * input.K.norm()));
+      }
+    }
+  }
 }
 
 // fuzz round 5 (a torque 100 L outside the set)

@@ -48,6 +48,9 @@ struct FrictionBlockInput {
   Vec3 warmSlip = Vec3::Zero();   // previous solution's slip, or zero [m/s]
   Vec3 warmGauge = Vec3::Zero();  // exact law: a previous gaugeSlip (direction only), or zero
   double tolerance = 0.0;         // relative residual in [0, 1) where iterations stop; 0: 1e-14
+  // exact law: the caller's Pi^-1 of this patch (patch.Pi().inverse(), kept
+  // while the pressure stays), or null: the block inverts Pi itself
+  const Mat3* piInverse = nullptr;
 };
 
 struct FrictionBlockResult {

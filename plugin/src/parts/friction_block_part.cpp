@@ -52,7 +52,6 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction,
     in.b = s - K * lamFIn;
     in.K = K;
     in.L = L;
-    in.warmSlip = fb.warmSlip;
     if (fb.model == Model::Exact) in.warmGauge = certs.gaugeSlip;
     in.tolerance = settings.blockTolerance;
     // the law's pressure: the linear pressure of Eq. (94) carrying the
@@ -124,6 +123,19 @@ Vec3 solveFrictionVelocity(FrictionBlockState& fb, FrictionPatch& friction,
     }
     if (!quick && !reuseSlip) {
       ++counters.blockSolves;
+      // the exact block's warm start (its direction only): where the block
+      // slipped at its last solution and the impulse so far moves the slip by
+      // at most kWarmFromS of it, the slip s = b + K lamF itself, one
+      // fixed-point step s -> b + K L q(s^) on from that solution and closer to
+      // the answer than its slip by |K| L |dq/ds| (a slipping coin: 1.7 law
+      // evaluations with the Jacobian per solve instead of 2); elsewhere (in a
+      // pile, an impulse that reverses or cancels the slip) that solution's
+      // slip (docs/notes/2026-11-29-exact-solve-evaluations.md)
+      constexpr double kWarmFromS = 0.5;
+      const bool warmFromS = fb.model == Model::Exact && fb.warmSlip.norm() > 0.0 &&
+                             (s - in.b).norm() <= kWarmFromS * s.norm();
+      in.warmSlip = warmFromS ? s : fb.warmSlip;
+      if (fb.model == Model::Exact) in.piInverse = &piInverse(fb.law, friction);
       const FrictionBlockResult solved = solveFrictionBlock(friction, fb.model, in);
       fb.lastImpulse = solved.impulse;
       fb.lastSlip = solved.slip;
