@@ -102,7 +102,9 @@ TEST(PointImpulses, ReachableWrenchIsMetExactlyWithTheLeastNorm) {
         feasible = feasible && p >= 0.0;
         norm += p * p;
       }
-      if (feasible) EXPECT_GE(norm, norm0 - 1e-12);
+      if (feasible) {
+        EXPECT_GE(norm, norm0 - 1e-12);
+      }
     }
     ++checked;
   }
