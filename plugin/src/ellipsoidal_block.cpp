@@ -37,7 +37,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   // adj A by cofactors, m = tr adj A (sum of the principal 2x2 minors) and
   // t I - A with its diagonal summed from the other two: each entry a
   // difference of at most two products, not the forms above, which cancel to
-  // the scale of |A|^2 (CoreBadInput.EllipsoidalBlockWithLongLever)
+  // the scale of |A|^2 (FrictionBlock.EllipsoidalRefusesALongLever)
   Mat3 adj;
   adj(0, 0) = A(1, 1) * A(2, 2) - A(1, 2) * A(2, 1);
   adj(0, 1) = A(0, 2) * A(2, 1) - A(0, 1) * A(2, 2);
@@ -60,7 +60,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   const double bNorm = in.b.norm(), aNorm = A.norm();
   const double scale = bNorm + aNorm;
   // L K Pi beyond double's range is refused before the iteration runs on inf
-  // (CoreBadInput.FrictionBlockFarFromUnitScale)
+  // (FrictionBlockScale.FarFromUnitScaleIsTheLaw)
   if (!std::isfinite(scale) || !std::isfinite(m) || !std::isfinite(d) || !n0.allFinite() ||
       !n1.allFinite()) {
     throw Error("friction block out of range: L K Pi overflows double (K, b or L too large)");
@@ -69,22 +69,23 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   // and Pi themselves (backward stable); a well-conditioned A, |A| |A^-1| =
   // |A| |adj A| / d below kAdjugateCondition, keeps the cheaper adjugate
   // test, whose error ~cond(A) eps is far inside the Newton tolerance
-  // (CoreBadInput.EllipsoidalBlockWithIllConditionedK)
+  // (FrictionBlockConditioning.EllipsoidalWithAnIllConditionedKStaysInTheSet)
   constexpr double kAdjugateCondition = 1e8;
   const bool wellConditioned = d > 0.0 && aNorm * adj.norm() < kAdjugateCondition * d;
   bool stick = false;
   Vec3 lambda0;
   // (|adj(A) b| without underflowing squares:
-  // CoreBadInput.EllipsoidalBlockAtUnitScaleWithTinyLDoesNotStick)
+  // FrictionBlockScale.EllipsoidalWithATinyLDoesNotStick)
   const double n0Norm = rangeSafeNorm(n0);
   bool pivoted = !wellConditioned;
   if (wellConditioned) {
     stick = n0Norm <= d;
     // a stick's impulse -K^-1 b by a solve with K itself, so b + K lambda = 0
-    // to round-off of |K| |lambda| (CoreBadInput.FrictionBlockSticksWithBEqualToMinusKLambda);
-    // where it and the adjugate's -L Pi A^-1 b differ by more than
-    // kStickAgreement, d (a cubic in A's entries) may be noise and the stick
-    // is decided again below (FrictionBlockIllConditioned.EllipsoidalStickNeverLeavesTheLimitSet)
+    // to round-off of |K| |lambda|
+    // (FrictionBlockConditioning.StickWithAnIllConditionedKStopsTheSlip); where it and the
+    // adjugate's -L Pi A^-1 b differ by more than kStickAgreement, d (a cubic in A's entries) may
+    // be noise and the stick is decided again below
+    // (FrictionBlockIllConditioned.EllipsoidalStickNeverLeavesTheLimitSet)
     constexpr double kStickAgreement = 1e-4;
     if (stick) {
       lambda0 =
@@ -98,7 +99,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
   }
   if (pivoted) {
     // (an ill-conditioned A only: a numerically singular K is refused here as
-    // in the exact block; CoreBadInput.ExactBlockWithNumericallySingularK)
+    // in the exact block; FrictionBlockConditioning.NumericallySingularKIsRefusedOrTheLaw)
     const Mat3 Ksym = 0.5 * (in.K + in.K.transpose());
     requireNotNumericallySingular(Ksym);
     lambda0 = stickSolve(in.K, requirePositiveDefiniteFactor(Ksym), in.b);
@@ -121,7 +122,7 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     return p / nN - 1.0;
   };
   // r w = b - A w with |w| = 1 brackets the root by |b| -+ |A|_F
-  // (CoreBadInput.FrictionBlockFarFromUnitScale: a stale warm start)
+  // (FrictionBlockScale.FarFromUnitScaleIsTheLaw: a stale warm start)
   double lo = std::max(0.0, bNorm - aNorm), hi = scale;
   double r = std::max(lo, bNorm - t / 3.0);  // isotropic estimate
   if (in.warmSlip.norm() > lo && in.warmSlip.norm() < hi) r = in.warmSlip.norm();
@@ -136,10 +137,10 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
       hi = r;
     // f is relative (p / |N| - 1); the root r itself sets the scale of the
     // bracket and of the step, not |b| + |A| >> r for a long lever
-    // (CoreBadInput.FrictionBlockIsTheLawAtItsSlipAcrossTheLeverDomain)
+    // (FrictionBlock.IsTheLawAtItsSlipAcrossTheLeverDomain)
     if (std::abs(fr) <= tol || hi - lo <= tol * hi) break;
     // safeguard: bisect, geometrically while the bracket spans orders of
-    // magnitude (CoreBadInput.FrictionBlockFarFromUnitScale: a stale warm start)
+    // magnitude (FrictionBlockScale.FarFromUnitScaleIsTheLaw: a stale warm start)
     const double mid =
         lo > 0.0 && hi > kGeometricBisection * lo ? std::sqrt(lo) * std::sqrt(hi) : 0.5 * (lo + hi);
     double next = df > 0.0 ? r - fr / df : mid;
@@ -180,7 +181,8 @@ FrictionBlockResult solveEllipsoidal(const Mat3& Pi, const FrictionBlockInput& i
     // term, so scaled by D^-1 on both sides (D^2 its diagonal, at least K's)
     // it has K's unit-diagonal conditioning, not the spread of K's diagonal
     // that the plain rI + A carries. Only where the plain re-solve misses.
-    // Guarded by FuzzRound8.EllipsoidalBlockWithANearSingularWideDiagonalKIsSolved.
+    // Guarded by
+    // FrictionBlockConditioning.EllipsoidalWithANearSingularWideDiagonalKMatches50Digits.
     const Mat3 Pinv = Pi.inverse();
     for (const bool onImpulseSide : {false, true}) {
       if (onImpulseSide && !Pinv.allFinite()) break;

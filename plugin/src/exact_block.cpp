@@ -32,7 +32,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // a diagonal spanning more than kMaxDiagonalSpread is out of this
   // solver's range: its slip potential weighs the slip's round-off along the
   // soft directions by K^-1 up to 1e300. A unit-scaled K within it has |K|,
-  // |K^-1| < 1e200 (CoreBadInput.ExactBlockWithBadlyScaledK).
+  // |K^-1| < 1e200 (FrictionBlockConditioning.ExactWithABadlyScaledKIsTheLawToItsResolution).
   constexpr double kMaxDiagonalSpread = 1e200;
   if (!(Ksym.diagonal().maxCoeff() < kMaxDiagonalSpread * Ksym.diagonal().minCoeff()))
     throw Error("friction block out of range: the diagonal of K spans more than 1e200 (" +
@@ -40,22 +40,22 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
                 internal::formatDouble(Ksym.diagonal().maxCoeff()) + ")");
   const Mat3 Kinv = inverseOf(kLlt);
   // det K and K^-1 in double's range, else K^-1 b = 0 would stick
-  // (CoreBadInput.FrictionBlockFarFromUnitScale)
+  // (FrictionBlockScale.FarFromUnitScaleIsTheLaw)
   if (!std::isfinite(det) || !Kinv.allFinite())
     throw Error("friction block out of range: det K overflows double (" +
                 internal::formatDouble(det) + ")");
   // numerically singular K refused: the slip potential below needs K^-1;
   // the common path pays one product of two norms (the scaled condition is
   // at most 3 times this plain one, spd3.hpp)
-  // (CoreBadInput.ExactBlockWithNumericallySingularK)
+  // (FrictionBlockConditioning.NumericallySingularKIsRefusedOrTheLaw)
   const double cond = Ksym.norm() * Kinv.norm();
   *plainCondition = cond;
   if (!(cond < kSingularCondition / 3.0)) requireNotNumericallySingular(Ksym, Kinv);
   // lambda0 = -K^-1 b by the Cholesky factor (stickSolve): the stick is
   // decided with the impulse it returns, and a stick verifies b + K lambda =
   // 0 (requireStopsTheSlip). Guarded by
-  // CoreBadInput.FrictionBlockSticksWithBEqualToMinusKLambda and
-  // CoreBadInput.ExactBlockStickWithCofactorsWithoutDigits.
+  // FrictionBlockConditioning.StickWithAnIllConditionedKStopsTheSlip and
+  // FrictionBlockConditioning.ExactStickRefusesCofactorsWithoutDigits.
   const Vec3 lambda0 = stickSolve(in.K, kLlt, in.b);
   auto stickImpulse = [&] { return requireStopsTheSlip(in.K, in.b, lambda0); };
   const double lambda0Norm = lambda0.norm();
@@ -109,7 +109,9 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   if (in.warmSlip.norm() > 0.0) scoreCandidate(in.warmSlip.normalized(), true);
   if (!(bestScore < 0.0)) {
     // (only a candidate: the ellipsoidal solve's refusal is not the exact
-    // block's; CoreBadInput.ExactBlockDoesNotInheritTheEllipsoidalRefusal)
+    // block's, which goes on without it; the fuzz case that showed it, round
+    // 3 item 34, lies outside both laws' domain since round 5:
+    // FrictionBlock.BothLawsRefuseAnAlmostAllNegativePressure)
     Vec3 ellipsoidalSlip = Vec3::Zero();
     try {
       ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
@@ -184,7 +186,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   }
   // (only where the iteration found q(w) along lambda0; otherwise the slip
   // branch below decides, with its own stick fallback:
-  // CoreBadInput.ExactBlockWithLongLeverDoesNotStickOutsideTheSet)
+  // FrictionBlock.ExactRefusesALongLeverWithOOnTheRim)
   if (!slipProven && gaugeFound && lambda0Norm <= in.L * q.norm()) {
     out.sticking = true;
     out.impulse = stickImpulse();
@@ -206,13 +208,13 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
     scoreCandidate(w, false);
     // -lambda0 = K^-1 b: its gap is L h_E(l) - |lambda0|, the plain gauge
     // test along lambda0
-    // (CoreBadInput.ExactBlockWithLongLeverDoesNotStickOutsideTheSet)
+    // (FrictionBlock.ExactRefusesALongLeverWithOOnTheRim)
     scoreCandidate(-l, false);
     // and its force and its torque part alone: E's extent along torque and
     // along force differ by the lever max|r| / rho, so with a long (short)
     // lever a direction with any torque (force) part has a huge support and
     // the separating directions lie in the force plane (on the torque axis)
-    // (CoreBadInput.ExactBlockWithLongLeverSlipsInTheForcePlane)
+    // (FrictionBlock.ExactRefusesALongLeverWithASlipInTheForcePlane)
     const Vec3 forcePart(-l.x(), -l.y(), 0.0), torquePart(0.0, 0.0, -l.z());
     if (forcePart.norm() > 0.0) scoreCandidate(forcePart.normalized(), false);
     if (torquePart.norm() > 0.0) scoreCandidate(torquePart.normalized(), false);
@@ -271,7 +273,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // is wrong: b's part along K's stiff directions dominates b^T K^-1 b while
   // the slip there equals b's to round-off and adds nothing to D. There the
   // round-off of each evaluation is taken from its own terms
-  // (CoreBadInput.ExactBlockWithBadlyScaledK).
+  // (FrictionBlockConditioning.ExactWithABadlyScaledKIsTheLawToItsResolution).
   constexpr double kBadlyScaledK = 1e8;
   const double kDiagMax = Ksym.diagonal().maxCoeff(), kDiagMin = Ksym.diagonal().minCoeff();
   const bool badlyScaledK = !(kDiagMax < kBadlyScaledK * kDiagMin);
@@ -315,16 +317,16 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       // evaluation of the law, with q linearised along the sphere:
       //   q(u + du) = q(u) + J du + O(|du|^2)
       // Only while J du is itself small (with a long lever J is huge); else
-      // the step is taken in full below (CoreBadInput.ExactBlockWithLongLever).
+      // the step is taken in full below (FrictionBlock.ExactRefusesALongLever).
       // du to first order, the step's part across s over |s|: the difference
       // of the two unit vectors loses its digits once |dir| / |s| nears eps
-      // (FuzzRound11.ExactBlockOfAFarPolygonSpinningAboutAPointInsideIsTheLawAtItsSlip).
+      // (ExactBlock.FarPolygonSpinningAboutAPointInsideIsTheLaw).
       if (linearisedStep(tol)) break;
     }
     // backtracking: sufficient decrease of D (Armijo, kSufficientDecrease), or
     // (at round-off level of D) of |grad D|, down to t = 2^-kMaxHalvings: the
     // descent fallback -K grad can be 1e18 times too long along a badly scaled
-    // K's stiff direction (CoreBadInput.ExactBlockWithLongLeverAndStiffSpin)
+    // K's stiff direction (FrictionBlock.ExactRefusesALongLeverWithAStiffSpin)
     constexpr int kMaxHalvings = 200;
     constexpr double kSufficientDecrease = 1e-4;
     double t = 1.0;
@@ -344,7 +346,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       if (!inCone) continue;
       // a trial that leaves s where it is (t |dir| below its ulps, or the
       // radial optimum rounding back to s) cannot make progress, nor can
-      // shorter ones (FuzzRound11.ExactBlockOfATinyDiskWithAHugeKIsTheLawAtItsSlip)
+      // shorter ones (ExactBlock.TinyDiskWithAHugeKIsTheLaw)
       if (sNew == s) break;
       const double DNew = potential(sNew, qNew);
       const Vec3 gradNew = Kinv * (sNew - in.b) - in.L * qNew;
@@ -362,7 +364,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
       // shortcut above, and the iterate's own q then is the law at s, not at
       // the returned slip b + K L q: the step is finished as the shortcut
       // would at the default tolerance, where it qualifies
-      // (FuzzRound11.ExactBlockOfAFarPolygonSpinningAboutAPointInsideIsTheLawAtItsSlip).
+      // (ExactBlock.FarPolygonSpinningAboutAPointInsideIsTheLaw).
       linearisedStep(std::max(tol, kRelativeTolerance));
       break;
     }
@@ -370,7 +372,7 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // consistency with the returned slip: where the map s -> b + K L q(s^)
   // contracts (|K| L |dq/ds| < kContraction: the slip hardly depends on the
   // impulse), fixed-point steps make the impulse the law at the returned
-  // slip's direction (CoreBadInput.ExactBlockWithHugeFreeSlipIsTheLawAtItsSlip).
+  // slip's direction (FrictionBlockScale.ExactWithAFreeSlipOf1e230IsTheLawAtItsSlip).
   // (J: the law's Jacobian on the unit sphere at the last iterate, so
   // |dq/ds| = |J| / |s|.) The result is kept only if it does not raise the
   // potential D (FrictionBlockTest.NeverAddsEnergy).
@@ -427,7 +429,7 @@ FrictionBlockResult requireVerifiedExactSlip(const FrictionPatch& patch,
   if (r.sticking || in.L == 0.0) return r;
   // (times the lever's distance from 1: the law turns from force to torque
   // across |w_z| / |w_xy| ~ 1 / lever, so the iteration's round-off reaches
-  // the law magnified by it; FuzzRound11.VerifiedExactBlockIsTheLawAtItsSlip)
+  // the law magnified by it; ExactBlock.VerifiedBlockIsTheLawAtItsSlip)
   const double lever = patch.shape().maxDistanceFromOrigin() / patch.rho();
   if (cond * std::max({1.0, lever, 1.0 / lever}) < kVerifyCondition) return r;
   const Eigen::LLT<Mat3> llt = requirePositiveDefiniteFactor(0.5 * (in.K + in.K.transpose()));

@@ -14,7 +14,7 @@ namespace patchspin::internal {
 // rho, so in O's coordinates the iteration's round-off (1e-14 of the slip
 // scale) reaches the law magnified by rho / diameter, whatever max|r| / rho
 // is; about g the law resolves at unit scale
-// (FuzzRound7.ExactBlockOfATinyDiskFarFromOIsTheLawAtItsSlip). Slip and
+// (ExactBlock.TinyDiskFarFromOSpinningAboutItsRimIsTheLaw). Slip and
 // impulse map as
 //   s' = T s,  lambda = T^T lambda',  T = [[1, 0, -g_y / rho], [0, 1, g_x / rho], [0, 0, rho' /
 //   rho]]
@@ -43,7 +43,7 @@ bool solveExactRecentred(const FrictionPatch& patch, const FrictionBlockInput& i
     // (with mu = 1: the block solves the unit law q = Q / (mu Pz), which mu
     // does not enter, and the patch's own mu times the recentred pressure
     // may overflow the constructor's scale check where the patch's did not;
-    // FuzzRound11.ExactBlockOfATinyDiskWithAHugeMuIsTheLawAtItsSlip)
+    // ExactBlock.TinyDiskWithAHugeMuIsTheLaw)
     const FrictionPatch recentred =
         patch.isHertz()
             ? FrictionPatch(local, HertzPressure{patch.Pz()}, 1.0)
@@ -71,7 +71,7 @@ bool solveExactRecentred(const FrictionPatch& patch, const FrictionBlockInput& i
     // cancel), its direction then fixed to tol |scale| / |s'| only. Such a
     // slip is polished from where it stopped with the tolerance relative to
     // |s'| itself; the iteration ends where double gives no more progress
-    // (FuzzRound9.ExactBlockOfATinyDiskWithItsIcrInsideIsTheLawAtItsSlip).
+    // (ExactBlock.TinyDiskFarFromOSpinningAboutAPointInsideIsTheLaw).
     const double localScale = localIn.b.norm() + localIn.L * localIn.K.norm();
     const double localTol = in.tolerance > 0.0 ? in.tolerance : kRelativeTolerance;
     constexpr double kTinyTolerance = 1e-300;  // > 0: 0 would select the default

@@ -34,7 +34,7 @@ void validate(const FrictionBlockInput& in) {
   // both blocks work with its symmetric part. 1e-10 leaves room for a K
   // assembled in floating point (a few ulps of asymmetry) and keeps the stick
   // residual of the asymmetric part, |K - K^T| |lambda| / 2, at 1e-10 of
-  // |K| |lambda| (CoreBadInput.FrictionBlockRefusesAnAsymmetricK).
+  // |K| |lambda| (FrictionBlock.RefusesAnAsymmetricK).
   constexpr double kSymmetryTol = 1e-10;
   if (!((in.K - in.K.transpose()).cwiseAbs().maxCoeff() <=
         kSymmetryTol * in.K.cwiseAbs().maxCoeff()))
@@ -47,7 +47,7 @@ void validate(const FrictionBlockInput& in) {
   // below ~1e20 even for a body 1e5 times larger than its patch. 1e30 leaves
   // a margin of 1e6 below the onset. (Non-positive diagonals are left to the
   // positive definiteness checks.)
-  // Guarded by CoreBadInput.FrictionBlockRefusesAKDiagonalSpanningMoreThan1e30.
+  // Guarded by FrictionBlock.RefusesAKDiagonalSpanningMoreThan1e30.
   constexpr double kMaxDiagonalSpan = 1e30;
   const Vec3 kd = in.K.diagonal();
   if (kd.minCoeff() > 0.0 && !(kd.maxCoeff() <= kMaxDiagonalSpan * kd.minCoeff()))
@@ -65,7 +65,7 @@ void validate(const FrictionBlockInput& in) {
 }
 
 // An answer that overflows double is refused, never returned as inf or NaN
-// (CoreBadInput.FuzzFindingsAtTheEndsOfDoublesRange).
+// (DoubleRange.ExtremeInputsGiveAnErrorOrAFiniteAnswer).
 FrictionBlockResult requireFiniteResult(const FrictionBlockResult& r) {
   if (!r.impulse.allFinite() || !r.slip.allFinite())
     throw Error("friction block out of range: the impulse overflows double (K, b or L too large)");
@@ -77,7 +77,7 @@ FrictionBlockResult solveModel(const FrictionPatch& patch, Model model,
                                const FrictionBlockInput& input) {
   if (model == Model::Ellipsoidal) {
     // K positive definite, as documented and as the exact path checks
-    // (CoreBadInput.FrictionBlock)
+    // (FrictionBlock.RefusesBadInputAndFallsBackWithoutFriction)
     requirePositiveDefinite(input.K);
     return requireFiniteResult(solveEllipsoidal(patch.Pi(), input));
   }
@@ -102,15 +102,15 @@ FrictionBlockResult solveModel(const FrictionPatch& patch, Model model,
 //    pressure with negative parts does not give. 1e-6 is
 //    nearestAdmissibleLoads' own acceptance of its projection, so every
 //    pressure it returns, the Bullet integration's, is inside
-//    (CoreBadInput.FrictionBlockRefusesANegativePressure).
+//    (FrictionBlock.RefusesANegativePressure).
 //  * lever max|r| / rho within [kMinLever, kMaxLever]: the law turns from
 //    force to torque across |w_z| / |w_xy| ~ 1 / lever, which the blocks
 //    resolve to ~1e-14 lever (long) and ~1e-13 / lever (short) of the set,
 //    and to nothing far beyond (docs/notes/friction-block-measurements.md).
 //    Eq. (11) gives 1 to ~3; rho is a coordinate scale that does not change
 //    the physics, so only a rho chosen more than 1e5 times off the patch's
-//    size is refused (CoreBadInput.FrictionBlockRefusesALeverOutsideItsDomain,
-//    CoreBadInput.FrictionBlockIsTheLawAtItsSlipAcrossTheLeverDomain).
+//    size is refused (FrictionBlock.RefusesALeverOutsideItsDomain,
+//    FrictionBlock.IsTheLawAtItsSlipAcrossTheLeverDomain).
 constexpr double kNegativePressureTol = 1e-6;
 constexpr double kMinLever = 1e-5, kMaxLever = 1e5;
 
@@ -121,9 +121,9 @@ constexpr double kMinLever = 1e-5, kMaxLever = 1e5;
 // that reaches kLawNoDigits of the unit force the law has lost its digits,
 // and the block's answer with it; ordinary patches are ~1e4 and more below
 // it (a 1 m x 1 mm face with terms 10 times Pz: 1.4e-10)
-// (CoreBadInput.ExactBlockRefusesALawWithoutDigits). A polygon's Pz keeps
+// (ExactBlock.RefusesALawWithoutDigits). A polygon's Pz keeps
 // these digits far from O, its area moments summed about the vertex mean
-// (FuzzRound8.ExactPolygonLawFarFromOIsSolvedWithPzAboutTheVertexMean).
+// (ExactModel.PolygonFarFromOKeepsPzAndItsBlockIsTheLaw).
 constexpr double kTermsUlps = 64.0, kLawNoDigits = 1e-6;
 void requireExactLawDigits(const FrictionPatch& patch) {
   const PatchShape& shape = patch.shape();
@@ -183,7 +183,7 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
   // warm start with b) give s -> c s, lambda -> (c / a) lambda. Far from unit
   // scale it is solved at |K| ~ 1 and |b| ~ 1, with a and c powers of two,
   // so the scaling is exact and no square under- or overflows
-  // (CoreBadInput.FrictionBlockFarFromUnitScale). An L beyond 2^kMaxLeverage
+  // (FrictionBlockScale.FarFromUnitScaleIsTheLaw). An L beyond 2^kMaxLeverage
   // there (|L K Pi|^2 would overflow) is tried at that bound: a block that
   // sticks with it sticks with any larger L; one that slips is left to the
   // plain path, as is an L that underflows. One range check on the common
@@ -192,7 +192,7 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
     const double bMax = input.b.cwiseAbs().maxCoeff(), kMax = input.K.cwiseAbs().maxCoeff();
     // (unit scale from 1e40 on: the ellipsoidal root search squares |N(r)| ~
     // |b|^3, which overflows for |b| > 1e51;
-    // CoreBadInput.FrictionBlockWithHugeFreeSlipBelowTheOldUnitScale)
+    // FrictionBlockScale.HugeFreeSlipIsTheLawAtItsSlip)
     constexpr double kLow = 1e-40, kHigh = 1e40;
     constexpr int kMaxLeverage = 300;
     // (a K whose diagonal spans more than kMaxSpread keeps its scale: its
@@ -216,7 +216,7 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
         unit.warmSlip = times2To(input.warmSlip, -std::ilogb(input.warmSlip.cwiseAbs().maxCoeff()));
       // (the ellipsoidal A = L K Pi counts Pi's size too, or a tiny b against
       // a huge Pi overflows L K Pi at unit scale;
-      // CoreBadInput.EllipsoidalBlockWithHugePiAndTinyB)
+      // FrictionBlock.EllipsoidalRefusesAHugePiOutsideTheDomain)
       const double piMax = patch.Pi().cwiseAbs().maxCoeff();
       const bool piCounts = model == Model::Ellipsoidal && piMax > 0.0 && std::isfinite(piMax);
       const int ePi = piCounts ? std::max(0, std::ilogb(piMax)) : 0;
@@ -232,10 +232,10 @@ FrictionBlockResult solveFrictionBlock(const FrictionPatch& patch, Model model,
       } else {
         // L |K| below 2^-1022 of |b|: the impulse cannot move the slip off b
         // by one ulp and -K^-1 b is far outside L E, so the block slips
-        // along b with the law there (CoreBadInput.FrictionBlockFarFromUnitScale).
+        // along b with the law there (FrictionBlockScale.FarFromUnitScaleIsTheLaw).
         // K must still be positive definite, checked at unit scale, where its
         // minors are in range
-        // (CoreBadInput.FrictionBlockWithNegligibleFrictionRefusesAnIndefiniteK).
+        // (FrictionBlock.WithNegligibleFrictionRefusesAnIndefiniteK).
         requirePositiveDefinite(unit.K);
         FrictionBlockResult r;
         r.impulse = input.L * patch.unitQ(model, unit.b);

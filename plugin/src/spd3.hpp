@@ -14,7 +14,7 @@ namespace patchspin::internal {
 // then carries eps cond ~ 2e-6 relative error at most, the resolution to which
 // the blocks' answers are checked. The scaled cond is at most 3 times the plain
 // |K| |K^-1| (van der Sluis), so callers may test that first.
-// Guarded by CoreBadInput.ExactBlockWithNumericallySingularK.
+// Guarded by FrictionBlockConditioning.NumericallySingularKIsRefusedOrTheLaw.
 constexpr double kSingularCondition = 1e10;
 
 inline double stableNormOf(const Mat3& m) {
@@ -40,7 +40,7 @@ double rangeSafeNorm(const Eigen::MatrixBase<Derived>& v) {
 // pivots in the same order); throws Error unless it succeeds with a positive
 // diagonal and a finite factor. Accurate to the condition number of Ksym
 // scaled to a unit diagonal, whatever the diagonal's spread.
-// Guarded by CoreBadInput.ExactBlockStickWithCofactorsWithoutDigits and
+// Guarded by FrictionBlockConditioning.ExactStickRefusesCofactorsWithoutDigits and
 // FrictionBlockIllConditioned.ExactBlockAcceptsAPositiveDefiniteKWhoseDeterminantHasNoDigits.
 Eigen::LLT<Mat3> requirePositiveDefiniteFactor(const Mat3& Ksym);
 
@@ -69,7 +69,7 @@ Vec3 stickSolve(const Mat3& K, const Eigen::LLT<Mat3>& llt, const Vec3& b);
 
 // Returns lambda if it stops the slip, |b + K lambda| <= kStickResidual
 // (|b| + |K| |lambda|); otherwise throws Error (K numerically singular).
-// Guarded by CoreBadInput.FrictionBlockStickVerifiesThatItStopsTheSlip.
+// Guarded by FrictionBlockConditioning.StickRefusesAKSingularToRoundOff.
 Vec3 requireStopsTheSlip(const Mat3& K, const Vec3& b, const Vec3& lambda);
 
 }  // namespace patchspin::internal
