@@ -68,8 +68,8 @@ void PatchMultiBodySolver::enablePatchFriction(btCollisionObject* body,
   internal::checkPatchOptions(options);
   if (btRigidBody* rb = btRigidBody::upcast(body)) {
     impl_->selection.optIns().enable(*rb, options);
-  } else if (btMultiBodyLinkCollider::upcast(body)) {
-    impl_->selection.optIns().enableObject(*body, options);
+  } else if (btMultiBodyLinkCollider* c = btMultiBodyLinkCollider::upcast(body)) {
+    impl_->selection.optIns().enable(*c, options);
   } else {
     throw Error(
         "enablePatchFriction: the body is neither a btRigidBody nor a btMultiBodyLinkCollider");
@@ -80,8 +80,8 @@ void PatchMultiBodySolver::disablePatchFriction(btCollisionObject* body) {
   if (!body) return;
   if (btRigidBody* rb = btRigidBody::upcast(body))
     impl_->selection.optIns().disable(*rb);
-  else
-    impl_->selection.optIns().disableObject(*body);
+  else if (btMultiBodyLinkCollider* c = btMultiBodyLinkCollider::upcast(body))
+    impl_->selection.optIns().disable(*c);
 }
 
 bool PatchMultiBodySolver::isPatchFrictionEnabled(const btCollisionObject* body) const {

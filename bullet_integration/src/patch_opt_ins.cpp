@@ -42,18 +42,24 @@ void PatchOptIns::enable(btRigidBody& body, const PatchOptions& options) {
   body.m_frictionSolverType = (tag_ << kIndexBits) | slot;
 }
 
-void PatchOptIns::enableObject(const btCollisionObject& o, const PatchOptions& options) {
+void PatchOptIns::enable(btMultiBodyLinkCollider& collider, const PatchOptions& options) {
+  // a code has a tag in 1 .. kMaxTag: anything else non-null is not ours
+  const int code = codeOf(collider);
+  if (code != 0 && (code < 0 || (code >> kIndexBits) < 1))
+    throw Error(
+        "enablePatchFriction: the link collider's extension pointer "
+        "(btCollisionObject::internalSetExtensionPointer) is in use; patch friction keeps its "
+        "opt-in there");
   const int slot = slotOf(options);
-  if (objects_.insert_or_assign(&o, slot).second) ++optedIn_;
+  if (!optionsOf(&collider)) ++optedIn_;
+  collider.internalSetExtensionPointer(
+      reinterpret_cast<void*>(std::uintptr_t(unsigned((tag_ << kIndexBits) | slot))));
 }
 
-void PatchOptIns::disableObject(const btCollisionObject& o) {
-  if (objects_.erase(&o) > 0) --optedIn_;
-}
-
-const PatchOptions* PatchOptIns::objectOptionsOf(const btCollisionObject* o) const {
-  const auto it = objects_.find(o);
-  return it == objects_.end() ? nullptr : &options_[std::size_t(it->second - 1)];
+void PatchOptIns::disable(btMultiBodyLinkCollider& collider) {
+  if (!optionsOf(&collider)) return;
+  collider.internalSetExtensionPointer(nullptr);
+  --optedIn_;
 }
 
 void PatchOptIns::disable(btRigidBody& body) {

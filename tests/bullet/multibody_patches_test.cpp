@@ -364,7 +364,7 @@ TEST(MultiBodyPatches, BlockSlidesOnATableLinkOfItsOwnMultiBody) {
   EXPECT_NEAR(double(force.x()), kBoxMu * r->loads.Pz, 1e-3 * kBoxMu * r->loads.Pz);
 }
 
-// The opt-in of a link collider: kept by the solver until disabled; an
+// The opt-in of a link collider: kept until disabled; an
 // object that is neither a rigid body nor a link collider is refused.
 // The platform, opted in, slides on the ground and carries a box: its
 // patch with the box acts through its joint (the box moves along the

@@ -6,8 +6,13 @@
 // remove / delete / re-add / re-enable; removing a body and adding it back
 // keeps its options; the solver's copy of the options does not grow with
 // the bodies. Run under ASan (the asan preset), a solver that read a
-// deleted body would fail here as a heap-use-after-free.
+// deleted body would fail here as a heap-use-after-free. The same for a
+// multibody's link collider (LinkColliderLifetime.*), whose opt-in is kept
+// in its extension pointer.
 #include "bullet_scenes.hpp"
+
+#include <patchspin/bullet/patch_multibody_solver.hpp>
+#include <patchspin/scenes/multibody_scene.hpp>
 
 #include <gtest/gtest.h>
 
@@ -221,6 +226,101 @@ TEST(BodyLifetime, SpawnDespawnLoopNeverGivesANewBodyAnOldOnesOptions) {
     EXPECT_EQ(inherited, 0);
     EXPECT_EQ(missing, 0);
   }
+}
+
+// ---- link colliders (PatchMultiBodySolver) ---------------------------------
+// A floating-base multibody cube (the same 10 cm, 1 kg) on the ground; its
+// base collider is rebuilt in place, so that the new collider has the old
+// one's address, as an allocator may give it.
+struct LinkWorld {
+  scenes::MultiBodyScene scene{kG, 10, true};
+  btMultiBody* cube;
+  LinkWorld() {
+    scene.addGroundPlane(1.0);
+    cube = scene.addBoxBase(kHalf, 1.0, bt(0, 0, 0.05 - 1e-4), 0.5, 1e-3);
+  }
+  PatchMultiBodySolver& solver() { return scene.solver(); }
+  btMultiBodyLinkCollider* collider() { return cube->getBaseCollider(); }
+  std::optional<PatchReport> stepAndReport() {
+    scene.step(1.0 / 240);
+    return solver().patchReportOf(collider());
+  }
+  // removes the base collider from the world, destroys it (with or without
+  // disablePatchFriction first) and builds a new one at its address with the
+  // same shape, pose and friction, added to the world as the base collider
+  btMultiBodyLinkCollider* rebuildCollider(bool disableFirst) {
+    btMultiBodyLinkCollider* old = collider();
+    btCollisionShape* shape = old->getCollisionShape();
+    const btTransform pose = old->getWorldTransform();
+    const btScalar friction = old->getFriction();
+    scene.world().removeCollisionObject(old);
+    if (disableFirst) solver().disablePatchFriction(old);
+    old->~btMultiBodyLinkCollider();
+    auto* c = new (old) btMultiBodyLinkCollider(cube, -1);
+    c->setCollisionShape(shape);
+    c->setWorldTransform(pose);
+    c->setFriction(friction);
+    c->setActivationState(DISABLE_DEACTIVATION);
+    scene.world().addCollisionObject(c, int(btBroadphaseProxy::DefaultFilter),
+                                     int(btBroadphaseProxy::AllFilter));
+    cube->setBaseCollider(c);
+    return c;
+  }
+};
+
+// Deleted (with or without disablePatchFriction first) and a new collider
+// built at the same address: it is not opted in, gets no patch, and once
+// enabled has its own options, not the old ones (an opt-in kept by the
+// collider's address would pass to it).
+TEST(LinkColliderLifetime, NewColliderAtADeletedCollidersAddressIsNotOptedIn) {
+  for (const bool disableFirst : {false, true}) {
+    LinkWorld w;
+    btMultiBodyLinkCollider* first = w.collider();
+    w.solver().enablePatchFriction(first, {Model::Exact, 0.9});
+    const auto before = w.stepAndReport();
+    ASSERT_TRUE(before) << "the cube stands on a patch";
+    EXPECT_EQ(before->mu, 0.9);
+    btMultiBodyLinkCollider* second = w.rebuildCollider(disableFirst);
+    ASSERT_EQ(second, first);
+    EXPECT_FALSE(w.solver().isPatchFrictionEnabled(second)) << disableFirst;
+    for (int k = 0; k < 5; ++k)
+      EXPECT_FALSE(w.stepAndReport()) << "never opted in; disable first " << disableFirst;
+    EXPECT_EQ(w.solver().stats().patches, 0);
+    w.solver().enablePatchFriction(second, {Model::Ellipsoidal, 0.2});
+    const auto rep = w.stepAndReport();
+    ASSERT_TRUE(rep);
+    EXPECT_EQ(rep->model, Model::Ellipsoidal);
+    EXPECT_EQ(rep->mu, 0.2);
+  }
+}
+
+// The extension pointer is the user's when they set it: enable refuses the
+// collider with an Error and leaves the pointer as it was; disable of a
+// collider that is not opted in leaves it too. A collider opted in by one
+// solver is not opted in for another.
+TEST(LinkColliderLifetime, ExtensionPointerInUseIsRefusedAndKept) {
+  LinkWorld w;
+  btMultiBodyLinkCollider* c = w.collider();
+  int userData = 0;
+  c->internalSetExtensionPointer(&userData);
+  EXPECT_THROW(w.solver().enablePatchFriction(c, {Model::Exact}), Error);
+  EXPECT_EQ(c->internalGetExtensionPointer(), &userData);
+  EXPECT_FALSE(w.solver().isPatchFrictionEnabled(c));
+  w.solver().disablePatchFriction(c);
+  EXPECT_EQ(c->internalGetExtensionPointer(), &userData);
+  EXPECT_FALSE(w.stepAndReport());
+  c->internalSetExtensionPointer(nullptr);
+  w.solver().enablePatchFriction(c, {Model::Exact, 0.6});
+  PatchMultiBodySolver other;
+  EXPECT_FALSE(other.isPatchFrictionEnabled(c));
+  other.disablePatchFriction(c);  // not other's: left alone
+  EXPECT_TRUE(w.solver().isPatchFrictionEnabled(c));
+  const auto rep = w.stepAndReport();
+  ASSERT_TRUE(rep);
+  EXPECT_EQ(rep->mu, 0.6);
+  w.solver().disablePatchFriction(c);
+  EXPECT_EQ(c->internalGetExtensionPointer(), nullptr);
+  EXPECT_FALSE(w.stepAndReport());
 }
 
 }  // namespace

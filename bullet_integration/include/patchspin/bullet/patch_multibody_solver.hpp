@@ -52,9 +52,10 @@ class PatchMultiBodySolver : public btMultiBodyConstraintSolver {
   // Opts `body` in: a btMultiBodyLinkCollider (a link's, or the base's of a
   // floating-base multibody) or a btRigidBody, with the checks and the
   // rigid body's lifetime rules of PatchFrictionSolver::enablePatchFriction.
-  // A link collider's opt-in is kept in the solver by the collider's
-  // address: opt it out (disablePatchFriction) before deleting it. Any
-  // other collision object: Error.
+  // A link collider's opt-in is kept in the collider itself (in Bullet's
+  // internal extension pointer), so it ends with the collider as a rigid
+  // body's does; Error if that pointer is already set (by a user or an
+  // extension). Any other collision object: Error.
   void enablePatchFriction(btCollisionObject* body, const PatchOptions& options = PatchOptions());
   // Opts `body` out (null, or not opted in by this solver: no-op).
   void disablePatchFriction(btCollisionObject* body);
