@@ -539,7 +539,8 @@ int run(const Args& a) {
   }
 
   const std::vector<BodyDef> defs = sceneBodies(a);
-  const auto [dt, k, frameSteps, steps] = demos::timeBase(a);
+  const demos::TimeBase time = demos::timeBase(a);
+  const auto [dt, k, frameSteps, steps] = time;
   const double tMax = double(steps) * dt;
   for (Row& row : rows) simulateRow(a, row, defs, dt, steps);
 
@@ -650,9 +651,7 @@ int run(const Args& a) {
   // summary.json
   nlohmann::json summary;
   summary["parameters"] = {{"mu", a.mu}, {"g", a.g}, {"rate", a.rate}, {"t_max", tMax}};
-  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
-                      {"steps_per_frame", k}, {"width", width},
-                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = demos::videoSummary(a, time);
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;

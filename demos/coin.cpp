@@ -217,7 +217,8 @@ int run(const Args& a) {
 
   // time: rate steps per simulated second, a frame every k steps so that the
   // video runs `slowmo` times slower than the simulation at `fps`
-  const auto [dt, k, frameSteps, steps] = patchspin::demos::timeBase(a);
+  const patchspin::demos::TimeBase time = patchspin::demos::timeBase(a);
+  const auto [dt, k, frameSteps, steps] = time;
   for (Coin& c : coins) simulateCoin(c, a, dt, steps);
 
   // camera: fits every coin at every rendered instant
@@ -307,8 +308,7 @@ int run(const Args& a) {
       {"radius", a.radius}, {"height", a.height},         {"mass", a.mass}, {"mu", a.mu},
       {"v0", a.v0},         {"omega0", a.omega0},         {"g", a.g},       {"dt", dt},
       {"steps", steps},     {"t_end", double(steps) * dt}};
-  summary["video"] = {{"frames", a.frames}, {"fps", a.fps},     {"steps_per_frame", k},
-                      {"width", width},     {"height", height}, {"t_last_frame", tEnd}};
+  summary["video"] = patchspin::demos::videoSummary(a, time);
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["reference_ratio"] = kReferenceRatio;
   nlohmann::json models = nlohmann::json::object();

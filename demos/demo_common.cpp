@@ -238,9 +238,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
 
   // summary.json: per body as `patchspin simulate --engine bullet --json`
   nlohmann::json summary;
-  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
-                      {"steps_per_frame", k}, {"width", width},
-                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = videoSummary(a, time);
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
@@ -423,22 +421,6 @@ render::Rgb rowColour(const std::string& model) {
   if (model == "exact") return {0.90, 0.60, 0.15};
   if (model == "ellipsoidal") return {0.25, 0.50, 0.90};
   return {0.60, 0.60, 0.62};
-}
-
-void parseSize(const std::string& size, int& width, int& height) {
-  const auto x = size.find('x');
-  try {
-    if (x == std::string::npos) throw std::invalid_argument(size);
-    std::size_t used = 0;
-    width = std::stoi(size.substr(0, x), &used);
-    if (used != x) throw std::invalid_argument(size);
-    height = std::stoi(size.substr(x + 1), &used);
-    if (used != size.size() - x - 1) throw std::invalid_argument(size);
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
-  }
-  if (width < 16 || height < 16 || width > 8192 || height > 8192)
-    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
 }
 
 void printProgress(const std::string& name, int done, int total) {

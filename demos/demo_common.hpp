@@ -87,9 +87,6 @@ render::Rgb rowColour(const std::string& model);
 // another shape.
 render::SceneMesh concaveMesh(const btRigidBody& body);
 
-// "WxH" -> width, height in [16, 8192]; throws CLI::ValidationError.
-void parseSize(const std::string& size, int& width, int& height);
-
 // Progress bar "<name>: [###   ] done/total frames" on stderr: redrawn in
 // place on a terminal, else a line per 10 %.
 void printProgress(const std::string& name, int done, int total);

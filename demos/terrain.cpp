@@ -352,7 +352,8 @@ int run(const Args& a) {
     worlds.push_back(w);
   }
 
-  const auto [dt, k, frameSteps, steps] = demos::timeBase(a);
+  const demos::TimeBase time = demos::timeBase(a);
+  const auto [dt, k, frameSteps, steps] = time;
   const double tMax = double(steps) * dt;
 
   // simulate: the terrain world, then the level bodies alone on a plane
@@ -487,9 +488,7 @@ int run(const Args& a) {
                        {"spacing", spec.ground.spacing},
                        {"slope_deg", a.slopeDeg},
                        {"crease_x", spec.ground.creaseX}};
-  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
-                      {"steps_per_frame", k}, {"width", width},
-                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = demos::videoSummary(a, time);
   summary["precision"] = scenes::buildPrecision();
   summary["dt"] = dt;
   summary["steps"] = steps;

@@ -49,6 +49,22 @@ void addOutputFlags(CLI::App& app, VideoArgs& a, const std::string& plotted) {
       "--quiet", [&a] { a.progress = false; }, "no progress bar");
 }
 
+void parseSize(const std::string& size, int& width, int& height) {
+  const auto x = size.find('x');
+  try {
+    if (x == std::string::npos) throw std::invalid_argument(size);
+    std::size_t used = 0;
+    width = std::stoi(size.substr(0, x), &used);
+    if (used != x) throw std::invalid_argument(size);
+    height = std::stoi(size.substr(x + 1), &used);
+    if (used != size.size() - x - 1) throw std::invalid_argument(size);
+  } catch (const std::exception&) {
+    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
+  }
+  if (width < 16 || height < 16 || width > 8192 || height > 8192)
+    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
+}
+
 TimeBase timeBase(const VideoArgs& a) {
   TimeBase t;
   t.dt = 1.0 / a.rate;
@@ -56,6 +72,13 @@ TimeBase timeBase(const VideoArgs& a) {
   t.frameSteps = long(a.frames - 1) * t.k;
   t.steps = std::max(t.frameSteps, long(std::ceil(a.tMax / t.dt - 1e-9)));
   return t;
+}
+
+nlohmann::json videoSummary(const VideoArgs& a, const TimeBase& t) {
+  int width = 0, height = 0;
+  parseSize(a.size, width, height);
+  return {{"frames", a.frames}, {"fps", a.fps},     {"steps_per_frame", t.k},
+          {"width", width},     {"height", height}, {"t_last_frame", double(t.frameSteps) * t.dt}};
 }
 
 }  // namespace patchspin::demos

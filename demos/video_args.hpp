@@ -8,6 +8,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace patchspin::demos {
@@ -44,6 +45,9 @@ void addTimeOptions(CLI::App& app, VideoArgs& a, const std::string& rateNote = "
 // and --quiet; they clear a.plot and a.progress.
 void addOutputFlags(CLI::App& app, VideoArgs& a, const std::string& plotted);
 
+// --size: "WxH" -> width, height in [16, 8192]; throws CLI::ValidationError.
+void parseSize(const std::string& size, int& width, int& height);
+
 // The time base of a run: steps of dt = 1/rate, a frame every k steps so that
 // the video at fps runs slowmo times slower than the simulation; the last
 // frame at step frameSteps; the run `steps` long, to the last frame and for
@@ -55,5 +59,9 @@ struct TimeBase {
   long steps = 0;
 };
 TimeBase timeBase(const VideoArgs& a);
+
+// summary.json's "video": frames, fps, steps_per_frame (k), width, height
+// and t_last_frame, the simulated time of the last frame [s].
+nlohmann::json videoSummary(const VideoArgs& a, const TimeBase& t);
 
 }  // namespace patchspin::demos
