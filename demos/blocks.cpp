@@ -52,7 +52,6 @@
 #include <patchspin/scenes/catalogue.hpp>
 #include <patchspin/scenes/scene.hpp>
 #include <patchspin/scenes/simulate.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -87,11 +86,8 @@ constexpr double kCoinReferenceRatio = 0.653;
 // Gap between two neighbouring rows [m] on top of the scene's depth.
 constexpr double kRowGap = 0.12;
 
-struct Args {
-  std::string out = "demo-out/blocks";
-  int frames = 150;
-  double fps = 30.0;
-  std::string size = "960x540";
+struct Args : demos::VideoArgs {
+  Args() { out = "demo-out/blocks"; }
   std::string model = "exact,stock";
   double mu = 0.3, g = 9.81;
   // rectangular block (the tracked one): face LX x LY, height LZ
@@ -105,10 +101,6 @@ struct Args {
   double sphereRadius = 0.03, sphereMass = 0.1, sphereV0 = 0.15;
   // stack: sides bottom to top, each stackLZ high
   double stackBottom = 0.12, stackMiddle = 0.1, stackTop = 0.08, stackLZ = 0.04, stackMass = 0.5;
-  double rate = 240.0;  // simulation steps per simulated second
-  double slowmo = 4.0;  // video seconds per simulated second
-  double tMax = 3.0;    // simulated at least this long for summary.json [s]
-  bool progress = true;
 };
 
 // ---- closed forms -------------------------------------------------------------------
@@ -539,28 +531,16 @@ int run(const Args& a) {
 
   // rows: one world per model
   std::vector<Row> rows;
-  {
-    std::stringstream list(a.model);
-    std::string m;
-    while (std::getline(list, m, ',')) {
-      if (m != "exact" && m != "ellipsoidal" && m != "stock")
-        throw CLI::ValidationError(
-            "--model", "must be exact, ellipsoidal or stock, or a comma list: got '" + m + "'");
-      for (const Row& r : rows)
-        if (r.model == m) throw CLI::ValidationError("--model", "lists " + m + " twice");
-      Row row;
-      row.model = m;
-      row.label = rowLabel(m);
-      rows.push_back(row);
-    }
+  for (const std::string& m : demos::lawList(a.model)) {
+    Row row;
+    row.model = m;
+    row.label = rowLabel(m);
+    rows.push_back(row);
   }
-  if (rows.empty()) throw CLI::ValidationError("--model", "names no model");
 
   const std::vector<BodyDef> defs = sceneBodies(a);
-  const double dt = 1.0 / a.rate;
-  const int k = std::max(1, int(std::lround(a.rate / (a.fps * a.slowmo))));
-  const long frameSteps = long(a.frames - 1) * k;
-  const long steps = std::max(frameSteps, long(std::ceil(a.tMax / dt - 1e-9)));
+  const demos::TimeBase time = demos::timeBase(a);
+  const auto [dt, k, frameSteps, steps] = time;
   const double tMax = double(steps) * dt;
   for (Row& row : rows) simulateRow(a, row, defs, dt, steps);
 
@@ -671,9 +651,7 @@ int run(const Args& a) {
   // summary.json
   nlohmann::json summary;
   summary["parameters"] = {{"mu", a.mu}, {"g", a.g}, {"rate", a.rate}, {"t_max", tMax}};
-  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
-                      {"steps_per_frame", k}, {"width", width},
-                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = demos::videoSummary(a, time);
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
@@ -702,11 +680,7 @@ int run(const Args& a) {
   }
   summary["rows"] = out;
   const fs::path dir(a.out);
-  {
-    std::ofstream file(dir / "summary.json");
-    file << summary.dump(2) << "\n";
-    if (!file) throw render::RenderError("cannot write " + (dir / "summary.json").string());
-  }
+  demos::writeJson(dir / "summary.json", summary);
   // every moving body's samples, for plots of one's own
   {
     std::ofstream csv(dir / "blocks_series.csv");
@@ -738,10 +712,7 @@ int main(int argc, char** argv) {
       "blocks: rectangular and square blocks sliding and spinning to rest with the patch law and "
       "with "
       "stock Bullet, side by side, plus a stack, a coin and a sphere (headless, PNG frames)"};
-  app.add_option("--out", a.out, "output directory (frames, summary.json)");
-  app.add_option("--frames", a.frames, "number of frames (default 150)");
-  app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
-  app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
+  demos::addFrameOptions(app, a, "output directory (frames, summary.json)");
   app.add_option(
       "--model", a.model,
       "exact | ellipsoidal | stock, or a comma list drawn as rows (default exact,stock)");
@@ -790,13 +761,7 @@ int main(int argc, char** argv) {
       ->expected(3);
   app.add_option("--stack-height", a.stackLZ, "height of each stacked block [m] (default 0.04)");
   app.add_option("--stack-mass", a.stackMass, "mass of each stacked block [kg] (default 0.5)");
-  app.add_option("--rate", a.rate, "simulation steps per second (default 240)");
-  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 4)");
-  app.add_option("--t-max", a.tMax, "simulate at least this long for summary.json [s] (default 3)");
-  bool quiet = false;
-  app.add_flag("--quiet", quiet, "no progress bar");
-  return demos::runMain(app, argc, argv, "blocks", [&] {
-    a.progress = !quiet;
-    return run(a);
-  });
+  demos::addTimeOptions(app, a);
+  demos::addOutputFlags(app, a, "");  // no plots
+  return demos::runMain(app, argc, argv, "blocks", [&] { return run(a); });
 }

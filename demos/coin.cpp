@@ -58,19 +58,11 @@ constexpr double kPlotFloor = 1e-7;
 // Lateral spacing of the coins in the frame, in radii.
 constexpr double kSpacingRadii = 3.0;
 
-struct Args {
-  std::string out = "demo-out/coin";
-  int frames = 150;
-  double fps = 30.0;
-  std::string size = "960x540";
+struct Args : patchspin::demos::VideoArgs {
+  Args() { out = "demo-out/coin"; }
   std::string model = "all";
   double radius = 0.05, height = 0.005, mass = 0.03, mu = 0.3, v0 = 0.5, omega0 = 20.0;
   double g = 9.81;
-  double rate = 240.0;  // simulation steps per simulated second
-  double slowmo = 4.0;  // video seconds per simulated second
-  double tMax = 3.0;    // simulated at least this long for the summary [s]
-  bool plot = true;
-  bool progress = true;
 };
 
 // One sample of one coin per simulation step.
@@ -225,10 +217,8 @@ int run(const Args& a) {
 
   // time: rate steps per simulated second, a frame every k steps so that the
   // video runs `slowmo` times slower than the simulation at `fps`
-  const double dt = 1.0 / a.rate;
-  const int k = std::max(1, int(std::lround(a.rate / (a.fps * a.slowmo))));
-  const long frameSteps = long(a.frames - 1) * k;
-  const long steps = std::max(frameSteps, long(std::ceil(a.tMax / dt - 1e-9)));
+  const patchspin::demos::TimeBase time = patchspin::demos::timeBase(a);
+  const auto [dt, k, frameSteps, steps] = time;
   for (Coin& c : coins) simulateCoin(c, a, dt, steps);
 
   // camera: fits every coin at every rendered instant
@@ -318,8 +308,7 @@ int run(const Args& a) {
       {"radius", a.radius}, {"height", a.height},         {"mass", a.mass}, {"mu", a.mu},
       {"v0", a.v0},         {"omega0", a.omega0},         {"g", a.g},       {"dt", dt},
       {"steps", steps},     {"t_end", double(steps) * dt}};
-  summary["video"] = {{"frames", a.frames}, {"fps", a.fps},     {"steps_per_frame", k},
-                      {"width", width},     {"height", height}, {"t_last_frame", tEnd}};
+  summary["video"] = patchspin::demos::videoSummary(a, time);
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["reference_ratio"] = kReferenceRatio;
   nlohmann::json models = nlohmann::json::object();
@@ -340,11 +329,7 @@ int run(const Args& a) {
   }
   summary["models"] = models;
   const fs::path out(a.out);
-  {
-    std::ofstream file(out / "summary.json");
-    file << summary.dump(2) << "\n";
-    if (!file) throw render::RenderError("cannot write " + (out / "summary.json").string());
-  }
+  patchspin::demos::writeJson(out / "summary.json", summary);
 
   // v/(R omega) and r against time: the whole run in the CSV; the plot up to
   // the last frame or half as long again as the last stop, whichever is later
@@ -378,11 +363,8 @@ int run(const Args& a) {
   if (a.plot) {
     render::PlotOptions po;
     po.title = "coin: v/(R\xcf\x89) and slip r against time";
-    try {
-      render::plotSlipRatio(plot, (out / "coin_ratio.png").string(), po);
-    } catch (const render::RenderError& e) {
-      std::fprintf(stderr, "coin: warning: no plot: %s\n", e.what());
-    }
+    patchspin::demos::plotOrWarn(
+        "coin", [&] { render::plotSlipRatio(plot, (out / "coin_ratio.png").string(), po); });
   }
   std::printf("coin: %d frames (%s ...), summary.json%s in %s\n", writer.count(),
               fs::path(writer.framePath(0)).filename().c_str(), a.plot ? ", coin_ratio.png" : "",
@@ -397,10 +379,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "coin: a thin coin sliding and spinning to rest with the exact, the ellipsoidal and stock "
       "Bullet friction, side by side (headless, PNG frames)"};
-  app.add_option("--out", a.out, "output directory (frames, summary.json, coin_ratio.png)");
-  app.add_option("--frames", a.frames, "number of frames (default 150)");
-  app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
-  app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
+  patchspin::demos::addFrameOptions(app, a,
+                                    "output directory (frames, summary.json, coin_ratio.png)");
   app.add_option("--model", a.model,
                  "ellipsoidal | exact | stock | all (default all, side by side)");
   app.add_option("--radius", a.radius, "coin radius R [m] (default 0.05)");
@@ -410,15 +390,7 @@ int main(int argc, char** argv) {
   app.add_option("--v0", a.v0, "initial speed along x [m/s] (default 0.5)");
   app.add_option("--omega0", a.omega0, "initial spin [rad/s] (default 20)");
   app.add_option("--g", a.g, "gravity [m/s^2] (default 9.81)");
-  app.add_option("--rate", a.rate, "simulation steps per second (default 240; 480 also sensible)");
-  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 4)");
-  app.add_option("--t-max", a.tMax, "simulate at least this long for summary.json [s] (default 3)");
-  bool noPlot = false, quiet = false;
-  app.add_flag("--no-plot", noPlot, "skip coin_ratio.png (needs gnuplot)");
-  app.add_flag("--quiet", quiet, "no progress bar");
-  return patchspin::demos::runMain(app, argc, argv, "coin", [&] {
-    a.plot = !noPlot;
-    a.progress = !quiet;
-    return run(a);
-  });
+  patchspin::demos::addTimeOptions(app, a, "; 480 also sensible");
+  patchspin::demos::addOutputFlags(app, a, "coin_ratio.png");
+  return patchspin::demos::runMain(app, argc, argv, "coin", [&] { return run(a); });
 }

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -107,11 +108,8 @@ void writeTrackPlot(const DemoConfig& config, const std::vector<SimulationResult
   }
   render::PlotOptions po;
   po.title = config.name + ": ground tracks of the patch centre (axes not to the same scale)";
-  try {
-    render::plotGroundTracks(plot, (out / "track.png").string(), po);
-  } catch (const render::RenderError& e) {
-    std::fprintf(stderr, "%s: warning: no plot: %s\n", config.name.c_str(), e.what());
-  }
+  plotOrWarn(config.name,
+             [&] { render::plotGroundTracks(plot, (out / "track.png").string(), po); });
 }
 
 }  // namespace
@@ -146,9 +144,10 @@ void validateCommonArgs(const CommonArgs& a) {
 int runDemo(const DemoConfig& config, const CommonArgs& a) {
   int width = 0, height = 0;
   parseSize(a.size, width, height);
-  const double dt = 1.0 / a.rate;
-  const int k = std::max(1, int(std::lround(a.rate / (a.fps * a.slowmo))));
-  const long frameSteps = long(a.frames - 1) * k;
+  const TimeBase time = timeBase(a);
+  const double dt = time.dt;
+  const int k = time.k;
+  const long frameSteps = time.frameSteps;
   const double tMax = std::max(a.tMax, double(frameSteps) * dt);
 
   // every body through patchspin::scenes::simulate (same world, same summary)
@@ -239,9 +238,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
 
   // summary.json: per body as `patchspin simulate --engine bullet --json`
   nlohmann::json summary;
-  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
-                      {"steps_per_frame", k}, {"width", width},
-                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = videoSummary(a, time);
   summary["precision"] = patchspin::scenes::buildPrecision();
   summary["dt"] = dt;
   summary["t_max"] = tMax;
@@ -272,11 +269,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
   }
   summary["bodies"] = bodies;
   const fs::path out(a.out);
-  {
-    std::ofstream file(out / "summary.json");
-    file << summary.dump(2) << "\n";
-    if (!file) throw render::RenderError("cannot write " + (out / "summary.json").string());
-  }
+  writeJson(out / "summary.json", summary);
 
   // w(t) on the unit sphere with the limit directions of the body's own model
   if (a.plot) {
@@ -305,11 +298,7 @@ int runDemo(const DemoConfig& config, const CommonArgs& a) {
       render::PlotOptions po;
       po.title = config.name + ": " + b.label + ", w(t) and limit directions" + incomplete;
       const std::string file = (out / ("sphere_" + b.key + ".png")).string();
-      try {
-        render::plotSlipSphere(plot, file, po);
-      } catch (const render::RenderError& e) {
-        std::fprintf(stderr, "%s: warning: no plot: %s\n", config.name.c_str(), e.what());
-      }
+      plotOrWarn(config.name, [&] { render::plotSlipSphere(plot, file, po); });
     }
   }
   if (a.plot && config.trackPlot) writeTrackPlot(config, results, dt, tMax, out);
@@ -434,22 +423,6 @@ render::Rgb rowColour(const std::string& model) {
   return {0.60, 0.60, 0.62};
 }
 
-void parseSize(const std::string& size, int& width, int& height) {
-  const auto x = size.find('x');
-  try {
-    if (x == std::string::npos) throw std::invalid_argument(size);
-    std::size_t used = 0;
-    width = std::stoi(size.substr(0, x), &used);
-    if (used != x) throw std::invalid_argument(size);
-    height = std::stoi(size.substr(x + 1), &used);
-    if (used != size.size() - x - 1) throw std::invalid_argument(size);
-  } catch (const std::exception&) {
-    throw CLI::ValidationError("--size", "must be WxH, e.g. 960x540: got '" + size + "'");
-  }
-  if (width < 16 || height < 16 || width > 8192 || height > 8192)
-    throw CLI::ValidationError("--size", "width and height must lie in [16, 8192]");
-}
-
 void printProgress(const std::string& name, int done, int total) {
   constexpr int kBar = 40;
   static const bool kTerminal = ::isatty(STDERR_FILENO) != 0;
@@ -465,6 +438,59 @@ void printProgress(const std::string& name, int done, int total) {
 
 nlohmann::json jsonOrNull(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+void plotOrWarn(const std::string& name, const std::function<void()>& plot) {
+  try {
+    plot();
+  } catch (const render::RenderError& e) {
+    std::fprintf(stderr, "%s: warning: no plot: %s\n", name.c_str(), e.what());
+  }
+}
+
+void writeJson(const fs::path& path, const nlohmann::json& json) {
+  std::ofstream file(path);
+  file << json.dump(2) << "\n";
+  if (!file) throw render::RenderError("cannot write " + path.string());
+}
+
+namespace {
+// splitList with its own words for an item not allowed and for no item.
+std::vector<std::string> splitListSaying(
+    const std::string& text, const std::string& option, const std::vector<std::string>& allowed,
+    const std::function<std::string(const std::string&)>& notAllowed, const std::string& empty) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (std::find(allowed.begin(), allowed.end(), item) == allowed.end())
+      throw CLI::ValidationError(option, notAllowed(item));
+    if (std::find(out.begin(), out.end(), item) != out.end())
+      throw CLI::ValidationError(option, "lists " + item + " twice");
+    out.push_back(item);
+  }
+  if (out.empty()) throw CLI::ValidationError(option, empty);
+  return out;
+}
+}  // namespace
+
+std::vector<std::string> splitList(const std::string& text, const std::string& option,
+                                   const std::vector<std::string>& allowed) {
+  std::string names;
+  for (const std::string& a : allowed) names += (names.empty() ? "" : ", ") + a;
+  return splitListSaying(
+      text, option, allowed,
+      [&](const std::string& item) { return "'" + item + "' is not one of " + names; },
+      "names nothing");
+}
+
+std::vector<std::string> lawList(const std::string& text) {
+  return splitListSaying(
+      text, "--model", {"exact", "ellipsoidal", "stock"},
+      [](const std::string& item) {
+        return "must be exact, ellipsoidal or stock, or a comma list: got '" + item + "'";
+      },
+      "names no model");
 }
 
 int runMain(CLI::App& app, int argc, char** argv, const char* name,

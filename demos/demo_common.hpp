@@ -18,8 +18,11 @@
 #include <patchspin/simulation.hpp>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include "video_args.hpp"
 
 class btRigidBody;
 
@@ -33,18 +36,14 @@ struct DemoBody {
   SimulationSpec spec;  // cylinder; force along +x keeps w in the analysis frame
 };
 
-// Options shared by every demo.
-struct CommonArgs {
-  std::string out;
-  int frames = 120;
-  double fps = 30.0;
-  std::string size = "960x540";
+// Options shared by the scene demos: the run options (video_args.hpp) with
+// their defaults, and the friction model.
+struct CommonArgs : VideoArgs {
+  CommonArgs() {
+    frames = 120;
+    slowmo = 2.0;
+  }
   std::string model = "exact";
-  double rate = 240.0;  // simulation steps per simulated second
-  double slowmo = 2.0;  // video seconds per simulated second
-  double tMax = 3.0;    // simulated time limit [s]
-  bool plot = true;
-  bool progress = true;
 };
 
 struct DemoConfig {
@@ -88,15 +87,30 @@ render::Rgb rowColour(const std::string& model);
 // another shape.
 render::SceneMesh concaveMesh(const btRigidBody& body);
 
-// "WxH" -> width, height in [16, 8192]; throws CLI::ValidationError.
-void parseSize(const std::string& size, int& width, int& height);
-
 // Progress bar "<name>: [###   ] done/total frames" on stderr: redrawn in
 // place on a terminal, else a line per 10 %.
 void printProgress(const std::string& name, int done, int total);
 
 // A finite number, or JSON null.
 nlohmann::json jsonOrNull(double value);
+
+// Runs `plot`; if it throws render::RenderError (no gnuplot, a failed plot),
+// prints "<name>: warning: no plot: <what>" on stderr and goes on: the plots
+// are optional, the frames and summary.json are not.
+void plotOrWarn(const std::string& name, const std::function<void()>& plot);
+
+// Writes `json` to `path` (2-space indent, newline at the end); throws
+// render::RenderError if it cannot.
+void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
+
+// The items of the comma list `text`, in order, each one of `allowed` and
+// none twice; else throws CLI::ValidationError(option, ...): "'<item>' is not
+// one of <allowed>", "lists <item> twice", "names nothing".
+std::vector<std::string> splitList(const std::string& text, const std::string& option,
+                                   const std::vector<std::string>& allowed);
+// --model of blocks and terrain: a comma list of exact, ellipsoidal, stock
+// (as splitList, said in terms of models).
+std::vector<std::string> lawList(const std::string& text);
 
 // Parses the command line and calls `run`, turning errors into one line on
 // stderr ("<name>: error: ...") and an exit code, as every demo does.

@@ -48,7 +48,6 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -67,18 +66,21 @@ namespace fs = std::filesystem;
 // twist (the pads' slip has started) to its end [s]
 constexpr double kAlphaFrom = 0.1;
 
-struct Args {
-  std::string out = "demo-out/grasp";
-  int frames = 0;  // 0: the whole run
-  double fps = 30.0;
-  std::string size = "1280x720";
+// The run options (video_args.hpp) with grasp's defaults: frames 0 is the
+// whole run; tMax is unused (no --t-max: the run is t-settle + t-twist long).
+struct Args : demos::VideoArgs {
+  Args() {
+    out = "demo-out/grasp";
+    frames = 0;
+    size = "1280x720";
+    slowmo = 1.0;
+  }
   std::string models = "exact,stock";
   std::string worlds = "multibody,rigid";
   double cubeSide = 0.06, cubeMass = 1.0, mu = 0.5;
   double padSide = 0.04, padDepth = 0.02, padMass = 0.1, squeeze = 20.0;
   double below = 0.1, above = 0.35;  // twist torques [N m]
-  double rate = 240.0, slowmo = 1.0, tSettle = 0.25, tTwist = 2.0;
-  bool plot = true, progress = true;
+  double tSettle = 0.25, tTwist = 2.0;
 };
 
 struct Sample {
@@ -99,25 +101,6 @@ struct Run {
   double tEjected = 0.0;  // since the twist began [s]
   nlohmann::json reported = nullptr;
 };
-
-std::vector<std::string> splitList(const std::string& text, const std::string& option,
-                                   const std::vector<std::string>& allowed) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (std::find(allowed.begin(), allowed.end(), item) == allowed.end()) {
-      std::string names;
-      for (const std::string& a : allowed) names += (names.empty() ? "" : ", ") + a;
-      throw CLI::ValidationError(option, "'" + item + "' is not one of " + names);
-    }
-    if (std::find(out.begin(), out.end(), item) != out.end())
-      throw CLI::ValidationError(option, "lists " + item + " twice");
-    out.push_back(item);
-  }
-  if (out.empty()) throw CLI::ValidationError(option, "names nothing");
-  return out;
-}
 
 scenes::GraspSpec specOf(const Args& a) {
   scenes::GraspSpec s;
@@ -457,9 +440,10 @@ void validate(const Args& a) {
 
 int run(const Args& a) {
   validate(a);
-  const std::vector<std::string> worlds = splitList(a.worlds, "--worlds", {"multibody", "rigid"});
+  const std::vector<std::string> worlds =
+      demos::splitList(a.worlds, "--worlds", {"multibody", "rigid"});
   const std::vector<std::string> models =
-      splitList(a.models, "--models", {"exact", "ellipsoidal", "stock"});
+      demos::splitList(a.models, "--models", {"exact", "ellipsoidal", "stock"});
   const double dt = 1.0 / a.rate;
   const long settleSteps = std::lround(a.tSettle / dt), twistSteps = std::lround(a.tTwist / dt);
   const long steps = settleSteps + twistSteps;
@@ -490,12 +474,10 @@ int run(const Args& a) {
   writeFrames(a, runs, columns, settleSteps, steps, stride, frames, limit);
   writeSeries(a, runs);
   if (a.plot) {
-    try {
+    demos::plotOrWarn("grasp", [&] {
       plotCase(a, runs, "below", a.below, limit, settleSteps, dt);
       plotCase(a, runs, "above", a.above, limit, settleSteps, dt);
-    } catch (const render::RenderError& e) {
-      std::fprintf(stderr, "grasp: warning: no plot: %s\n", e.what());
-    }
+    });
   }
 
   nlohmann::json summary;
@@ -517,12 +499,7 @@ int run(const Args& a) {
   nlohmann::json out = nlohmann::json::object();
   for (const Run& r : runs) out[r.worldName][r.model][r.caseName] = runSummary(a, r, limit);
   summary["runs"] = out;
-  {
-    const fs::path path = fs::path(a.out) / "summary.json";
-    std::ofstream file(path);
-    file << summary.dump(2) << "\n";
-    if (!file) throw render::RenderError("cannot write " + path.string());
-  }
+  demos::writeJson(fs::path(a.out) / "summary.json", summary);
   std::printf("grasp: %d frames, %ssummary.json, grasp_series.csv in %s\n", frames,
               a.plot ? "rotation_below.png, rotation_above.png, " : "", a.out.c_str());
   for (const Run& r : runs)
@@ -546,11 +523,9 @@ int main(int argc, char** argv) {
       "beside the patch law, in the multibody world (a two-finger gripper) and in the ordinary "
       "world (rigid pads); below and above the patch limit 2 mu N dbar (headless: PNG frames, "
       "rotation plots, summary.json)"};
-  app.add_option("--out", a.out, "output directory (default demo-out/grasp)");
-  app.add_option("--frames", a.frames, "number of frames; 0: the whole run (default 0)");
-  app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
-  app.add_option("--size", a.size, "frame size WxH [px] (default 1280x720)");
-  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 1)");
+  demos::addFrameOptions(app, a, demos::withDefault("output directory", a.out),
+                         "number of frames; 0: the whole run");
+  demos::addSlowmoOption(app, a);
   app.add_option("--models", a.models,
                  "comma list of exact, ellipsoidal, stock: the columns (default exact,stock)");
   app.add_option("--worlds", a.worlds,
@@ -568,16 +543,10 @@ int main(int argc, char** argv) {
                  "pad thickness along the grasp axis [m] (default 0.02)");
   app.add_option("--pad-mass", a.padMass, "mass of a pad (finger) [kg] (default 0.1)");
   app.add_option("--squeeze", a.squeeze, "force N with which each pad presses [N] (default 20)");
-  app.add_option("--rate", a.rate, "simulation steps per second (default 240)");
+  demos::addRateOption(app, a);
   app.add_option("--t-settle", a.tSettle,
                  "time the pads close before the twist [s] (default 0.25)");
   app.add_option("--t-twist", a.tTwist, "duration of the twist [s] (default 2)");
-  bool noPlot = false, quiet = false;
-  app.add_flag("--no-plot", noPlot, "skip rotation_*.png (needs gnuplot)");
-  app.add_flag("--quiet", quiet, "no progress bar");
-  return demos::runMain(app, argc, argv, "grasp", [&] {
-    a.plot = !noPlot;
-    a.progress = !quiet;
-    return run(a);
-  });
+  demos::addOutputFlags(app, a, "rotation_*.png");
+  return demos::runMain(app, argc, argv, "grasp", [&] { return run(a); });
 }

@@ -47,7 +47,6 @@
 #include <patchspin/render/renderer.hpp>
 #include <patchspin/scenes/catalogue.hpp>
 #include <patchspin/scenes/simulate.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -76,22 +75,14 @@ constexpr double kPlotFloor = 1e-7;
 // Gap between two neighbouring worlds in the frame [m].
 constexpr double kWorldGap = 0.06;
 
-struct Args {
-  std::string out = "demo-out/terrain";
-  int frames = 150;
-  double fps = 30.0;
-  std::string size = "960x540";
+struct Args : demos::VideoArgs {
+  Args() { out = "demo-out/terrain"; }
   std::string model = "exact,ellipsoidal,stock";
   std::string ground = "mesh";
   double slopeDeg = 8.0;  // [deg]
   double spacing = 0.01;  // grid cell [m]
   double mu = 0.3, g = 9.81;
   double coinV0 = 0.5, coinOmega0 = 20.0, blockV0 = 0.5, blockOmega0 = 15.0;
-  double rate = 240.0;  // simulation steps per simulated second
-  double slowmo = 4.0;  // video seconds per simulated second
-  double tMax = 3.0;    // simulated at least this long for summary.json [s]
-  bool plot = true;
-  bool progress = true;
 };
 
 // ---- tracking ------------------------------------------------------------------------
@@ -354,27 +345,15 @@ int run(const Args& a) {
   const std::vector<scenes::TerrainBody> defs = scenes::terrainBodies(spec);  // throws Error
 
   std::vector<World> worlds;
-  {
-    std::stringstream list(a.model);
-    std::string m;
-    while (std::getline(list, m, ',')) {
-      if (m != "exact" && m != "ellipsoidal" && m != "stock")
-        throw CLI::ValidationError(
-            "--model", "must be exact, ellipsoidal or stock, or a comma list: got '" + m + "'");
-      for (const World& w : worlds)
-        if (w.law == m) throw CLI::ValidationError("--model", "lists " + m + " twice");
-      World w;
-      w.law = m;
-      w.label = lawLabel(m);
-      worlds.push_back(w);
-    }
+  for (const std::string& m : demos::lawList(a.model)) {
+    World w;
+    w.law = m;
+    w.label = lawLabel(m);
+    worlds.push_back(w);
   }
-  if (worlds.empty()) throw CLI::ValidationError("--model", "names no model");
 
-  const double dt = 1.0 / a.rate;
-  const int k = std::max(1, int(std::lround(a.rate / (a.fps * a.slowmo))));
-  const long frameSteps = long(a.frames - 1) * k;
-  const long steps = std::max(frameSteps, long(std::ceil(a.tMax / dt - 1e-9)));
+  const demos::TimeBase time = demos::timeBase(a);
+  const auto [dt, k, frameSteps, steps] = time;
   const double tMax = double(steps) * dt;
 
   // simulate: the terrain world, then the level bodies alone on a plane
@@ -509,9 +488,7 @@ int run(const Args& a) {
                        {"spacing", spec.ground.spacing},
                        {"slope_deg", a.slopeDeg},
                        {"crease_x", spec.ground.creaseX}};
-  summary["video"] = {{"frames", a.frames},   {"fps", a.fps},
-                      {"steps_per_frame", k}, {"width", width},
-                      {"height", height},     {"t_last_frame", double(frameSteps) * dt}};
+  summary["video"] = demos::videoSummary(a, time);
   summary["precision"] = scenes::buildPrecision();
   summary["dt"] = dt;
   summary["steps"] = steps;
@@ -539,11 +516,7 @@ int run(const Args& a) {
   }
   summary["laws"] = laws;
   const fs::path out(a.out);
-  {
-    std::ofstream file(out / "summary.json");
-    file << summary.dump(2) << "\n";
-    if (!file) throw render::RenderError("cannot write " + (out / "summary.json").string());
-  }
+  demos::writeJson(out / "summary.json", summary);
 
   // the level coins' v/(R omega) and r against time, up to half as long
   // again as the last stop (at least to the last frame)
@@ -568,11 +541,8 @@ int run(const Args& a) {
     }
     render::PlotOptions po;
     po.title = "terrain: level coin, v/(R\xcf\x89) and slip r against time";
-    try {
-      render::plotSlipRatio(plot, (out / "terrain_ratio.png").string(), po);
-    } catch (const render::RenderError& e) {
-      std::fprintf(stderr, "terrain: warning: no plot: %s\n", e.what());
-    }
+    demos::plotOrWarn(
+        "terrain", [&] { render::plotSlipRatio(plot, (out / "terrain_ratio.png").string(), po); });
   }
   std::printf("terrain: %d frames (%s ...), summary.json%s in %s\n", writer.count(),
               fs::path(writer.framePath(0)).filename().c_str(), a.plot ? ", terrain_ratio.png" : "",
@@ -587,10 +557,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "terrain: coins and blocks sliding and spinning to rest on a triangle-mesh ground, level and "
       "sloped, with the patch laws and with stock Bullet side by side (headless, PNG frames)"};
-  app.add_option("--out", a.out, "output directory (frames, summary.json, terrain_ratio.png)");
-  app.add_option("--frames", a.frames, "number of frames (default 150)");
-  app.add_option("--fps", a.fps, "frames per second of the video (default 30)");
-  app.add_option("--size", a.size, "frame size WxH [px] (default 960x540)");
+  demos::addFrameOptions(app, a, "output directory (frames, summary.json, terrain_ratio.png)");
   app.add_option("--model", a.model,
                  "exact | ellipsoidal | stock, or a comma list drawn side by side (default "
                  "exact,ellipsoidal,stock)");
@@ -604,15 +571,7 @@ int main(int argc, char** argv) {
   app.add_option("--coin-omega0", a.coinOmega0, "coins' initial spin [rad/s] (default 20)");
   app.add_option("--block-v0", a.blockV0, "blocks' initial speed [m/s] (default 0.5)");
   app.add_option("--block-omega0", a.blockOmega0, "blocks' initial spin [rad/s] (default 15)");
-  app.add_option("--rate", a.rate, "simulation steps per second (default 240)");
-  app.add_option("--slowmo", a.slowmo, "video seconds per simulated second (default 4)");
-  app.add_option("--t-max", a.tMax, "simulate at least this long for summary.json [s] (default 3)");
-  bool noPlot = false, quiet = false;
-  app.add_flag("--no-plot", noPlot, "skip terrain_ratio.png (needs gnuplot)");
-  app.add_flag("--quiet", quiet, "no progress bar");
-  return demos::runMain(app, argc, argv, "terrain", [&] {
-    a.plot = !noPlot;
-    a.progress = !quiet;
-    return run(a);
-  });
+  demos::addTimeOptions(app, a);
+  demos::addOutputFlags(app, a, "terrain_ratio.png");
+  return demos::runMain(app, argc, argv, "terrain", [&] { return run(a); });
 }

@@ -8,7 +8,6 @@
 // sphere, never opted in, ends rolling at 5/7 of its initial speed in every
 // row; the stack stands. Skips if the demo binary is not built.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -19,6 +18,7 @@
 #include <sstream>
 #include <string>
 
+#include "demo_suite.hpp"
 #include "demo_test_util.hpp"
 #include "run_tool.hpp"
 
@@ -96,13 +96,6 @@ constexpr double kVisibleTurnRatio = 0.8;
 // 1 mm margins; toppling or sliding off moves it by centimetres).
 constexpr double kStackTol = 2e-3;
 
-std::string tempDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("patchspin_blocks_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir.string();
-}
-
 // Mean distance from the centre of an a x b rectangle by a midpoint grid of
 // 2000 x 2000 cells (error ~1e-7 relative), independent of the demo's closed
 // form.
@@ -135,40 +128,16 @@ nlohmann::json simulateRectangle(const nlohmann::json& s, const std::string& row
   return nlohmann::json::parse(run.out);
 }
 
-// Runs the demo into `dir`.
-testing::ToolRun runDemo(const std::string& dir) {
-  std::ostringstream args;
-  args << "--out " << dir << " --frames " << kFrames << " --size " << kWidth << "x" << kHeight
-       << " --fps 30 --slowmo 1 --t-max " << kTMax << " " << kSceneFlags;
-  return testing::runTool(buildPath("demos/blocks"), args.str());
-}
-
-class BlocksDemo : public ::testing::Test {
- protected:
-  // Runs the demo once per test suite (ctest runs each test in a process of
-  // its own, so the rerun for the byte comparison is done by that test only).
-  static void SetUpTestSuite() {
-    const std::string demo = buildPath("demos/blocks");
-    if (demo.empty() || !fs::exists(demo)) return;
-    dir_ = tempDir("run0");
-    run_ = runDemo(dir_);
+// The demo, run once per test suite (the rerun for the byte comparison is
+// done by that test only).
+class BlocksDemo : public DemoSuite<BlocksDemo> {
+ public:
+  static constexpr const char* kDemo = "blocks";
+  static std::string flags(const std::string& dir) {
+    std::ostringstream args;
+    args << frameFlags(dir, kFrames, kWidth, kHeight) << " --t-max " << kTMax << " " << kSceneFlags;
+    return args.str();
   }
-  static void TearDownTestSuite() {
-    if (!dir_.empty()) fs::remove_all(dir_);
-  }
-  void SetUp() override {
-    const std::string demo = buildPath("demos/blocks");
-    if (demo.empty() || !fs::exists(demo))
-      GTEST_SKIP() << "demos/blocks not built (needs the Bullet integration and the renderer): "
-                   << demo;
-    ASSERT_EQ(run_.exitCode, 0) << run_.err;
-  }
-  static nlohmann::json summary() {
-    return nlohmann::json::parse(fileBytes((fs::path(dir_) / "summary.json").string()));
-  }
-
-  static inline std::string dir_;
-  static inline testing::ToolRun run_;
 };
 
 TEST_F(BlocksDemo, FramesAreValidPngsNotBlankChangingAndIdenticalOnRerun) {
@@ -177,18 +146,7 @@ TEST_F(BlocksDemo, FramesAreValidPngsNotBlankChangingAndIdenticalOnRerun) {
   expectCompleteProgress(run_.err, kFrames);
 
   // a second run gives the same bytes
-  const std::string again = tempDir("run1");
-  const testing::ToolRun rerun = runDemo(again);
-  ASSERT_EQ(rerun.exitCode, 0) << rerun.err;
-  for (int i = 0; i < kFrames; ++i) {
-    const std::string name = "frame_0000" + std::to_string(i) + ".png";
-    const std::string a = fileBytes((fs::path(dir_) / name).string());
-    ASSERT_FALSE(a.empty()) << name;
-    EXPECT_TRUE(a == fileBytes((fs::path(again) / name).string())) << name;
-  }
-  EXPECT_EQ(fileBytes((fs::path(dir_) / "summary.json").string()),
-            fileBytes((fs::path(again) / "summary.json").string()));
-  fs::remove_all(again);
+  expectSameOnRerun(kFrames);
 }
 
 // The tracked rectangle, exact and stock rows, through `patchspin simulate

@@ -3,7 +3,6 @@
 // second run; summary.json finite and in agreement with `patchspin simulate
 // --engine bullet` for the same coin.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "demo_suite.hpp"
 #include "demo_test_util.hpp"
 #include "run_tool.hpp"
 
@@ -43,66 +43,31 @@ constexpr double kTMax = 1.0;
 // relative leaves room for the last printed digit only.
 constexpr double kAgreementTol = 1e-12;
 
-std::string tempDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("patchspin_coin_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir.string();
-}
-
-// <build>/demos/coin next to <build>/tools/patchspin; empty without the tool.
-std::string demoPath() {
-  return buildPath("demos/coin");
-}
-
-class CoinDemo : public ::testing::Test {
- protected:
-  // Runs the demo twice into two directories (once per test suite).
-  static void SetUpTestSuite() {
-    const std::string demo = demoPath();
-    if (demo.empty() || !fs::exists(demo)) return;
-    for (int run = 0; run < 2; ++run) {
-      dirs_[run] = tempDir("run" + std::to_string(run));
-      std::ostringstream args;
-      args << "--out " << dirs_[run] << " --frames " << kFrames << " --size " << kWidth << "x"
-           << kHeight << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << kCoinFlags;
-      runs_[run] = testing::runTool(demo, args.str());
-    }
+// The demo, run once per test suite (the second run for the byte comparison
+// is done by that test only).
+class CoinDemo : public DemoSuite<CoinDemo> {
+ public:
+  static constexpr const char* kDemo = "coin";
+  static std::string flags(const std::string& dir) {
+    std::ostringstream args;
+    args << frameFlags(dir, kFrames, kWidth, kHeight) << " --t-max " << kTMax << " --no-plot "
+         << kCoinFlags;
+    return args.str();
   }
-  void SetUp() override {
-    if (demoPath().empty() || !fs::exists(demoPath()))
-      GTEST_SKIP() << "demos/coin not built (needs PATCHSPIN_BUILD_BULLET and the renderer): "
-                   << demoPath();
-    ASSERT_EQ(runs_[0].exitCode, 0) << runs_[0].err;
-    ASSERT_EQ(runs_[1].exitCode, 0) << runs_[1].err;
-  }
-  static nlohmann::json summary(int run) {
-    return nlohmann::json::parse(fileBytes((fs::path(dirs_[run]) / "summary.json").string()));
-  }
-
-  static inline std::string dirs_[2];
-  static inline testing::ToolRun runs_[2];
 };
 
 TEST_F(CoinDemo, FramesAreValidPngsOfTheRequestedSizeNotBlankAndChanging) {
-  expectDemoFrames(dirs_[0], kFrames, kWidth, kHeight);
+  expectDemoFrames(dir_, kFrames, kWidth, kHeight);
   // the progress bar goes to stderr and ends complete
-  expectCompleteProgress(runs_[0].err, kFrames);
+  expectCompleteProgress(run_.err, kFrames);
 }
 
 TEST_F(CoinDemo, TwoRunsGiveIdenticalBytes) {
-  for (int i = 0; i < kFrames; ++i) {
-    const std::string name = "frame_0000" + std::to_string(i) + ".png";
-    const std::string a = fileBytes((fs::path(dirs_[0]) / name).string());
-    ASSERT_FALSE(a.empty()) << name;
-    EXPECT_TRUE(a == fileBytes((fs::path(dirs_[1]) / name).string())) << name;
-  }
-  EXPECT_EQ(fileBytes((fs::path(dirs_[0]) / "summary.json").string()),
-            fileBytes((fs::path(dirs_[1]) / "summary.json").string()));
+  expectSameOnRerun(kFrames);
 }
 
 TEST_F(CoinDemo, SummaryIsFiniteForEveryModel) {
-  const nlohmann::json s = summary(0);
+  const nlohmann::json s = summary();
   for (const char* model : {"exact", "ellipsoidal", "stock"}) {
     SCOPED_TRACE(model);
     ASSERT_TRUE(s["models"].contains(model));
@@ -127,7 +92,7 @@ TEST_F(CoinDemo, SummaryIsFiniteForEveryModel) {
 // Same coin through `patchspin simulate --engine bullet --json`: same t_stop,
 // eps_stop, w_stop and displacement semantics (simulate.hpp).
 TEST_F(CoinDemo, SummaryAgreesWithPatchspinSimulate) {
-  const nlohmann::json s = summary(0);
+  const nlohmann::json s = summary();
   const std::string precision = s["precision"].get<std::string>();
   auto near = [](double a, double b) {
     return std::abs(a - b) <= kAgreementTol * std::max(1.0, std::abs(b));

@@ -1,6 +1,7 @@
 // Helpers shared by the demo tests (coin, scene demos, blocks, terrain): where
-// the build put the programs, file bytes, pixel differences, the frames'
-// checks, exact numbers for command lines.
+// the build put the programs, fresh output directories, the frame flags, file
+// bytes, pixel differences, the frames' checks, exact numbers for command
+// lines. A suite that runs one demo once: demo_suite.hpp.
 #pragma once
 
 #include <patchspin/render/image.hpp>
@@ -14,7 +15,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 namespace patchspin::render::demo_test {
 
@@ -34,6 +38,34 @@ inline std::string toolPath() {
 #else
   return "";
 #endif
+}
+
+// <build>/demos/<name>; empty without the tool.
+inline std::string demoPath(const std::string& name) {
+  return buildPath("demos/" + name);
+}
+
+// demos/<name> is built (it needs the Bullet integration and the renderer).
+inline bool demoBuilt(const std::string& name) {
+  const std::string path = demoPath(name);
+  return !path.empty() && std::filesystem::exists(path);
+}
+
+// <test temp dir>/patchspin_<stem>_<pid>, removed if it exists.
+inline std::string freshTempDir(const std::string& stem) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("patchspin_" + stem + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+// --out <dir> and the frames expectDemoFrames checks: `frames` of width x
+// height, at 30 fps with --slowmo 1 (1/30 s of simulated time apart).
+inline std::string frameFlags(const std::string& dir, int frames, int width, int height) {
+  std::ostringstream flags;
+  flags << "--out " << dir << " --frames " << frames << " --size " << width << "x" << height
+        << " --fps 30 --slowmo 1";
+  return flags.str();
 }
 
 inline std::string fileBytes(const std::string& path) {
@@ -87,6 +119,20 @@ inline bool expectDemoFrames(const std::filesystem::path& dir, int frames, int w
   }
   EXPECT_FALSE(std::filesystem::exists(dir / ("frame_0000" + std::to_string(frames) + ".png")));
   return true;
+}
+
+// Two runs into dirs `a` and `b` wrote the same bytes: frames 0 .. frames-1
+// (none empty) and summary.json.
+inline void expectSameOutput(const std::filesystem::path& a, const std::filesystem::path& b,
+                             int frames) {
+  for (int i = 0; i < frames; ++i) {
+    const std::string name = "frame_0000" + std::to_string(i) + ".png";
+    const std::string bytes = fileBytes((a / name).string());
+    EXPECT_FALSE(bytes.empty()) << name;
+    if (bytes.empty()) return;
+    EXPECT_TRUE(bytes == fileBytes((b / name).string())) << name;
+  }
+  EXPECT_EQ(fileBytes((a / "summary.json").string()), fileBytes((b / "summary.json").string()));
 }
 
 // The progress bar went to stderr and ended complete.

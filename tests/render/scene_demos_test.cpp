@@ -5,7 +5,6 @@
 // stopping data in agreement with `patchspin simulate --engine bullet`.
 // Each test skips if its demo binary is not built.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -44,14 +43,11 @@ constexpr double kG = 9.81;
 // Runs one demo, checks frames and summary; returns the summary (null on a
 // skip or failure).
 nlohmann::json runDemo(const std::string& name, const std::string& flags) {
-  const std::string demo = buildPath("demos/" + name);
-  const fs::path dir =
-      fs::path(::testing::TempDir()) / ("patchspin_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = freshTempDir(name);
   std::ostringstream args;
-  args << "--out " << dir.string() << " --frames " << kFrames << " --size " << kWidth << "x"
-       << kHeight << " --fps 30 --slowmo 1 --t-max " << kTMax << " --no-plot " << flags;
-  const auto run = testing::runTool(demo, args.str());
+  args << frameFlags(dir.string(), kFrames, kWidth, kHeight) << " --t-max " << kTMax
+       << " --no-plot " << flags;
+  const auto run = testing::runTool(demoPath(name), args.str());
   EXPECT_EQ(run.exitCode, 0) << run.err;
   if (run.exitCode != 0) return nullptr;
   if (!expectDemoFrames(dir, kFrames, kWidth, kHeight)) return nullptr;
@@ -114,9 +110,9 @@ void expectAgreesWithSimulate(const nlohmann::json& s, const std::string& key) {
 }
 
 #define SKIP_WITHOUT(name)                                                                       \
-  if (buildPath("demos/" name).empty() || !fs::exists(buildPath("demos/" name)))                 \
+  if (!demoBuilt(name))                                                                          \
     GTEST_SKIP() << "demos/" name " not built (needs the Bullet integration and the renderer): " \
-                 << buildPath("demos/" name);
+                 << demoPath(name);
 
 // Sect. 6.1: F = (1.2, 0.5, 0.05) mu m g along +x for Cases 1-3.
 TEST(SceneDemos, PushedDisk) {

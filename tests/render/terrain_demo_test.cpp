@@ -6,7 +6,6 @@
 // to Bullet's points and counted as a crease; stock Bullet gets no patch.
 // Skips if the demo binary is not built.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -15,8 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "demo_suite.hpp"
 #include "demo_test_util.hpp"
-#include "run_tool.hpp"
 
 namespace patchspin::render {
 namespace {
@@ -47,40 +46,15 @@ constexpr double kRatioTol = 0.05;
 // m/s); stock Bullet creeps at 1e-3 to 1e-1 m/s. 1e-9 m/s.
 constexpr double kHoldSlip = 1e-9;
 
-std::string tempDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("patchspin_terrain_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir.string();
-}
-
-class TerrainDemo : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    const std::string demo = buildPath("demos/terrain");
-    if (demo.empty() || !fs::exists(demo)) return;
-    dir_ = tempDir("run");
+class TerrainDemo : public DemoSuite<TerrainDemo> {
+ public:
+  static constexpr const char* kDemo = "terrain";
+  static std::string flags(const std::string& dir) {
     std::ostringstream args;
-    args << "--out " << dir_ << " --frames " << kFrames << " --size " << kWidth << "x" << kHeight
-         << " --fps 30 --slowmo 1 --rate " << kRate << " --t-max " << kTMax << " --no-plot";
-    run_ = testing::runTool(demo, args.str());
+    args << frameFlags(dir, kFrames, kWidth, kHeight) << " --rate " << kRate << " --t-max " << kTMax
+         << " --no-plot";
+    return args.str();
   }
-  static void TearDownTestSuite() {
-    if (!dir_.empty()) fs::remove_all(dir_);
-  }
-  void SetUp() override {
-    const std::string demo = buildPath("demos/terrain");
-    if (demo.empty() || !fs::exists(demo))
-      GTEST_SKIP() << "demos/terrain not built (needs the Bullet integration and the renderer): "
-                   << demo;
-    ASSERT_EQ(run_.exitCode, 0) << run_.err;
-  }
-  static nlohmann::json summary() {
-    return nlohmann::json::parse(fileBytes((fs::path(dir_) / "summary.json").string()));
-  }
-
-  static inline std::string dir_;
-  static inline testing::ToolRun run_;
 };
 
 TEST_F(TerrainDemo, FramesAreValidPngsNotBlankAndChanging) {
