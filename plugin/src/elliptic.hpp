@@ -1,7 +1,9 @@
-// Complete elliptic integrals K(m), E(m) in the PARAMETER m = k^2
+// Complete elliptic integrals K(m), E(m) in the PARAMETER m = k^2, and the
+// incomplete F(phi | m) from the complementary parameter,
 // (Abramowitz-Stegun 17.2, the paper's convention below Eq. (53)).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace patchspin::internal {
@@ -55,6 +57,41 @@ inline EllipticKE completeEllipticKE(double m, double mc, double relTol = 1e-17)
 // (1 - m) K(m) with its limit 0 at m = 1 (K has only a log singularity).
 inline double mcK(const EllipticKE& ke, double mc) {
   return mc > 0.0 ? mc * ke.K : 0.0;
+}
+
+// Carlson's symmetric integral R_F(x, y, z) (x, y, z >= 0, at most one 0) by
+// duplication (Carlson 1995, Numer. Algorithms 10): each step divides the
+// spread by ~4; stop when it is below kTol of the mean, then the series to
+// E3: relative error ~ kTol^6 / 4 < 1e-17.
+inline double carlsonRF(double x, double y, double z) {
+  constexpr double kTol = 1.5e-3;
+  for (int it = 0; it < 60; ++it) {
+    const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z);
+    const double mean = (x + y + z) / 3.0;
+    const double spread = std::max({std::abs(mean - x), std::abs(mean - y), std::abs(mean - z)});
+    if (spread <= kTol * mean) break;
+    const double lambda = sx * sy + sy * sz + sz * sx;
+    x = 0.25 * (x + lambda), y = 0.25 * (y + lambda), z = 0.25 * (z + lambda);
+  }
+  const double A = (x + y + z) / 3.0;
+  const double X = 1.0 - x / A, Y = 1.0 - y / A, Z = -(X + Y);
+  const double E2 = X * Y - Z * Z, E3 = X * Y * Z;
+  return (1.0 - E2 / 10.0 + E3 / 14.0 + E2 * E2 / 24.0 - 3.0 * E2 * E3 / 44.0) / std::sqrt(A);
+}
+
+// Incomplete elliptic integral of the first kind F(phi | m) for any real
+// phi, from the complementary parameter mc = 1 - m > 0 (libstdc++'s
+// std::ellint_1 takes k = sqrt(m), which rounds to 1 for mc < 1e-16 and then
+// loses F's log(1/mc) growth that callers multiply by a factor ~sqrt(mc)):
+//   F = sin R_F(cos^2, cos^2 + mc sin^2, 1) on [-pi/2, pi/2], + 2 n K beyond,
+//   K = R_F(0, mc, 1).
+inline double incompleteEllipticF(double phi, double mc) {
+  const double n = std::nearbyint(phi / 3.14159265358979323846);
+  const double r = phi - n * 3.14159265358979323846;
+  const double s = std::sin(r), c = std::cos(r);
+  double F = s * carlsonRF(c * c, c * c + mc * s * s, 1.0);
+  if (n != 0.0) F += 2.0 * n * carlsonRF(0.0, mc, 1.0);
+  return F;
 }
 
 }  // namespace patchspin::internal

@@ -92,34 +92,55 @@ BoundaryPiece shifted(const BoundaryPiece& p, const Vec2& g) {
   return q;
 }
 
-// Near branch: F' (g-frame) from the boundary moments about c.
-Mat3 nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double rho, double size) {
+// Near branch: F' (g-frame) from the boundary moments about c, and dF'/dw'
+// through c. With d rho_c/dc = -u (exact_boundary_moments.hpp) and
+// tr_j = tr(dM/dc_j) = -sum_i U[i](i, j) - N1_j:
+//   dV/dc_j = -phi_c Q(j, :) - (U[k](., j).q)_k - q tr_j / 3
+//   dtorque/dc_j = V_j + c.dV/dc_j + q_j tr(M)/3 + phi_c tr_j/3 - q.M(j, :)
+// (the q_j N1 of d phi_c/dc cancels), then dc'/dw' = (rho/w3) [[0, -1, w2/w3], [1, 0, -w1/w3]].
+void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double rho, double size,
+                bool wantJacobian, ExactBasis& acc) {
   const double sgn = wl.z() > 0.0 ? 1.0 : -1.0;
   const Vec2 c(-rho * wl.y() / wl.z(), rho * wl.x() / wl.z());
   BoundaryMoments mom;
   for (const BoundaryPiece& p : pieces) {
     if (p.kind == BoundaryPiece::Kind::Segment) {
-      addSegmentMoments(p.a, p.b, c, kDeltaZeroRel * size, mom);
+      addSegmentMoments(p.a, p.b, c, kDeltaZeroRel * size, wantJacobian, mom);
     } else {
-      addArcMoments(p.centre, p.radius, p.angle0, p.angle1, c, mom);
+      addArcMoments(p.centre, p.radius, p.angle0, p.angle1, c, wantJacobian, mom);
     }
   }
   const double trM = mom.M.trace();
-  Mat3 F;
+  Eigen::Matrix<double, 2, 3> dc;
+  dc << 0.0, -1.0, wl.y() / wl.z(), 1.0, 0.0, -wl.x() / wl.z();
+  dc *= rho / wl.z();
+  const Vec3 scale(sgn, sgn, sgn / rho);
   for (int k = 0; k < 3; ++k) {
     const double phic = k == 0 ? 1.0 : c[k - 1];
     const Vec2 q = k == 0 ? Vec2(Vec2::Zero()) : Vec2(Vec2::Unit(k - 1));
     const Vec2 V = phic * mom.N1 + mom.M.transpose() * q - q * (trM / 3.0);
     const double torque = c.dot(V) + phic * trM / 3.0 + q.dot(mom.N3) / 3.0;
-    F.col(k) = sgn * Vec3(-V.y(), V.x(), torque / rho);
+    acc.F.col(k) = scale.cwiseProduct(Vec3(-V.y(), V.x(), torque));
+    if (!wantJacobian) continue;
+    Eigen::Matrix<double, 3, 2> dG;
+    for (int j = 0; j < 2; ++j) {
+      const double trj = -(mom.U[0](0, j) + mom.U[1](1, j)) - mom.N1[j];
+      const Vec2 dV = -phic * mom.Q.row(j).transpose() -
+                      Vec2(mom.U[0].col(j).dot(q), mom.U[1].col(j).dot(q)) - q * (trj / 3.0);
+      const double dT =
+          V[j] + c.dot(dV) + q[j] * trM / 3.0 + phic * trj / 3.0 - q.dot(mom.M.row(j));
+      dG.col(j) = Vec3(-dV.y(), dV.x(), dT);
+    }
+    acc.dF[k] = scale.asDiagonal() * dG * dc;
   }
-  return F;
 }
 
-// Far branch: fan rule of order n from the g-frame origin.
-Mat3 farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double rho, int n) {
+// Far branch: fan rule of order n from the g-frame origin; with the
+// Jacobian dk/dw' = m m^T / |v|, m = (-u_y, u_x, (P.u)/rho) (exact_polygon.cpp).
+void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double rho, int n,
+               bool wantJacobian, ExactBasis& acc) {
   const GaussTables& gt = gaussTables();
-  Mat3 F = Mat3::Zero();
+  Mat3& F = acc.F;
   const double inv = 1.0 / rho;
   auto addSpan = [&](auto&& point, auto&& tangent, double length) {
     for (int i = 0; i < n; ++i) {
@@ -134,7 +155,13 @@ Mat3 farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double 
         const double invV = 1.0 / std::sqrt(vx * vx + vy * vy);
         const double ux = vx * invV, uy = vy * invV;
         const Vec3 k(ux, uy, (P.x() * uy - P.y() * ux) * inv);
-        F.noalias() += (wt * k) * Vec3(1.0, P.x(), P.y()).transpose();
+        const Vec3 phi = wt * Vec3(1.0, P.x(), P.y());
+        F.noalias() += k * phi.transpose();
+        if (wantJacobian) {
+          const Vec3 mv(-uy, ux, (P.x() * ux + P.y() * uy) * inv);
+          const Mat3 mm = (invV * mv) * mv.transpose();
+          for (int b = 0; b < 3; ++b) acc.dF[b].noalias() += phi[b] * mm;
+        }
       }
     }
   };
@@ -159,25 +186,26 @@ Mat3 farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double 
           h);
     }
   }
-  return F;
 }
 
 // Order of the far rule for the ICR at kappa region radii (kappa^2 given;
 // +inf for translation), the polygon's estimate beta^(3 - 2n) with K = kappa - 1
-// plus two orders for the arcs' trigonometric parametrisation.
-int farOrder(double kappaSq) {
+// plus two orders for the arcs' trigonometric parametrisation; one more
+// polynomial degree with the Jacobian.
+int farOrder(double kappaSq, bool jacobian) {
   constexpr double kTol = 1e-13;
   if (!std::isfinite(kappaSq)) return 8;
+  const double degree = jacobian ? 4.0 : 3.0;  // the Jacobian's integrand: one more
   const double K = std::sqrt(kappaSq) - 1.0;
   const double beta = K + std::sqrt(K * K - 1.0);
-  const double n = 1.5 + 0.5 * std::log(1.0 / kTol) / std::log(beta) + 2.0;
+  const double n = 0.5 * degree + 0.5 * std::log(1.0 / kTol) / std::log(beta) + 2.0;
   return std::clamp(static_cast<int>(std::ceil(n)), 8, kMaxOrder);
 }
 
 }  // namespace
 
 void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
-                         ExactBasis& out) {
+                         bool wantJacobian, ExactBasis& out) {
   const std::size_t N = boundary.size();
   if (N < 1) fail("need at least 1 boundary piece");
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
@@ -227,14 +255,28 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   const double planarSq = rho * rho * (wl.x() * wl.x() + wl.y() * wl.y());
   const double w3Sq = wl.z() * wl.z();
   const bool far = planarSq > kFarRatio * kFarRatio * size * size * w3Sq;
-  const Mat3 Fl = far ? farBranch(local, wl, rho,
-                                  farOrder(w3Sq > 0.0 ? planarSq / (size * size * w3Sq) : INFINITY))
-                      : nearBranch(local, wl, rho, size);
-  Mat3 Fm = Fl;
-  Fm.col(1) += g.x() * Fl.col(0);
-  Fm.col(2) += g.y() * Fl.col(0);
-  out.F.noalias() = S.transpose() * Fm;
-  for (Mat3& m : out.dF) m.setZero();
+  ExactBasis l;  // g-frame
+  if (far) {
+    const double kappaSq = w3Sq > 0.0 ? planarSq / (size * size * w3Sq) : INFINITY;
+    farBranch(local, wl, rho, farOrder(kappaSq, wantJacobian), wantJacobian, l);
+  } else {
+    nearBranch(local, wl, rho, size, wantJacobian, l);
+  }
+  // back to O (exact_polygon.cpp): T = S^T, phi = (1, gx + x', gy + y'),
+  // dF[k] = T dF'[k] S / wScale
+  const Mat3 T = S.transpose();
+  Mat3 Fm = l.F;
+  Fm.col(1) += g.x() * l.F.col(0);
+  Fm.col(2) += g.y() * l.F.col(0);
+  out.F.noalias() = T * Fm;
+  if (!wantJacobian) {
+    for (Mat3& m : out.dF) m.setZero();
+    return;
+  }
+  const Mat3 Sw = S / wScale;
+  out.dF[0].noalias() = T * l.dF[0] * Sw;
+  out.dF[1].noalias() = T * (l.dF[1] + g.x() * l.dF[0]) * Sw;
+  out.dF[2].noalias() = T * (l.dF[2] + g.y() * l.dF[0]) * Sw;
 }
 
 }  // namespace patchspin::internal

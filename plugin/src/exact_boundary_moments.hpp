@@ -30,7 +30,10 @@
 //      L1 = 2(D+a) W0,  C1 = 2(D+a)(W0 - 2W1),  C2 = 2(D+a)(W0 - 4W1 + 4W2),
 //      C3 = 2(D+a)^3 (V0 - 2V1),  V_j = ∫ s^j Delta^3 = W_j - m W_{j+1}.
 //    Closed form (F, E incomplete elliptic integrals of the first and second
-//    kind at amplitude phi, parameter m; Y_n = [sin^(2n-1) phi cos phi Delta]):
+//    kind at amplitude phi, parameter m: F by Carlson's R_F from 1 - m
+//    (elliptic.hpp; std::ellint_1's k = sqrt(m) rounds to 1 within 1e-8 of
+//    the circle, and dF lost 1e-8 there), E by std::ellint_2; Y_n = [sin^(2n-1) phi cos phi
+//    Delta]):
 //      W0 = E,  W1 = [(1-m) F - (1-2m) E - m Y1] / (3m),
 //      W2 = [2(1-m)(2m+1) F + (8m^2 - 3m - 2) E + m(1 - 4m) Y1 - 3m^2 Y2] / (15 m^2),
 //    from d/dphi(sin^(2n-1) cos Delta) = [(2n-1) s^(n-1) - 2n(1+m) s^n
@@ -39,9 +42,28 @@
 //    the centre or far from the circle) the 1/m^2 would cancel: the binomial
 //    series Delta = sum b_k (m s)^k, W_j = sum b_k m^k Q_(j+k),
 //    Q_n = ∫ s^n d phi = -[sin^(2n-1) cos]/(2n) + (2n-1)/(2n) Q_(n-1).
-// Guarded by exact_arc_region_test.cpp (BoundaryMoments*, and the law's tests).
+//
+// Their derivatives in c (for dF/dw) need two more moments with bounded
+// integrands, u = r / rho_c:
+//   Q = ∮ u n^T ds,   U[k] = ∮ (r r^T / rho_c) n_k ds,
+// since d rho_c / dc = -u: dN1/dc_j = -Q(j, :), dM/dc_j = -U[.](., j) - e_j N1^T,
+// dN3/dc_j = -3 M(j, :). Segment: Q = (e J1 + delta n J0) n^T,
+// U[k] = (J2 e e^T + delta J1 (e n^T + n e^T) + delta^2 J0 n n^T) n_k.
+// Arc (local frame, r = (D + a cos, a sin), e = (cos, sin)): integrals
+// c_k = ∫ cos^k / rho and o_k = ∫ sin cos^k / rho (d theta):
+//   o_k = -∫ u^k (A + Bu)^(-1/2) du:  o0 = -2 (u2 - u1)/(x + y),
+//     o1 = 2 (u1 - u2)(2u1 x + u1 y + u2 x + 2u2 y) / (3 (x + y)^2),
+//     o2 = 2 (u1 - u2)(8u1^2 x^2 + 9u1^2 xy + 3u1^2 y^2 + 4u1u2 x^2 + 12u1u2 xy
+//          + 4u1u2 y^2 + 3u2^2 x^2 + 9u2^2 xy + 8u2^2 y^2) / (15 (x + y)^3)  (sympy);
+//   c_k = 2/(D + a) ∫ (1 - 2s)^k / Delta d phi from I_n = ∫ s^n / Delta:
+//     I0 = F, I1 = (F - E)/m, (2n+1) m I_(n+1) = Y_n - (2n-1) I_(n-1) + 2n (1+m) I_n,
+//   or the series 1/Delta = sum c_k (m s)^k, c_k = c_(k-1) (k - 1/2)/k, for m <= kSeriesM.
+// F's coefficient is tracked apart: the integrands are bounded, so it is
+// (1 - m) times a bounded factor and dropped where m = 1 (F infinite).
+// Guarded by exact_arc_region_test.cpp (the law's and the Jacobian's tests).
 #pragma once
 
+#include "elliptic.hpp"
 #include "exact_edge_integrals.hpp"
 
 #include <patchspin/types.hpp>
@@ -54,12 +76,15 @@ struct BoundaryMoments {
   Vec2 N1 = Vec2::Zero();
   Mat2 M = Mat2::Zero();
   Vec2 N3 = Vec2::Zero();
+  // for the derivative in c only (withGradient)
+  Mat2 Q = Mat2::Zero();
+  Mat2 U[2] = {Mat2::Zero(), Mat2::Zero()};
 };
 
 // The segment a -> b (any length), c the ICR; deltaZero: |delta| below it is
 // rounding (c on the segment's line).
 inline void addSegmentMoments(const Vec2& a, const Vec2& b, const Vec2& c, double deltaZero,
-                              BoundaryMoments& acc) {
+                              bool withGradient, BoundaryMoments& acc) {
   const double L = (b - a).norm();
   if (!(L > 0.0)) return;
   const Vec2 e = (b - a) / L;
@@ -69,9 +94,10 @@ inline void addSegmentMoments(const Vec2& a, const Vec2& b, const Vec2& c, doubl
   double delta = ra.dot(n);
   const double Ra = ra.norm(), Rb = (b - c).norm();
   const double J1 = L * (ta + tb) / (Ra + Rb);
-  double delta2J0 = 0.0;
+  double deltaJ0 = 0.0, delta2J0 = 0.0;
   if (std::abs(delta) > deltaZero) {
-    delta2J0 = delta * delta * asinhDifference(ta, tb, Ra, Rb, J1, delta, L);
+    deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, J1, delta, L);
+    delta2J0 = delta * deltaJ0;
   } else {
     delta = 0.0;
   }
@@ -82,6 +108,14 @@ inline void addSegmentMoments(const Vec2& a, const Vec2& b, const Vec2& c, doubl
   acc.N1 += K0 * n;
   acc.M += (K1 * e + (delta * K0) * n) * n.transpose();
   acc.N3 += K3 * n;
+  if (!withGradient) return;
+  const double J2 = 0.5 * (T - delta2J0);
+  acc.Q += (J1 * e + deltaJ0 * n) * n.transpose();
+  const Mat2 en = e * n.transpose();
+  const Mat2 rr =
+      J2 * e * e.transpose() + (delta * J1) * (en + en.transpose()) + delta2J0 * n * n.transpose();
+  acc.U[0] += n.x() * rr;
+  acc.U[1] += n.y() * rr;
 }
 
 namespace arc_detail {
@@ -104,42 +138,57 @@ inline double ellE(double k, double m, double phi) {
   return std::ellint_2(k, phi);
 }
 
-// W_j over [p1, p2] (see the file comment); y_i = sin, c_i = cos, dl_i = Delta
-// at the ends.
-inline W3 evenIntegrals(double m, double mc, double p1, double p2, double y1, double c1, double dl1,
-                        double y2, double c2, double dl2) {
+// The arc's ends in phi: amplitude p, sin y, cos c, Delta dl.
+struct Ends {
+  double p1, y1, c1, dl1, p2, y2, c2, dl2;
+};
+
+// What the closed forms share: E, F over [p1, p2] (haveF false at m = 1,
+// where F may be infinite) and the boundary terms Y1, Y2.
+struct Elliptic {
+  double E = 0.0, F = 0.0, Y1 = 0.0, Y2 = 0.0;
+  bool haveF = false;
+};
+
+// Q_n = ∫ sin^(2n) phi, n = 0..count-1, by the recurrence (file comment).
+inline void sinePowerIntegrals(const Ends& e, int count, double* Q) {
+  double s1p = e.y1, s2p = e.y2;  // sin^(2n-1) at n = 1
+  const double s1 = e.y1 * e.y1, s2 = e.y2 * e.y2;
+  Q[0] = e.p2 - e.p1;
+  for (int n = 1; n < count; ++n) {
+    Q[n] = -(s2p * e.c2 - s1p * e.c1) / (2.0 * n) + (2.0 * n - 1.0) / (2.0 * n) * Q[n - 1];
+    s1p *= s1, s2p *= s2;
+  }
+}
+
+// Terms of the series in m stop below this (coefficients <= 1, |Q_n| <= |dphi|).
+constexpr double kSeriesStop = 1e-18;
+constexpr int kSeriesTerms = 40;  // m <= 0.1 needs <= 18
+
+// W_j over [p1, p2] (see the file comment); fills ell on the closed-form side.
+inline W3 evenIntegrals(double m, double mc, const Ends& e, Elliptic& ell) {
   W3 w;
   if (m <= kSeriesM) {
-    // Q_n by its recurrence, b_k = b_(k-1) (k - 3/2) / k
-    double Q[3] = {p2 - p1, 0.0, 0.0};
-    double s1p = y1 / 1.0, s2p = y2;  // sin^(2n-1) at n = 1
-    const double s1 = y1 * y1, s2 = y2 * y2;
-    auto nextQ = [&](int n, double prev) {
-      const double v = -(s2p * c2 - s1p * c1) / (2.0 * n) + (2.0 * n - 1.0) / (2.0 * n) * prev;
-      s1p *= s1, s2p *= s2;
-      return v;
-    };
-    Q[1] = nextQ(1, Q[0]);
-    Q[2] = nextQ(2, Q[1]);
-    double bm = 1.0;  // b_k m^k
-    for (int k = 0; k < 60; ++k) {
-      w.w0 += bm * Q[0];
-      w.w1 += bm * Q[1];
-      w.w2 += bm * Q[2];
+    double Q[kSeriesTerms + 3];
+    sinePowerIntegrals(e, kSeriesTerms + 3, Q);
+    double bm = 1.0;  // b_k m^k, b_k = b_(k-1) (k - 3/2) / k
+    for (int k = 0; k < kSeriesTerms && std::abs(bm) >= kSeriesStop; ++k) {
+      w.w0 += bm * Q[k];
+      w.w1 += bm * Q[k + 1];
+      w.w2 += bm * Q[k + 2];
       bm *= m * (k + 1 - 1.5) / (k + 1);
-      if (std::abs(bm) < 1e-18) break;
-      Q[0] = Q[1], Q[1] = Q[2];
-      Q[2] = nextQ(k + 3, Q[1]);
     }
     return w;
   }
   const double k = std::sqrt(m);
-  const double E = ellE(k, m, p2) - ellE(k, m, p1);
+  ell.E = ellE(k, m, e.p2) - ellE(k, m, e.p1);
+  ell.haveF = mc > 0.0;
+  ell.F = ell.haveF ? incompleteEllipticF(e.p2, mc) - incompleteEllipticF(e.p1, mc) : 0.0;
   // (1 - m) F, 0 at m = 1 (F's log divergence times 0)
-  const double mcF =
-      (mc > 0.0 && m < 1.0) ? mc * (std::ellint_1(k, p2) - std::ellint_1(k, p1)) : 0.0;
-  const double Y1 = y2 * c2 * dl2 - y1 * c1 * dl1;
-  const double Y2 = y2 * y2 * y2 * c2 * dl2 - y1 * y1 * y1 * c1 * dl1;
+  const double mcF = ell.haveF ? mc * ell.F : 0.0;
+  ell.Y1 = e.y2 * e.c2 * e.dl2 - e.y1 * e.c1 * e.dl1;
+  ell.Y2 = e.y2 * e.y2 * e.y2 * e.c2 * e.dl2 - e.y1 * e.y1 * e.y1 * e.c1 * e.dl1;
+  const double E = ell.E, Y1 = ell.Y1, Y2 = ell.Y2;
   w.w0 = E;
   w.w1 = (mcF - (1.0 - 2.0 * m) * E - m * Y1) / (3.0 * m);
   w.w2 = (2.0 * (2.0 * m + 1.0) * mcF + ((8.0 * m - 3.0) * m - 2.0) * E + m * (1.0 - 4.0 * m) * Y1 -
@@ -148,11 +197,45 @@ inline W3 evenIntegrals(double m, double mc, double p1, double p2, double y1, do
   return w;
 }
 
+// f F + r: F's coefficient kept apart (see the file comment).
+struct WithF {
+  double f = 0.0, r = 0.0;
+};
+inline WithF operator+(WithF a, WithF b) {
+  return {a.f + b.f, a.r + b.r};
+}
+inline WithF operator-(WithF a, WithF b) {
+  return {a.f - b.f, a.r - b.r};
+}
+inline WithF operator*(double s, WithF a) {
+  return {s * a.f, s * a.r};
+}
+
+// I_n = ∫ s^n / Delta d phi, n = 0..3.
+inline void inverseIntegrals(double m, const Ends& e, const Elliptic& ell, WithF* I) {
+  if (m <= kSeriesM) {
+    double Q[kSeriesTerms + 4];
+    sinePowerIntegrals(e, kSeriesTerms + 4, Q);
+    double r[4] = {0.0, 0.0, 0.0, 0.0};
+    double cm = 1.0;  // c_k m^k, c_k = c_(k-1) (k - 1/2) / k
+    for (int k = 0; k < kSeriesTerms && std::abs(cm) >= kSeriesStop; ++k) {
+      for (int n = 0; n < 4; ++n) r[n] += cm * Q[k + n];
+      cm *= m * (k + 1 - 0.5) / (k + 1);
+    }
+    for (int n = 0; n < 4; ++n) I[n] = {0.0, r[n]};
+    return;
+  }
+  I[0] = {1.0, 0.0};
+  I[1] = {1.0 / m, -ell.E / m};
+  I[2] = (1.0 / (3.0 * m)) * (WithF{0.0, ell.Y1} - I[0] + 2.0 * (1.0 + m) * I[1]);
+  I[3] = (1.0 / (5.0 * m)) * (WithF{0.0, ell.Y2} - 3.0 * I[1] + 4.0 * (1.0 + m) * I[2]);
+}
+
 }  // namespace arc_detail
 
 // The arc of the circle (o, a) from t1 to t2 > t1, c the ICR.
 inline void addArcMoments(const Vec2& o, double a, double t1, double t2, const Vec2& c,
-                          BoundaryMoments& acc) {
+                          bool withGradient, BoundaryMoments& acc) {
   const Vec2 d = o - c;
   const double D = d.norm();
   const double t0 = D > 0.0 ? std::atan2(d.y(), d.x()) : 0.0;
@@ -176,8 +259,10 @@ inline void addArcMoments(const Vec2& o, double a, double t1, double t2, const V
   const double r = (D - a) / Dp;
   const double mc = r * r;
   const double p1 = 0.5 * th1, p2 = 0.5 * th2;
-  const arc_detail::W3 W = arc_detail::evenIntegrals(m, mc, p1, p2, std::sin(p1), std::cos(p1),
-                                                     y / Dp, std::sin(p2), std::cos(p2), x / Dp);
+  const arc_detail::Ends ends{p1, std::sin(p1), std::cos(p1), y / Dp,
+                              p2, std::sin(p2), std::cos(p2), x / Dp};
+  arc_detail::Elliptic ell;
+  const arc_detail::W3 W = arc_detail::evenIntegrals(m, mc, ends, ell);
   const double L1 = 2.0 * Dp * W.w0;
   const double C1 = 2.0 * Dp * (W.w0 - 2.0 * W.w1);
   const double C2 = 2.0 * Dp * (W.w0 - 4.0 * W.w1 + 4.0 * W.w2);
@@ -193,6 +278,40 @@ inline void addArcMoments(const Vec2& o, double a, double t1, double t2, const V
   acc.N1 += a * Pe;
   acc.M += (a * d) * Pe.transpose() + (a * a) * Pee;
   acc.N3 += a * (rot * Vec2(C3, S3));
+  if (!withGradient) return;
+
+  // c_k = ∫ cos^k / rho, o_k = ∫ sin cos^k / rho (file comment)
+  using arc_detail::WithF;
+  WithF I[4];
+  arc_detail::inverseIntegrals(m, ends, ell, I);
+  const double h = 2.0 / Dp;
+  const WithF c0 = h * I[0], c1 = h * (I[0] - 2.0 * I[1]);
+  const WithF c2 = h * (I[0] - 4.0 * I[1] + 4.0 * I[2]);
+  const WithF c3 = h * (I[0] - 6.0 * I[1] + 12.0 * I[2] - 8.0 * I[3]);
+  const double o0 = -2.0 * du / xy;
+  const double o1 = 2.0 * (-du) * (2 * u1 * x + u1 * y + u2 * x + 2 * u2 * y) / (3.0 * xy * xy);
+  const double o2 =
+      2.0 * (-du) *
+      (u1 * u1 * (8 * x2 + 9 * x * y + 3 * y2) + u1 * u2 * (4 * x2 + 12 * x * y + 4 * y2) +
+       u2 * u2 * (3 * x2 + 9 * x * y + 8 * y2)) /
+      (15.0 * xy * xy * xy);
+  auto value = [&](WithF v, double odd) { return (ell.haveF ? v.f * ell.F : 0.0) + v.r + odd; };
+  const WithF none{};
+  // local Q = a ∫ (r / rho) e^T (a of ds included), U[k] = ∫ (r r^T / rho) e_k (times a below)
+  Mat2 Ql;
+  Ql << a * value(D * c1 + a * c2, 0.0), a * (D * o0 + a * o1), a * a * o1,
+      a * a * value(c0 - c2, 0.0);
+  Mat2 Ul[2];
+  const double cross0 = a * (D * o1 + a * o2);
+  Ul[0] << value(D * D * c1 + 2.0 * a * D * c2 + a * a * c3, 0.0), cross0, cross0,
+      a * a * value(c1 - c3, 0.0);
+  const double cross1 = a * value(D * (c0 - c2) + a * (c1 - c3), 0.0);
+  Ul[1] << value(none, D * D * o0 + 2.0 * a * D * o1 + a * a * o2), cross1, cross1,
+      a * a * (o0 - o2);
+  acc.Q += rot * Ql * rot.transpose();
+  const Mat2 U0 = rot * Ul[0] * rot.transpose(), U1 = rot * Ul[1] * rot.transpose();
+  acc.U[0] += a * (rot(0, 0) * U0 + rot(0, 1) * U1);
+  acc.U[1] += a * (rot(1, 0) * U0 + rot(1, 1) * U1);
 }
 
 }  // namespace patchspin::internal

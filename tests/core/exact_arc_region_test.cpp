@@ -100,7 +100,7 @@ TEST(ExactArcRegionBasis, MatchesBruteForceOracleEverywhere) {
     const Vec3 scale = columnScales(nr.region, nr.rho);
     for (const auto& [label, w] : testDirections(nr.region, nr.rho)) {
       ExactBasis out;
-      exactArcRegionBasis(nr.region, nr.rho, w, out);
+      exactArcRegionBasis(nr.region, nr.rho, w, false, out);
       ASSERT_TRUE(out.F.allFinite()) << nr.name << " / " << label;
       const Mat3 ref = oracleF(nr.region, nr.rho, w);
       const double err = relativeError(out.F, ref, scale);
@@ -117,23 +117,31 @@ TEST(ExactArcRegionBasis, MatchesBruteForceOracleEverywhere) {
 // The cut vanishes: one arc of 2 pi is the disk, whose closed form
 // (exact_disk.cpp: complete elliptic integrals and series) is independent of
 // the boundary moments. Tolerance: both laws are accurate to ~1e-13 of the
-// column scale (their oracle tests), so 1e-12 leaves a margin of 10.
+// column scale (their oracle tests), so 1e-12 leaves a margin of 10; dF as well.
 TEST(ExactArcRegionBasis, WholeDiskMatchesDiskLaw) {
   constexpr double kDiskAgreementTol = 1e-12;
+  // relative to max |dF[k]|: measured 3.4e-11 (the disk law's dF is ~1e-11)
+  constexpr double kDiskJacobianTol = 1e-10;
   const Vec2 o(0.3, -0.2);
   const double R = 0.7, rho = 0.45;
   const Region disk = {BoundaryPiece::arc(o, R, -1.0, -1.0 + 2.0 * M_PI)};
   const Vec3 scale = columnScales(disk, rho);
-  double worst = 0.0;
+  double worst = 0.0, worstJacobian = 0.0;
   for (const auto& [label, w] : testDirections(disk, rho)) {
     ExactBasis arc, ref;
-    exactArcRegionBasis(disk, rho, w, arc);
-    internal::exactDiskBasis(o, R, rho, w, false, ref);
+    exactArcRegionBasis(disk, rho, w, true, arc);
+    internal::exactDiskBasis(o, R, rho, w, true, ref);
     const double err = relativeError(arc.F, ref.F, scale);
     worst = std::max(worst, err);
     EXPECT_LE(err, kDiskAgreementTol) << label;
+    for (int k = 0; k < 3; ++k) {
+      const double size = ref.dF[k].cwiseAbs().maxCoeff();
+      const double jerr = (arc.dF[k] - ref.dF[k]).cwiseAbs().maxCoeff() / size;
+      worstJacobian = std::max(worstJacobian, jerr);
+      EXPECT_LE(jerr, kDiskJacobianTol) << label << " column " << k;
+    }
   }
-  std::printf("worst normwise difference to the disk law: %.3g\n", worst);
+  std::printf("worst normwise difference to the disk law: F %.3g, dF %.3g\n", worst, worstJacobian);
 }
 
 // Against the polygon law on inscribed polygons with n = 256 and 1024
@@ -148,7 +156,7 @@ TEST(ExactArcRegionBasis, AgreesWithFinePolygonsToTheirDiscretisationError) {
     const auto coarse = polygonOf(nr.region, 256), fine = polygonOf(nr.region, 1024);
     for (const auto& [label, w] : testDirections(nr.region, nr.rho)) {
       ExactBasis arc, pc, pf;
-      exactArcRegionBasis(nr.region, nr.rho, w, arc);
+      exactArcRegionBasis(nr.region, nr.rho, w, false, arc);
       internal::exactPolygonBasis(coarse, nr.rho, w, false, pc);
       internal::exactPolygonBasis(fine, nr.rho, w, false, pf);
       const double discretisation = relativeError(pc.F, pf.F, scale);
@@ -159,6 +167,147 @@ TEST(ExactArcRegionBasis, AgreesWithFinePolygonsToTheirDiscretisationError) {
     }
   }
   std::printf("worst |arc - F(1024)| / |F(256) - F(1024)|: %.3g (1/15 expected)\n", worstRatio);
+}
+
+// dF[k] against central differences of F.col(k) in w, Richardson-extrapolated
+// (4 D(h/2) - D(h)) / 3, h = kStep / (1 + max|P|/rho) (the polygon test's
+// scaling). Plain central differences at kStep = 1e-5 were measured at 3e-8:
+// truncation h^2 |F'''| / 6 (|F'''| grows like (rho / w3^2)^3 for ICRs a few
+// sizes out) plus F's own rounding (~5e-13, moments of size kappa^3) / h.
+// Extrapolated, the worst error was 1.7e-9 / 8.5e-10 / 1.75e-9 at kStep =
+// 3e-3 / 1e-3 / 3e-4 (truncation O(h^4) against rounding / h), so kFdTol =
+// 1e-8 of the column scale at 1e-3, the ICR at least kMinIcrClearance from
+// the boundary (F'' is log-singular on it); dF[k] w = 0 to rounding.
+TEST(ExactArcRegionBasis, JacobianMatchesFiniteDifferences) {
+  constexpr double kStep = 1e-3;
+  constexpr double kFdTol = 1e-8;
+  constexpr double kMinIcrClearance = 0.05;
+  constexpr double kEulerTol = 1e-12;
+  auto centralDifference = [](const NamedRegion& nr, const Vec3& w, int j, double h) {
+    ExactBasis plus, minus;
+    Vec3 wp = w, wm = w;
+    wp[j] += h;
+    wm[j] -= h;
+    exactArcRegionBasis(nr.region, nr.rho, wp, false, plus);
+    exactArcRegionBasis(nr.region, nr.rho, wm, false, minus);
+    return Mat3((plus.F - minus.F) / (2 * h));
+  };
+  std::mt19937 rng(2025);
+  std::normal_distribution<double> normal;
+  double worst = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    const std::vector<Vec2> samples = boundarySamples(nr.region, 2000);
+    double rmax = 0.0;
+    for (const Vec2& p : samples) rmax = std::max(rmax, p.norm());
+    int checked = 0;
+    for (int trial = 0; trial < 300 && checked < 30; ++trial) {
+      Vec3 w(normal(rng), normal(rng), normal(rng));
+      if (trial % 3 == 0) w.z() *= 1e-2;  // include the far branch
+      if (trial % 3 == 1) w.z() *= 0.3;   // ICRs a few sizes out
+      w.normalize();
+      const Vec2 c(-nr.rho * w.y() / w.z(), nr.rho * w.x() / w.z());
+      double clearance = INFINITY;
+      for (const Vec2& p : samples) clearance = std::min(clearance, (p - c).norm());
+      if (clearance < kMinIcrClearance) continue;
+      ++checked;
+      const double h = kStep / (1.0 + rmax / nr.rho);
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      for (int j = 0; j < 3; ++j) {
+        const Mat3 fd =
+            (4.0 * centralDifference(nr, w, j, 0.5 * h) - centralDifference(nr, w, j, h)) / 3.0;
+        for (int k = 0; k < 3; ++k) {
+          const double err = (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k];
+          worst = std::max(worst, err);
+          EXPECT_LE(err, kFdTol) << nr.name << " w = " << w.transpose() << " column " << k << " dw"
+                                 << j;
+        }
+      }
+      for (int k = 0; k < 3; ++k)
+        EXPECT_LE((out.dF[k] * w).cwiseAbs().maxCoeff() / scale[k], kEulerTol) << nr.name;
+    }
+    EXPECT_GE(checked, 25) << nr.name;
+  }
+  std::printf("worst dF error against central differences: %.3g\n", worst);
+}
+
+// ICR on the arc, at a corner, on the chord and at the circle's centre (the
+// series side): F is C^1 there, so dF must be finite and match central
+// differences to O(hc log hc) of its own size, hc <= 1e-6 of the radius the
+// ICR's step (as the polygon's JacobianContinuousWithIcrOnBoundary): 1e-4.
+TEST(ExactArcRegionBasis, JacobianContinuousWithIcrOnBoundary) {
+  constexpr double kIcrStep = 1e-6;
+  constexpr double kFdTolSingular = 1e-4;
+  double worst = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const BoundaryPiece& arc = nr.region[0];
+    const double tm = 0.5 * (arc.angle0 + arc.angle1);
+    const Vec2 second = nr.region[1].kind == BoundaryPiece::Kind::Segment
+                            ? Vec2(0.5 * (nr.region[1].a + nr.region[1].b))
+                            : nr.region[1].start();
+    for (const Vec2& c : {onCircle(arc.centre, arc.radius, tm), arc.start(), second,
+                          onCircle(arc.centre, arc.radius, tm + 0.2), Vec2(arc.centre)}) {
+      const Vec3 w = wForIcr(c, nr.rho, 1.0);
+      const double dcdw = nr.rho / std::abs(w.z()) * (1.0 + c.norm() / nr.rho);
+      const double h = kIcrStep * arc.radius / dcdw;
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      double size = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(out.dF[k].allFinite()) << nr.name << " c = " << c.transpose();
+        size = std::max(size, out.dF[k].cwiseAbs().maxCoeff());
+      }
+      for (int j = 0; j < 3; ++j) {
+        ExactBasis plus, minus;
+        Vec3 wp = w, wm = w;
+        wp[j] += h;
+        wm[j] -= h;
+        exactArcRegionBasis(nr.region, nr.rho, wp, false, plus);
+        exactArcRegionBasis(nr.region, nr.rho, wm, false, minus);
+        const Mat3 fd = (plus.F - minus.F) / (2 * h);
+        for (int k = 0; k < 3; ++k) {
+          const double err = (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / size;
+          worst = std::max(worst, err);
+          EXPECT_LE(err, kFdTolSingular)
+              << nr.name << " c = " << c.transpose() << " column " << k << " dw" << j;
+        }
+      }
+    }
+  }
+  std::printf("worst dF error against central differences, ICR on the boundary: %.3g\n", worst);
+}
+
+// dF against the polygon law's Jacobian on inscribed 256- and 1024-gons, as
+// for F (Richardson: the 1024-gon's error ~ 1/15 of their difference; 0.2
+// asserted, plus 1e-12 of |dF| for rounding). ICRs on or next to the
+// boundary are left out: there the polygons' dF differs from the arc's by
+// O(1) near the cut-off vertices, not O(n^-2).
+TEST(ExactArcRegionBasis, JacobianAgreesWithFinePolygons) {
+  double worstRatio = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const auto coarse = polygonOf(nr.region, 256), fine = polygonOf(nr.region, 1024);
+    for (const auto& [label, w] : testDirections(nr.region, nr.rho)) {
+      const bool onBoundary = label.find("ICR") != std::string::npos &&
+                              label.find("out") == std::string::npos &&
+                              label.find("centre") == std::string::npos;
+      if (onBoundary) continue;
+      ExactBasis arc, pc, pf;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, arc);
+      internal::exactPolygonBasis(coarse, nr.rho, w, true, pc);
+      internal::exactPolygonBasis(fine, nr.rho, w, true, pf);
+      for (int k = 0; k < 3; ++k) {
+        const double size = pf.dF[k].cwiseAbs().maxCoeff();
+        const double discretisation = (pc.dF[k] - pf.dF[k]).cwiseAbs().maxCoeff();
+        const double err = (arc.dF[k] - pf.dF[k]).cwiseAbs().maxCoeff();
+        EXPECT_LE(err, 0.2 * discretisation + 1e-12 * size)
+            << nr.name << " / " << label << " column " << k
+            << ": |dF(256) - dF(1024)| = " << discretisation;
+        if (discretisation > 0.0) worstRatio = std::max(worstRatio, err / discretisation);
+      }
+    }
+  }
+  std::printf("worst |dF - dF(1024)| / |dF(256) - dF(1024)|: %.3g (1/15 expected)\n", worstRatio);
 }
 
 }  // namespace

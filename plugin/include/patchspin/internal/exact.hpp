@@ -79,9 +79,9 @@ struct BoundaryPiece {
 };
 
 // Convex region bounded by segments and circular arcs (a disk segment, a
-// lens, a disk cut by lines), in the patch frame: the same F as
-// exactPolygonBasis (dF left zero).
+// lens, a disk cut by lines), in the patch frame: the same F and dF as
+// exactPolygonBasis.
 void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
-                         ExactBasis& out);
+                         bool wantJacobian, ExactBasis& out);
 
 }  // namespace patchspin::internal
