@@ -48,6 +48,7 @@ constexpr double kFarRatio = 8.0;
 constexpr double kClosureRel = 1e-9;
 constexpr double kDeltaZeroRel = 1e-15;
 constexpr int kMaxOrder = 24;
+constexpr int kArcOrder = 10;
 
 [[noreturn]] void fail(const std::string& what) {
   throw Error("exactArcRegionBasis: " + what);
@@ -98,12 +99,13 @@ BoundaryPiece shifted(const BoundaryPiece& p, const Vec2& g) {
 //   dV/dc_j = -phi_c Q(j, :) - (U[k](., j).q)_k - q tr_j / 3
 //   dtorque/dc_j = V_j + c.dV/dc_j + q_j tr(M)/3 + phi_c tr_j/3 - q.M(j, :)
 // (the q_j N1 of d phi_c/dc cancels), then dc'/dw' = (rho/w3) [[0, -1, w2/w3], [1, 0, -w1/w3]].
-void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double rho, double size,
-                bool wantJacobian, ExactBasis& acc) {
+void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Vec3& wl, double rho,
+                double size, bool wantJacobian, ExactBasis& acc) {
   const double sgn = wl.z() > 0.0 ? 1.0 : -1.0;
   const Vec2 c(-rho * wl.y() / wl.z(), rho * wl.x() / wl.z());
   BoundaryMoments mom;
-  for (const BoundaryPiece& p : pieces) {
+  for (const BoundaryPiece& piece : pieces) {
+    const BoundaryPiece p = shifted(piece, g);
     if (p.kind == BoundaryPiece::Kind::Segment) {
       addSegmentMoments(p.a, p.b, c, kDeltaZeroRel * size, wantJacobian, mom);
     } else {
@@ -137,20 +139,21 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double
 
 // Far branch: fan rule of order n from the g-frame origin; with the
 // Jacobian dk/dw' = m m^T / |v|, m = (-u_y, u_x, (P.u)/rho) (exact_polygon.cpp).
-void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double rho, int n,
-               bool wantJacobian, ExactBasis& acc) {
+void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Vec3& wl, double rho,
+               int n, bool wantJacobian, ExactBasis& acc) {
   const GaussTables& gt = gaussTables();
   Mat3& F = acc.F;
   const double inv = 1.0 / rho;
-  auto addSpan = [&](auto&& point, auto&& tangent, double length) {
-    for (int i = 0; i < n; ++i) {
-      const double s = gt.x[n][i];
+  // order along the piece: n, at least kArcOrder on arcs (trigonometric in t)
+  auto addSpan = [&](auto&& point, auto&& tangent, double length, int nt) {
+    for (int i = 0; i < nt; ++i) {
+      const double s = gt.x[nt][i];
       const Vec2 x = point(s), dx = tangent(s) * length;
       const double jac = x.x() * dx.y() - x.y() * dx.x();
       for (int j = 0; j < n; ++j) {
         const double l = gt.x[n][j];
         const Vec2 P = l * x;
-        const double wt = gt.w[n][i] * gt.w[n][j] * l * jac;
+        const double wt = gt.w[nt][i] * gt.w[n][j] * l * jac;
         const double vx = wl.x() - wl.z() * P.y() * inv, vy = wl.y() + wl.z() * P.x() * inv;
         const double invV = 1.0 / std::sqrt(vx * vx + vy * vy);
         const double ux = vx * invV, uy = vy * invV;
@@ -165,10 +168,11 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double 
       }
     }
   };
-  for (const BoundaryPiece& p : pieces) {
+  for (const BoundaryPiece& piece : pieces) {
+    const BoundaryPiece p = shifted(piece, g);
     if (p.kind == BoundaryPiece::Kind::Segment) {
       addSpan([&](double s) -> Vec2 { return p.a + s * (p.b - p.a); },
-              [&](double) -> Vec2 { return p.b - p.a; }, 1.0);
+              [&](double) -> Vec2 { return p.b - p.a; }, 1.0, n);
       continue;
     }
     const double span = p.angle1 - p.angle0;
@@ -183,23 +187,24 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec3& wl, double 
           [&](double s) -> Vec2 {
             return p.radius * Vec2(-std::sin(t0 + s * h), std::cos(t0 + s * h));
           },
-          h);
+          h, std::max(n, kArcOrder));
     }
   }
 }
 
 // Order of the far rule for the ICR at kappa region radii (kappa^2 given;
-// +inf for translation), the polygon's estimate beta^(3 - 2n) with K = kappa - 1
-// plus two orders for the arcs' trigonometric parametrisation; one more
-// polynomial degree with the Jacobian.
+// +inf for translation), the polygon's estimate beta^(3 - 2n) with
+// K = kappa - 1; one more polynomial degree with the Jacobian. Along arcs at
+// least kArcOrder (the area element is trigonometric in t; order 6 lost
+// 1.6e-10 on the thin segment's arc, whose area is 1/10 of a^2 times its span).
 int farOrder(double kappaSq, bool jacobian) {
   constexpr double kTol = 1e-13;
-  if (!std::isfinite(kappaSq)) return 8;
+  if (!std::isfinite(kappaSq)) return 3;       // translation: polynomial of degree <= 3 in l
   const double degree = jacobian ? 4.0 : 3.0;  // the Jacobian's integrand: one more
   const double K = std::sqrt(kappaSq) - 1.0;
   const double beta = K + std::sqrt(K * K - 1.0);
-  const double n = 0.5 * degree + 0.5 * std::log(1.0 / kTol) / std::log(beta) + 2.0;
-  return std::clamp(static_cast<int>(std::ceil(n)), 8, kMaxOrder);
+  const double n = 0.5 * degree + 0.5 * std::log(1.0 / kTol) / std::log(beta);
+  return std::clamp(static_cast<int>(std::ceil(n)), 3, kMaxOrder);
 }
 
 }  // namespace
@@ -243,9 +248,6 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
     if ((boundary[i].end() - boundary[(i + 1) % N].start()).norm() > kClosureRel * size)
       fail("piece " + std::to_string(i) + " does not end where the next starts");
   }
-  std::vector<BoundaryPiece> local;
-  local.reserve(N);
-  for (const BoundaryPiece& p : boundary) local.push_back(shifted(p, g));
 
   Mat3 S = Mat3::Identity();
   S(0, 2) = -g.y() / rho;
@@ -258,9 +260,9 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   ExactBasis l;  // g-frame
   if (far) {
     const double kappaSq = w3Sq > 0.0 ? planarSq / (size * size * w3Sq) : INFINITY;
-    farBranch(local, wl, rho, farOrder(kappaSq, wantJacobian), wantJacobian, l);
+    farBranch(boundary, g, wl, rho, farOrder(kappaSq, wantJacobian), wantJacobian, l);
   } else {
-    nearBranch(local, wl, rho, size, wantJacobian, l);
+    nearBranch(boundary, g, wl, rho, size, wantJacobian, l);
   }
   // back to O (exact_polygon.cpp): T = S^T, phi = (1, gx + x', gy + y'),
   // dF[k] = T dF'[k] S / wScale

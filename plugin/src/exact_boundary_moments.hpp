@@ -30,10 +30,10 @@
 //      L1 = 2(D+a) W0,  C1 = 2(D+a)(W0 - 2W1),  C2 = 2(D+a)(W0 - 4W1 + 4W2),
 //      C3 = 2(D+a)^3 (V0 - 2V1),  V_j = ∫ s^j Delta^3 = W_j - m W_{j+1}.
 //    Closed form (F, E incomplete elliptic integrals of the first and second
-//    kind at amplitude phi, parameter m: F by Carlson's R_F from 1 - m
+//    kind at amplitude phi, parameter m: Carlson's R_F, R_D from 1 - m
 //    (elliptic.hpp; std::ellint_1's k = sqrt(m) rounds to 1 within 1e-8 of
-//    the circle, and dF lost 1e-8 there), E by std::ellint_2; Y_n = [sin^(2n-1) phi cos phi
-//    Delta]):
+//    the circle, and dF lost 1e-8 there; std::ellint_2 cost 220 ns a call);
+//    Y_n = [sin^(2n-1) phi cos phi Delta]):
 //      W0 = E,  W1 = [(1-m) F - (1-2m) E - m Y1] / (3m),
 //      W2 = [2(1-m)(2m+1) F + (8m^2 - 3m - 2) E + m(1 - 4m) Y1 - 3m^2 Y2] / (15 m^2),
 //    from d/dphi(sin^(2n-1) cos Delta) = [(2n-1) s^(n-1) - 2n(1+m) s^n
@@ -128,14 +128,10 @@ struct W3 {
   double w0 = 0.0, w1 = 0.0, w2 = 0.0;
 };
 
-// E(phi | m) for m = 1 (k = 1): E = 2n + sin(phi - n pi), n = round(phi/pi)
-// (libstdc++'s ellint_2 rejects k = 1 at phi = pi/2 + n pi).
-inline double ellE(double k, double m, double phi) {
-  if (m >= 1.0) {
-    const double n = std::nearbyint(phi / M_PI);
-    return 2.0 * n + std::sin(phi - n * M_PI);
-  }
-  return std::ellint_2(k, phi);
+// E(phi | 1) = 2n + sin(phi - n pi), n = round(phi / pi) (m = 1: Delta = |cos|).
+inline double ellE(double phi) {
+  const double n = std::nearbyint(phi / M_PI);
+  return 2.0 * n + std::sin(phi - n * M_PI);
 }
 
 // The arc's ends in phi: amplitude p, sin y, cos c, Delta dl.
@@ -180,10 +176,14 @@ inline W3 evenIntegrals(double m, double mc, const Ends& e, Elliptic& ell) {
     }
     return w;
   }
-  const double k = std::sqrt(m);
-  ell.E = ellE(k, m, e.p2) - ellE(k, m, e.p1);
   ell.haveF = mc > 0.0;
-  ell.F = ell.haveF ? incompleteEllipticF(e.p2, mc) - incompleteEllipticF(e.p1, mc) : 0.0;
+  if (ell.haveF) {
+    const EllipticFE a = incompleteEllipticFE(e.p1, m, mc), b = incompleteEllipticFE(e.p2, m, mc);
+    ell.F = b.F - a.F;
+    ell.E = b.E - a.E;
+  } else {
+    ell.E = ellE(e.p2) - ellE(e.p1);
+  }
   // (1 - m) F, 0 at m = 1 (F's log divergence times 0)
   const double mcF = ell.haveF ? mc * ell.F : 0.0;
   ell.Y1 = e.y2 * e.c2 * e.dl2 - e.y1 * e.c1 * e.dl1;

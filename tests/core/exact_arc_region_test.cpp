@@ -83,6 +83,8 @@ std::vector<std::pair<std::string, Vec3>> testDirections(const Region& region, d
   ws.push_back({"ICR 3 radii out", wForIcr(onCircle(o, 3.0 * a, tm), rho, 1.0)});
   ws.push_back({"ICR 7.9 radii out", wForIcr(onCircle(o, 7.9 * a, tm + 1.0), rho, 1.0)});
   ws.push_back({"ICR 9 radii out", wForIcr(onCircle(o, 9.0 * a, tm + 1.0), rho, 1.0)});
+  ws.push_back({"ICR 15.9 radii out", wForIcr(onCircle(o, 15.9 * a, tm + 2.0), rho, 1.0)});
+  ws.push_back({"ICR 17 radii out", wForIcr(onCircle(o, 17.0 * a, tm + 2.0), rho, -1.0)});
   ws.push_back({"ICR 30 radii out", wForIcr(onCircle(o, 30.0 * a, tm), rho, -1.0)});
   std::mt19937 rng(2026);
   std::normal_distribution<double> normal;
