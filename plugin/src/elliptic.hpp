@@ -131,4 +131,21 @@ inline EllipticFE incompleteEllipticFE(double phi, double m, double mc) {
   return out;
 }
 
+// F(phi2 | m) - F(phi1 | m) and the same for E: as incompleteEllipticFE at
+// both ends, with the complete integrals once, and only when the ends lie
+// in different periods (n2 != n1).
+inline EllipticFE ellipticFEDifference(double phi1, double phi2, double m, double mc) {
+  const double pi = 3.14159265358979323846;
+  const double n1 = std::nearbyint(phi1 / pi), n2 = std::nearbyint(phi2 / pi);
+  const EllipticFE a = incompleteEllipticFE(phi1 - n1 * pi, m, mc);
+  const EllipticFE b = incompleteEllipticFE(phi2 - n2 * pi, m, mc);
+  EllipticFE out{b.F - a.F, b.E - a.E};
+  if (n2 != n1) {
+    const double K = carlsonRF(0.0, mc, 1.0);
+    out.F += 2.0 * (n2 - n1) * K;
+    out.E += 2.0 * (n2 - n1) * (K - (m / 3.0) * carlsonRD(0.0, mc, 1.0));
+  }
+  return out;
+}
+
 }  // namespace patchspin::internal

@@ -178,9 +178,9 @@ inline W3 evenIntegrals(double m, double mc, const Ends& e, Elliptic& ell) {
   }
   ell.haveF = mc > 0.0;
   if (ell.haveF) {
-    const EllipticFE a = incompleteEllipticFE(e.p1, m, mc), b = incompleteEllipticFE(e.p2, m, mc);
-    ell.F = b.F - a.F;
-    ell.E = b.E - a.E;
+    const EllipticFE d = ellipticFEDifference(e.p1, e.p2, m, mc);
+    ell.F = d.F;
+    ell.E = d.E;
   } else {
     ell.E = ellE(e.p2) - ellE(e.p1);
   }
