@@ -5,13 +5,15 @@
 // the disk law on the uncut disk, value alone and with the Jacobian.
 // Shapes: a coin of radius 0.5 overhanging a box edge (disk cut at 0.2 from
 // its centre) and a lens of two such coins 0.6 apart. Directions: a fixed
-// seeded set of 1024 w uniform on the sphere; rho = 0.35 (about the mean
-// distance from the centre) for every shape.
+// seeded set of 1024 w uniform on the sphere (and, for the arc law, sets
+// with only near-branch or only far-branch ICRs); rho = 0.35 (about the
+// mean distance from the centre) for every shape.
 #include <patchspin/internal/exact.hpp>
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -65,18 +67,26 @@ std::vector<Vec2> polygonOf(const std::vector<BoundaryPiece>& region, int n) {
   return poly;
 }
 
-std::vector<Vec3> directions() {
+// 0: uniform on the sphere; 1 / 2: only ICRs within / beyond 8 coin radii of
+// the coin's centre (about the law's branch switch at 8 region radii).
+std::vector<Vec3> directions(int sample = 0) {
   std::mt19937 rng(20261129);
   std::normal_distribution<double> normal;
   std::vector<Vec3> ws;
-  for (int i = 0; i < kDirections; ++i)
-    ws.push_back(Vec3(normal(rng), normal(rng), normal(rng)).normalized());
+  while (static_cast<int>(ws.size()) < kDirections) {
+    Vec3 w(normal(rng), normal(rng), normal(rng));
+    if (sample == 2) w.z() *= 0.05;
+    w.normalize();
+    const bool far = kRho * std::hypot(w.x(), w.y()) > 8.0 * kRadius * std::abs(w.z());
+    if ((sample == 1 && far) || (sample == 2 && !far)) continue;
+    ws.push_back(w);
+  }
   return ws;
 }
 
 template <class Law>
-void run(benchmark::State& state, Law&& law) {
-  const std::vector<Vec3> ws = directions();
+void run(benchmark::State& state, Law&& law, int sample = 0) {
+  const std::vector<Vec3> ws = directions(sample);
   const bool jacobian = state.range(0) != 0;
   ExactBasis out;
   std::size_t i = 0;
@@ -101,6 +111,20 @@ void BM_ArcRegionLaw(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_ArcRegionLaw)->ArgsProduct({{0, 1}, {0, 1}})->ArgNames({"jacobian", "lens"});
+
+// range(2): 1 = near-branch directions only, 2 = far only
+void BM_ArcRegionLawByBranch(benchmark::State& state) {
+  const auto& region = shape(static_cast<int>(state.range(1)));
+  run(
+      state,
+      [&](const Vec3& w, bool jac, ExactBasis& out) {
+        patchspin::internal::exactArcRegionBasis(region, kRho, w, jac, out);
+      },
+      static_cast<int>(state.range(2)));
+}
+BENCHMARK(BM_ArcRegionLawByBranch)
+    ->ArgsProduct({{0, 1}, {0, 1}, {1, 2}})
+    ->ArgNames({"jacobian", "lens", "branch"});
 
 // range(2): vertices of the polygon
 void BM_PolygonLawOnCutDisk(benchmark::State& state) {
