@@ -312,5 +312,34 @@ TEST(ExactArcRegionBasis, JacobianAgreesWithFinePolygons) {
   std::printf("worst |dF - dF(1024)| / |dF(256) - dF(1024)|: %.3g (1/15 expected)\n", worstRatio);
 }
 
+// The cut shrinks to nothing: a disk segment cut at h = R (1 - eps) differs
+// from the whole disk by the cap of area ~ (4 sqrt(2) / 3) R^2 eps^(3/2), whose
+// contribution to every column is at most its area times the column scale per
+// unit area (|k| <= 1 + |P| / rho, |phi| <= max|phi|). Asserted: the
+// normwise difference to the disk law is within 2 cap areas / disk area, plus
+// 1e-12 for the two laws' rounding (a short chord, an arc of almost 2 pi).
+TEST(ExactArcRegionBasis, VanishingCutApproachesDiskLaw) {
+  const Vec2 o(0.3, -0.2);
+  const double R = 0.7, rho = 0.45;
+  for (double eps : {1e-4, 1e-8, 1e-12}) {
+    const Region segment = diskSegment(o, R, 0.7, R * (1.0 - eps));
+    const Region disk = {BoundaryPiece::arc(o, R, 0.0, 2.0 * M_PI)};
+    const Vec3 scale = columnScales(disk, rho);
+    const double cap = 4.0 * std::sqrt(2.0) / 3.0 * R * R * std::pow(eps, 1.5);
+    const double bound = 2.0 * cap / (M_PI * R * R) + 1e-12;
+    double worst = 0.0;
+    for (const auto& [label, w] : testDirections(segment, rho)) {
+      ExactBasis arc, ref;
+      exactArcRegionBasis(segment, rho, w, false, arc);
+      internal::exactDiskBasis(o, R, rho, w, false, ref);
+      const double err = relativeError(arc.F, ref.F, scale);
+      worst = std::max(worst, err);
+      EXPECT_LE(err, bound) << "eps = " << eps << " / " << label;
+    }
+    std::printf("cut at R (1 - %.0e): worst difference to the disk law %.3g (bound %.3g)\n", eps,
+                worst, bound);
+  }
+}
+
 }  // namespace
 }  // namespace patchspin
