@@ -341,5 +341,40 @@ TEST(ExactArcRegionBasis, VanishingCutApproachesDiskLaw) {
   }
 }
 
+// Never NaN: a dense deterministic sweep of w with extreme component
+// magnitudes (10^-300 .. 1), and ICRs placed exactly on the circle, at its
+// centre and at the arc's ends; F bounded by its column scale (|k| <= 1 +
+// |P| / rho), dF finite.
+TEST(ExactArcRegionBasis, FiniteAndBoundedEverywhere) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> expo(-300, 0);
+  for (const NamedRegion& nr : testRegions()) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    std::vector<Vec3> ws;
+    for (int i = 0; i < 400; ++i) {
+      Vec3 w(normal(rng), normal(rng), normal(rng));
+      w[i % 3] *= std::pow(10.0, expo(rng));
+      ws.push_back(w);
+    }
+    const BoundaryPiece& arc = nr.region[0];
+    for (int i = 0; i <= 64; ++i) {
+      const double t = arc.angle0 + (arc.angle1 - arc.angle0) * i / 64.0;
+      ws.push_back(wForIcr(onCircle(arc.centre, arc.radius, t), nr.rho, i % 2 ? 1.0 : -1.0));
+    }
+    ws.push_back(wForIcr(arc.centre, nr.rho, 1.0));
+    ws.push_back(wForIcr(arc.end(), nr.rho, 1.0));
+    for (const Vec3& w : ws) {
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(out.F.col(k).allFinite() && out.dF[k].allFinite())
+            << nr.name << " w = " << w.transpose();
+        EXPECT_LE(out.F.col(k).cwiseAbs().maxCoeff(), scale[k] * (1.0 + 1e-12)) << nr.name;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace patchspin
