@@ -45,7 +45,7 @@ std::vector<NamedRegion> testRegions() {
 }
 
 // Directions at the special places of a region: its first piece is an arc
-// (centre o, radius a), its second the chord or the other arc.
+// (centre o, radius a), its second (if any) the chord or the other arc.
 std::vector<std::pair<std::string, Vec3>> testDirections(const Region& region, double rho) {
   std::vector<std::pair<std::string, Vec3>> ws;
   ws.push_back({"pure spin +", Vec3(0, 0, 1)});
@@ -62,10 +62,10 @@ std::vector<std::pair<std::string, Vec3>> testDirections(const Region& region, d
   const double a = arc.radius;
   const double tm = 0.5 * (arc.angle0 + arc.angle1);
   const Vec2 corner = arc.start(), corner2 = arc.end();
-  const Vec2 mid2 = region[1].kind == BoundaryPiece::Kind::Segment
-                        ? Vec2(0.5 * (region[1].a + region[1].b))
-                        : onCircle(region[1].centre, region[1].radius,
-                                   0.5 * (region[1].angle0 + region[1].angle1));
+  const BoundaryPiece& next = region[1 % region.size()];  // the arc itself for a whole disk
+  const Vec2 mid2 = next.kind == BoundaryPiece::Kind::Segment
+                        ? Vec2(0.5 * (next.a + next.b))
+                        : onCircle(next.centre, next.radius, 0.5 * (next.angle0 + next.angle1));
   ws.push_back({"ICR at corner", wForIcr(corner, rho, 1.0)});
   ws.push_back({"ICR at other corner, spin -", wForIcr(corner2, rho, -1.0)});
   ws.push_back({"ICR on arc", wForIcr(onCircle(o, a, tm), rho, 1.0)});
