@@ -113,32 +113,28 @@ struct EllipticFE {
 // shared by both (DLMF 19.25.5, 19.25.7):
 //   F = s R_F(c^2, d^2, 1),  E = F - (m/3) s^3 R_D(c^2, d^2, 1)
 // on [-pi/2, pi/2] (s = sin, c = cos, d^2 = c^2 + mc s^2), plus 2n times the
-// complete K = R_F(0, mc, 1), E = K - (m/3) R_D(0, mc, 1) beyond.
-inline EllipticFE incompleteEllipticFE(double phi, double m, double mc) {
-  const double pi = 3.14159265358979323846;
-  const double n = std::nearbyint(phi / pi);
-  const double r = phi - n * pi;
-  const double s = std::sin(r), c = std::cos(r);
+// complete K = R_F(0, mc, 1), E = K - (m/3) R_D(0, mc, 1) beyond (phi in
+// period n).
+// On [-pi/2, pi/2], from s = sin phi, c = cos phi.
+inline EllipticFE reducedEllipticFE(double s, double c, double m, double mc) {
   const double c2 = c * c, d2 = c2 + mc * s * s;
   EllipticFE out;
   out.F = s * carlsonRF(c2, d2, 1.0);
   out.E = out.F - (m / 3.0) * s * s * s * carlsonRD(c2, d2, 1.0);
-  if (n != 0.0) {
-    const double K = carlsonRF(0.0, mc, 1.0);
-    out.F += 2.0 * n * K;
-    out.E += 2.0 * n * (K - (m / 3.0) * carlsonRD(0.0, mc, 1.0));
-  }
   return out;
 }
 
-// F(phi2 | m) - F(phi1 | m) and the same for E: as incompleteEllipticFE at
-// both ends, with the complete integrals once, and only when the ends lie
-// in different periods (n2 != n1).
-inline EllipticFE ellipticFEDifference(double phi1, double phi2, double m, double mc) {
+// F(phi2 | m) - F(phi1 | m) and the same for E, given the sines and cosines
+// of the amplitudes (phi - n pi has sin, cos = (-1)^n (sin, cos) phi); the
+// complete integrals only when the ends lie in different periods (n2 != n1).
+inline EllipticFE ellipticFEDifference(double phi1, double s1, double c1, double phi2, double s2,
+                                       double c2, double m, double mc) {
   const double pi = 3.14159265358979323846;
   const double n1 = std::nearbyint(phi1 / pi), n2 = std::nearbyint(phi2 / pi);
-  const EllipticFE a = incompleteEllipticFE(phi1 - n1 * pi, m, mc);
-  const EllipticFE b = incompleteEllipticFE(phi2 - n2 * pi, m, mc);
+  const double f1 = std::fmod(n1, 2.0) == 0.0 ? 1.0 : -1.0;
+  const double f2 = std::fmod(n2, 2.0) == 0.0 ? 1.0 : -1.0;
+  const EllipticFE a = reducedEllipticFE(f1 * s1, f1 * c1, m, mc);
+  const EllipticFE b = reducedEllipticFE(f2 * s2, f2 * c2, m, mc);
   EllipticFE out{b.F - a.F, b.E - a.E};
   if (n2 != n1) {
     const double K = carlsonRF(0.0, mc, 1.0);

@@ -178,7 +178,7 @@ inline W3 evenIntegrals(double m, double mc, const Ends& e, Elliptic& ell) {
   }
   ell.haveF = mc > 0.0;
   if (ell.haveF) {
-    const EllipticFE d = ellipticFEDifference(e.p1, e.p2, m, mc);
+    const EllipticFE d = ellipticFEDifference(e.p1, e.y1, e.c1, e.p2, e.y2, e.c2, m, mc);
     ell.F = d.F;
     ell.E = d.E;
   } else {
@@ -239,11 +239,13 @@ inline void addArcMoments(const Vec2& o, double a, double t1, double t2, const V
   const Vec2 d = o - c;
   const double D = d.norm();
   const double t0 = D > 0.0 ? std::atan2(d.y(), d.x()) : 0.0;
+  const Vec2 dHat = D > 0.0 ? Vec2(d / D) : Vec2(1.0, 0.0);  // (cos t0, sin t0)
   const double th1 = t1 - t0, th2 = t2 - t0;
   // end distances, directly (accurate also when c is on the arc)
-  const double x = (o + a * Vec2(std::cos(t2), std::sin(t2)) - c).norm();
-  const double y = (o + a * Vec2(std::cos(t1), std::sin(t1)) - c).norm();
-  const double u1 = std::cos(th1), u2 = std::cos(th2);
+  const Vec2 e1(std::cos(t1), std::sin(t1)), e2(std::cos(t2), std::sin(t2));
+  const double x = (o + a * e2 - c).norm();
+  const double y = (o + a * e1 - c).norm();
+  const double u1 = e1.dot(dHat), u2 = e2.dot(dHat);  // cos theta at the ends
   const double du = -2.0 * std::sin(0.5 * (th1 + th2)) * std::sin(0.5 * (th2 - th1));  // u2 - u1
   const double xy = x + y;
   const double S1 = -(2.0 / 3.0) * du * (x * x + x * y + y * y) / xy;
@@ -270,7 +272,7 @@ inline void addArcMoments(const Vec2& o, double a, double t1, double t2, const V
   const double C3 = 2.0 * Dp * Dp * Dp * (V0 - 2.0 * V1);
 
   Mat2 rot;
-  rot << std::cos(t0), -std::sin(t0), std::sin(t0), std::cos(t0);
+  rot << dHat.x(), -dHat.y(), dHat.y(), dHat.x();
   const Vec2 Pe = rot * Vec2(C1, S1);
   Mat2 local;
   local << C2, SC, SC, L1 - C2;
