@@ -1,0 +1,380 @@
+// The exact model, Eq. (16), on regions bounded by segments and circular arcs
+// (internal::exactArcRegionBasis): against the brute-force oracle
+// (tests/support/exact_arc_oracle.hpp), against exactDiskBasis for an uncut
+// disk, and against exactPolygonBasis on fine inscribed polygons.
+#include <patchspin/internal/exact.hpp>
+
+#include <gtest/gtest.h>
+
+#include "exact_arc_oracle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace patchspin {
+namespace {
+
+using internal::BoundaryPiece;
+using internal::exactArcRegionBasis;
+using internal::ExactBasis;
+using namespace testing::exact_arc;
+using testing::exact_polygon::kContractTol;
+using testing::exact_polygon::relativeError;
+using testing::exact_polygon::wForIcr;
+
+struct NamedRegion {
+  std::string name;
+  Region region;
+  double rho;
+};
+
+std::vector<NamedRegion> testRegions() {
+  const Vec2 o(0.1, -0.05);
+  return {
+      {"disk segment, more than half", diskSegment(o, 0.6, 0.4, 0.25), 0.4},
+      {"disk segment, less than half", diskSegment(o, 0.6, 2.0, -0.3), 0.35},
+      {"disk segment, O outside", diskSegment(Vec2(1.2, 0.7), 0.5, -1.0, 0.1), 0.5},
+      {"thin disk segment", diskSegment(o, 0.6, 1.0, -0.5), 0.3},
+      {"lens, equal radii", lens(Vec2(-0.3, 0.0), 0.5, Vec2(0.3, 0.1), 0.5), 0.4},
+      {"lens, unequal radii", lens(Vec2(0.0, -0.2), 0.7, Vec2(0.5, 0.4), 0.4), 0.3},
+  };
+}
+
+// Directions at the special places of a region: its first piece is an arc
+// (centre o, radius a), its second (if any) the chord or the other arc.
+std::vector<std::pair<std::string, Vec3>> testDirections(const Region& region, double rho) {
+  std::vector<std::pair<std::string, Vec3>> ws;
+  ws.push_back({"pure spin +", Vec3(0, 0, 1)});
+  ws.push_back({"pure spin -", Vec3(0, 0, -1)});
+  ws.push_back({"translation x", Vec3(1, 0, 0)});
+  ws.push_back({"translation oblique", Vec3(-0.6, 0.8, 0)});
+  const Vec2 dir(0.8, -0.6);
+  for (double w3 : {1e-3, 1e-6, 1e-9, -1e-9}) {
+    const double s = std::sqrt(1.0 - w3 * w3);
+    ws.push_back({"w3 = " + std::to_string(w3), Vec3(s * dir.x(), s * dir.y(), w3)});
+  }
+  const BoundaryPiece& arc = region[0];
+  const Vec2 o = arc.centre;
+  const double a = arc.radius;
+  const double tm = 0.5 * (arc.angle0 + arc.angle1);
+  const Vec2 corner = arc.start(), corner2 = arc.end();
+  const BoundaryPiece& next = region[1 % region.size()];  // the arc itself for a whole disk
+  const Vec2 mid2 = next.kind == BoundaryPiece::Kind::Segment
+                        ? Vec2(0.5 * (next.a + next.b))
+                        : onCircle(next.centre, next.radius, 0.5 * (next.angle0 + next.angle1));
+  ws.push_back({"ICR at corner", wForIcr(corner, rho, 1.0)});
+  ws.push_back({"ICR at other corner, spin -", wForIcr(corner2, rho, -1.0)});
+  ws.push_back({"ICR on arc", wForIcr(onCircle(o, a, tm), rho, 1.0)});
+  ws.push_back({"ICR on arc near corner", wForIcr(onCircle(o, a, arc.angle0 + 1e-3), rho, -1.0)});
+  ws.push_back({"ICR just inside arc", wForIcr(onCircle(o, a * (1.0 - 1e-9), tm + 0.3), rho, 1.0)});
+  ws.push_back(
+      {"ICR just outside arc", wForIcr(onCircle(o, a * (1.0 + 1e-9), tm - 0.3), rho, 1.0)});
+  ws.push_back(
+      {"ICR on the circle off the arc", wForIcr(onCircle(o, a, arc.angle0 - 0.2), rho, 1.0)});
+  ws.push_back({"ICR on the second piece", wForIcr(mid2, rho, 1.0)});
+  ws.push_back({"ICR at the circle's centre", wForIcr(o, rho, 1.0)});
+  // m = 4 a D / (D + a)^2 = 0.1 (series / closed-form switch) at D = 0.02633 a
+  ws.push_back({"ICR near centre, series side", wForIcr(o + 0.0263 * a * dir, rho, 1.0)});
+  ws.push_back({"ICR near centre, elliptic side", wForIcr(o + 0.0264 * a * dir, rho, -1.0)});
+  ws.push_back({"ICR 3 radii out", wForIcr(onCircle(o, 3.0 * a, tm), rho, 1.0)});
+  ws.push_back({"ICR 7.9 radii out", wForIcr(onCircle(o, 7.9 * a, tm + 1.0), rho, 1.0)});
+  ws.push_back({"ICR 9 radii out", wForIcr(onCircle(o, 9.0 * a, tm + 1.0), rho, 1.0)});
+  ws.push_back({"ICR 15.9 radii out", wForIcr(onCircle(o, 15.9 * a, tm + 2.0), rho, 1.0)});
+  ws.push_back({"ICR 17 radii out", wForIcr(onCircle(o, 17.0 * a, tm + 2.0), rho, -1.0)});
+  ws.push_back({"ICR 30 radii out", wForIcr(onCircle(o, 30.0 * a, tm), rho, -1.0)});
+  std::mt19937 rng(2026);
+  std::normal_distribution<double> normal;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 w(normal(rng), normal(rng), normal(rng));
+    ws.push_back({"random " + std::to_string(i), w.normalized()});
+  }
+  return ws;
+}
+
+TEST(ExactArcRegionBasis, MatchesBruteForceOracleEverywhere) {
+  double worst = 0.0;
+  testing::exact_polygon::gOracleCapped = 0;
+  for (const NamedRegion& nr : testRegions()) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    for (const auto& [label, w] : testDirections(nr.region, nr.rho)) {
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, false, out);
+      ASSERT_TRUE(out.F.allFinite()) << nr.name << " / " << label;
+      const Mat3 ref = oracleF(nr.region, nr.rho, w);
+      const double err = relativeError(out.F, ref, scale);
+      worst = std::max(worst, err);
+      EXPECT_LE(err, kContractTol) << nr.name << " / " << label << "\nF =\n"
+                                   << out.F << "\noracle =\n"
+                                   << ref;
+    }
+  }
+  EXPECT_EQ(testing::exact_polygon::gOracleCapped, 0);
+  std::printf("worst normwise error against the oracle: %.3g\n", worst);
+}
+
+// The cut vanishes: one arc of 2 pi is the disk, whose closed form
+// (exact_disk.cpp: complete elliptic integrals and series) is independent of
+// the boundary moments. Tolerance: both laws are accurate to ~1e-13 of the
+// column scale (their oracle tests), so 1e-12 leaves a margin of 10; dF as well.
+TEST(ExactArcRegionBasis, WholeDiskMatchesDiskLaw) {
+  constexpr double kDiskAgreementTol = 1e-12;
+  // relative to max |dF[k]|: measured 1.8e-11 to 4.3e-11 (the disk law's dF is ~1e-11)
+  constexpr double kDiskJacobianTol = 1e-10;
+  const Vec2 o(0.3, -0.2);
+  const double R = 0.7, rho = 0.45;
+  const Region disk = {BoundaryPiece::arc(o, R, -1.0, -1.0 + 2.0 * M_PI)};
+  const Vec3 scale = columnScales(disk, rho);
+  double worst = 0.0, worstJacobian = 0.0;
+  for (const auto& [label, w] : testDirections(disk, rho)) {
+    ExactBasis arc, ref;
+    exactArcRegionBasis(disk, rho, w, true, arc);
+    internal::exactDiskBasis(o, R, rho, w, true, ref);
+    const double err = relativeError(arc.F, ref.F, scale);
+    worst = std::max(worst, err);
+    EXPECT_LE(err, kDiskAgreementTol) << label;
+    for (int k = 0; k < 3; ++k) {
+      const double size = ref.dF[k].cwiseAbs().maxCoeff();
+      const double jerr = (arc.dF[k] - ref.dF[k]).cwiseAbs().maxCoeff() / size;
+      worstJacobian = std::max(worstJacobian, jerr);
+      EXPECT_LE(jerr, kDiskJacobianTol) << label << " column " << k;
+    }
+  }
+  std::printf("worst normwise difference to the disk law: F %.3g, dF %.3g\n", worst, worstJacobian);
+}
+
+// Against the polygon law on inscribed polygons with n = 256 and 1024
+// vertices per arc: the polygon's error is its area deficit, O(n^-2), so
+// e(1024) ~ |F(256) - F(1024)| / 15 (Richardson). Asserted: the arc law is
+// within 0.2 |F(256) - F(1024)| of F(1024) (the prediction 1/15 with a
+// margin of 3), plus 1e-13 of the scale for rounding.
+TEST(ExactArcRegionBasis, AgreesWithFinePolygonsToTheirDiscretisationError) {
+  double worstRatio = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    const auto coarse = polygonOf(nr.region, 256), fine = polygonOf(nr.region, 1024);
+    for (const auto& [label, w] : testDirections(nr.region, nr.rho)) {
+      ExactBasis arc, pc, pf;
+      exactArcRegionBasis(nr.region, nr.rho, w, false, arc);
+      internal::exactPolygonBasis(coarse, nr.rho, w, false, pc);
+      internal::exactPolygonBasis(fine, nr.rho, w, false, pf);
+      const double discretisation = relativeError(pc.F, pf.F, scale);
+      const double err = relativeError(arc.F, pf.F, scale);
+      EXPECT_LE(err, 0.2 * discretisation + 1e-13)
+          << nr.name << " / " << label << ": |F(256) - F(1024)| = " << discretisation;
+      worstRatio = std::max(worstRatio, (err - 1e-13) / discretisation);
+    }
+  }
+  std::printf("worst |arc - F(1024)| / |F(256) - F(1024)|: %.3g (1/15 expected)\n", worstRatio);
+}
+
+// dF[k] against central differences of F.col(k) in w, Richardson-extrapolated
+// (4 D(h/2) - D(h)) / 3, h = kStep / (1 + max|P|/rho) (the polygon test's
+// scaling). Plain central differences at kStep = 1e-5 were measured at 3e-8:
+// truncation h^2 |F'''| / 6 (|F'''| grows like (rho / w3^2)^3 for ICRs a few
+// sizes out) plus F's own rounding (~5e-13, moments of size kappa^3) / h.
+// Extrapolated, the worst error was 1.7e-9 / 8.5e-10 / 1.75e-9 at kStep =
+// 3e-3 / 1e-3 / 3e-4 (truncation O(h^4) against rounding / h), so kFdTol =
+// 1e-8 of the column scale at 1e-3, the ICR at least kMinIcrClearance from
+// the boundary (F'' is log-singular on it); dF[k] w = 0 to rounding.
+TEST(ExactArcRegionBasis, JacobianMatchesFiniteDifferences) {
+  constexpr double kStep = 1e-3;
+  constexpr double kFdTol = 1e-8;
+  constexpr double kMinIcrClearance = 0.05;
+  constexpr double kEulerTol = 1e-12;
+  auto centralDifference = [](const NamedRegion& nr, const Vec3& w, int j, double h) {
+    ExactBasis plus, minus;
+    Vec3 wp = w, wm = w;
+    wp[j] += h;
+    wm[j] -= h;
+    exactArcRegionBasis(nr.region, nr.rho, wp, false, plus);
+    exactArcRegionBasis(nr.region, nr.rho, wm, false, minus);
+    return Mat3((plus.F - minus.F) / (2 * h));
+  };
+  std::mt19937 rng(2025);
+  std::normal_distribution<double> normal;
+  double worst = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    const std::vector<Vec2> samples = boundarySamples(nr.region, 2000);
+    double rmax = 0.0;
+    for (const Vec2& p : samples) rmax = std::max(rmax, p.norm());
+    int checked = 0;
+    for (int trial = 0; trial < 300 && checked < 30; ++trial) {
+      Vec3 w(normal(rng), normal(rng), normal(rng));
+      if (trial % 3 == 0) w.z() *= 1e-2;  // include the far branch
+      if (trial % 3 == 1) w.z() *= 0.3;   // ICRs a few sizes out
+      w.normalize();
+      const Vec2 c(-nr.rho * w.y() / w.z(), nr.rho * w.x() / w.z());
+      double clearance = INFINITY;
+      for (const Vec2& p : samples) clearance = std::min(clearance, (p - c).norm());
+      if (clearance < kMinIcrClearance) continue;
+      ++checked;
+      const double h = kStep / (1.0 + rmax / nr.rho);
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      for (int j = 0; j < 3; ++j) {
+        const Mat3 fd =
+            (4.0 * centralDifference(nr, w, j, 0.5 * h) - centralDifference(nr, w, j, h)) / 3.0;
+        for (int k = 0; k < 3; ++k) {
+          const double err = (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k];
+          worst = std::max(worst, err);
+          EXPECT_LE(err, kFdTol) << nr.name << " w = " << w.transpose() << " column " << k << " dw"
+                                 << j;
+        }
+      }
+      for (int k = 0; k < 3; ++k)
+        EXPECT_LE((out.dF[k] * w).cwiseAbs().maxCoeff() / scale[k], kEulerTol) << nr.name;
+    }
+    EXPECT_GE(checked, 25) << nr.name;
+  }
+  std::printf("worst dF error against central differences: %.3g\n", worst);
+}
+
+// ICR on the arc, at a corner, on the chord and at the circle's centre (the
+// series side): F is C^1 there, so dF must be finite and match central
+// differences to O(hc log hc) of its own size, hc <= 1e-6 of the radius the
+// ICR's step (as the polygon's JacobianContinuousWithIcrOnBoundary): 1e-4.
+TEST(ExactArcRegionBasis, JacobianContinuousWithIcrOnBoundary) {
+  constexpr double kIcrStep = 1e-6;
+  constexpr double kFdTolSingular = 1e-4;
+  double worst = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const BoundaryPiece& arc = nr.region[0];
+    const double tm = 0.5 * (arc.angle0 + arc.angle1);
+    const Vec2 second = nr.region[1].kind == BoundaryPiece::Kind::Segment
+                            ? Vec2(0.5 * (nr.region[1].a + nr.region[1].b))
+                            : nr.region[1].start();
+    for (const Vec2& c : {onCircle(arc.centre, arc.radius, tm), arc.start(), second,
+                          onCircle(arc.centre, arc.radius, tm + 0.2), Vec2(arc.centre)}) {
+      const Vec3 w = wForIcr(c, nr.rho, 1.0);
+      const double dcdw = nr.rho / std::abs(w.z()) * (1.0 + c.norm() / nr.rho);
+      const double h = kIcrStep * arc.radius / dcdw;
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      double size = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(out.dF[k].allFinite()) << nr.name << " c = " << c.transpose();
+        size = std::max(size, out.dF[k].cwiseAbs().maxCoeff());
+      }
+      for (int j = 0; j < 3; ++j) {
+        ExactBasis plus, minus;
+        Vec3 wp = w, wm = w;
+        wp[j] += h;
+        wm[j] -= h;
+        exactArcRegionBasis(nr.region, nr.rho, wp, false, plus);
+        exactArcRegionBasis(nr.region, nr.rho, wm, false, minus);
+        const Mat3 fd = (plus.F - minus.F) / (2 * h);
+        for (int k = 0; k < 3; ++k) {
+          const double err = (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / size;
+          worst = std::max(worst, err);
+          EXPECT_LE(err, kFdTolSingular)
+              << nr.name << " c = " << c.transpose() << " column " << k << " dw" << j;
+        }
+      }
+    }
+  }
+  std::printf("worst dF error against central differences, ICR on the boundary: %.3g\n", worst);
+}
+
+// dF against the polygon law's Jacobian on inscribed 256- and 1024-gons, as
+// for F (Richardson: the 1024-gon's error ~ 1/15 of their difference; 0.2
+// asserted, plus 1e-12 of |dF| for rounding). ICRs on or next to the
+// boundary are left out: there the polygons' dF differs from the arc's by
+// O(1) near the cut-off vertices, not O(n^-2).
+TEST(ExactArcRegionBasis, JacobianAgreesWithFinePolygons) {
+  double worstRatio = 0.0;
+  for (const NamedRegion& nr : testRegions()) {
+    const auto coarse = polygonOf(nr.region, 256), fine = polygonOf(nr.region, 1024);
+    for (const auto& [label, w] : testDirections(nr.region, nr.rho)) {
+      const bool onBoundary = label.find("ICR") != std::string::npos &&
+                              label.find("out") == std::string::npos &&
+                              label.find("centre") == std::string::npos;
+      if (onBoundary) continue;
+      ExactBasis arc, pc, pf;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, arc);
+      internal::exactPolygonBasis(coarse, nr.rho, w, true, pc);
+      internal::exactPolygonBasis(fine, nr.rho, w, true, pf);
+      for (int k = 0; k < 3; ++k) {
+        const double size = pf.dF[k].cwiseAbs().maxCoeff();
+        const double discretisation = (pc.dF[k] - pf.dF[k]).cwiseAbs().maxCoeff();
+        const double err = (arc.dF[k] - pf.dF[k]).cwiseAbs().maxCoeff();
+        EXPECT_LE(err, 0.2 * discretisation + 1e-12 * size)
+            << nr.name << " / " << label << " column " << k
+            << ": |dF(256) - dF(1024)| = " << discretisation;
+        if (discretisation > 0.0) worstRatio = std::max(worstRatio, err / discretisation);
+      }
+    }
+  }
+  std::printf("worst |dF - dF(1024)| / |dF(256) - dF(1024)|: %.3g (1/15 expected)\n", worstRatio);
+}
+
+// The cut shrinks to nothing: a disk segment cut at h = R (1 - eps) differs
+// from the whole disk by the cap of area ~ (4 sqrt(2) / 3) R^2 eps^(3/2), whose
+// contribution to every column is at most its area times the column scale per
+// unit area (|k| <= 1 + |P| / rho, |phi| <= max|phi|). Asserted: the
+// normwise difference to the disk law is within 2 cap areas / disk area, plus
+// 1e-12 for the two laws' rounding (a short chord, an arc of almost 2 pi).
+TEST(ExactArcRegionBasis, VanishingCutApproachesDiskLaw) {
+  const Vec2 o(0.3, -0.2);
+  const double R = 0.7, rho = 0.45;
+  for (double eps : {1e-4, 1e-8, 1e-12}) {
+    const Region segment = diskSegment(o, R, 0.7, R * (1.0 - eps));
+    const Region disk = {BoundaryPiece::arc(o, R, 0.0, 2.0 * M_PI)};
+    const Vec3 scale = columnScales(disk, rho);
+    const double cap = 4.0 * std::sqrt(2.0) / 3.0 * R * R * std::pow(eps, 1.5);
+    const double bound = 2.0 * cap / (M_PI * R * R) + 1e-12;
+    double worst = 0.0;
+    for (const auto& [label, w] : testDirections(segment, rho)) {
+      ExactBasis arc, ref;
+      exactArcRegionBasis(segment, rho, w, false, arc);
+      internal::exactDiskBasis(o, R, rho, w, false, ref);
+      const double err = relativeError(arc.F, ref.F, scale);
+      worst = std::max(worst, err);
+      EXPECT_LE(err, bound) << "eps = " << eps << " / " << label;
+    }
+    std::printf("cut at R (1 - %.0e): worst difference to the disk law %.3g (bound %.3g)\n", eps,
+                worst, bound);
+  }
+}
+
+// Never NaN: a dense deterministic sweep of w with extreme component
+// magnitudes (10^-300 .. 1), and ICRs placed exactly on the circle, at its
+// centre and at the arc's ends; F bounded by its column scale (|k| <= 1 +
+// |P| / rho), dF finite.
+TEST(ExactArcRegionBasis, FiniteAndBoundedEverywhere) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> expo(-300, 0);
+  for (const NamedRegion& nr : testRegions()) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    std::vector<Vec3> ws;
+    for (int i = 0; i < 400; ++i) {
+      Vec3 w(normal(rng), normal(rng), normal(rng));
+      w[i % 3] *= std::pow(10.0, expo(rng));
+      ws.push_back(w);
+    }
+    const BoundaryPiece& arc = nr.region[0];
+    for (int i = 0; i <= 64; ++i) {
+      const double t = arc.angle0 + (arc.angle1 - arc.angle0) * i / 64.0;
+      ws.push_back(wForIcr(onCircle(arc.centre, arc.radius, t), nr.rho, i % 2 ? 1.0 : -1.0));
+    }
+    ws.push_back(wForIcr(arc.centre, nr.rho, 1.0));
+    ws.push_back(wForIcr(arc.end(), nr.rho, 1.0));
+    for (const Vec3& w : ws) {
+      ExactBasis out;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(out.F.col(k).allFinite() && out.dF[k].allFinite())
+            << nr.name << " w = " << w.transpose();
+        EXPECT_LE(out.F.col(k).cwiseAbs().maxCoeff(), scale[k] * (1.0 + 1e-12)) << nr.name;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace patchspin
