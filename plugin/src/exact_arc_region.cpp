@@ -22,6 +22,7 @@
 // Both in the frame centred at g (P' = P - g), moved back to O as in
 // exact_polygon.cpp. Guarded by exact_arc_region_test.cpp.
 #include "exact_boundary_moments.hpp"
+#include "gauss_tables.hpp"
 
 #include <patchspin/internal/exact.hpp>
 
@@ -47,43 +48,11 @@ constexpr double kFarRatio = 8.0;
 // arcs' end points).
 constexpr double kClosureRel = 1e-9;
 constexpr double kDeltaZeroRel = 1e-15;
-constexpr int kMaxOrder = 24;
+constexpr int kMaxOrder = kGaussMaxOrder;
 constexpr int kArcOrder = 10;
 
 [[noreturn]] void fail(const std::string& what) {
   throw Error("exactArcRegionBasis: " + what);
-}
-
-// Gauss-Legendre nodes and weights on [0, 1], orders 1..kMaxOrder.
-struct GaussTables {
-  std::array<std::array<double, kMaxOrder>, kMaxOrder + 1> x{}, w{};
-  GaussTables() {
-    for (int n = 1; n <= kMaxOrder; ++n) {
-      for (int i = 0; i < n; ++i) {
-        double z = std::cos(M_PI * (i + 0.75) / (n + 0.5));
-        double dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-          double p0 = 1.0, p1 = 0.0;
-          for (int j = 1; j <= n; ++j) {
-            const double p2 = p1;
-            p1 = p0;
-            p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-          }
-          dp = n * (z * p0 - p1) / (z * z - 1.0);
-          const double dz = p0 / dp;
-          z -= dz;
-          if (std::abs(dz) < 1e-17) break;
-        }
-        x[n][i] = 0.5 * (1.0 - z);
-        w[n][i] = 1.0 / ((1.0 - z * z) * dp * dp);
-      }
-    }
-  }
-};
-
-const GaussTables& gaussTables() {
-  static const GaussTables tables;
-  return tables;
 }
 
 // A piece moved into the g-frame.

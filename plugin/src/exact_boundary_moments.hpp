@@ -91,25 +91,16 @@ inline void addSegmentMoments(const Vec2& a, const Vec2& b, const Vec2& c, doubl
   const Vec2 n(e.y(), -e.x());
   const Vec2 ra = a - c;
   const double ta = ra.dot(e), tb = ta + L;
-  double delta = ra.dot(n);
   const double Ra = ra.norm(), Rb = (b - c).norm();
-  const double J1 = L * (ta + tb) / (Ra + Rb);
-  double deltaJ0 = 0.0, delta2J0 = 0.0;
-  if (std::abs(delta) > deltaZero) {
-    deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, J1, delta, L);
-    delta2J0 = delta * deltaJ0;
-  } else {
-    delta = 0.0;
-  }
-  const double T = (ta >= 0.0 || tb <= 0.0) ? L * Rb + ta * J1 : tb * Rb - ta * Ra;
-  const double K0 = 0.5 * (T + delta2J0);
-  const double K1 = J1 * (Ra * Ra + Ra * Rb + Rb * Rb) / 3.0;
+  const EdgeIntegrals ei = edgeIntegrals(ta, L, Ra, Rb, ra.dot(n), deltaZero);
+  const double delta = ei.delta, J1 = ei.J1, deltaJ0 = ei.deltaJ0, delta2J0 = ei.delta2J0,
+               K0 = ei.K0, K1 = ei.K1;
   const double K3 = 0.25 * (tb * Rb * Rb * Rb - ta * Ra * Ra * Ra) + 0.75 * delta * delta * K0;
   acc.N1 += K0 * n;
   acc.M += (K1 * e + (delta * K0) * n) * n.transpose();
   acc.N3 += K3 * n;
   if (!withGradient) return;
-  const double J2 = 0.5 * (T - delta2J0);
+  const double J2 = ei.J2;
   acc.Q += (J1 * e + deltaJ0 * n) * n.transpose();
   const Mat2 en = e * n.transpose();
   const Mat2 rr =

@@ -57,6 +57,35 @@ struct EdgeSumsGradient {
 
 // ---- signed triangle (c, a, b), polar about c ----
 //
+// The integrals along an edge from c's point of view (the notation below):
+// tau from ta to tb = ta + L, R = sqrt(tau^2 + delta^2), Ra = R(ta),
+// Rb = R(tb); delta below deltaZero (rounding level) counts as c on the
+// edge's line and is returned as 0, and so are delta J0, delta^2 J0. Shared
+// by the polygon's edges (addSignedTriangle) and the segments of regions
+// with arcs (exact_boundary_moments.hpp).
+struct EdgeIntegrals {
+  double delta = 0.0;
+  double J1 = 0.0, deltaJ0 = 0.0, delta2J0 = 0.0, T = 0.0, J2 = 0.0, K0 = 0.0, K1 = 0.0;
+};
+inline EdgeIntegrals edgeIntegrals(double ta, double L, double Ra, double Rb, double delta,
+                                   double deltaZero) {
+  EdgeIntegrals r;
+  const double tb = ta + L;
+  // J1 = Rb - Ra = L (ta + tb) / (Ra + Rb) without cancellation
+  r.J1 = L * (ta + tb) / (Ra + Rb);
+  if (std::abs(delta) > deltaZero) {
+    r.delta = delta;
+    r.deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, r.J1, delta, L);
+    r.delta2J0 = delta * r.deltaJ0;
+  }
+  // T = tb Rb - ta Ra = L Rb + ta J1 (all terms one sign when ta, tb are)
+  r.T = (ta >= 0.0 || tb <= 0.0) ? L * Rb + ta * r.J1 : tb * Rb - ta * Ra;
+  r.J2 = 0.5 * (r.T - r.delta2J0);
+  r.K0 = 0.5 * (r.T + r.delta2J0);
+  r.K1 = r.J1 * (Ra * Ra + Ra * Rb + Rb * Rb) * kThird;
+  return r;
+}
+
 // With P = c + s u, u = (cos al, sin al), v = w3/rho perp(P - c):
 //   k = sgn(w3) (perp(u), (c.u + s) / rho)          (torque: P x perp(u) = P.u)
 // and phi(P) = phi(c) + s q, q = grad(phi).u. The radial integral is
@@ -105,25 +134,9 @@ void addSignedTriangle(double ax, double ay, double bx, double by, double L, dou
   const double nx = -ey, ny = ex;
   const double rax = ax - cx, ray = ay - cy;
   const double ta = rax * ex + ray * ey;
-  const double tb = ta + L;
-  double delta = rax * ey - ray * ex;
-
-  // J1 = Rb - Ra = L (ta + tb) / (Ra + Rb) without cancellation
-  const double J1 = L * (ta + tb) / (Ra + Rb);
-
-  // J0 terms; delta below deltaZero (rounding level) counts as c on the line
-  double deltaJ0 = 0.0, delta2J0 = 0.0;
-  if (std::abs(delta) > deltaZero) {
-    deltaJ0 = delta * asinhDifference(ta, tb, Ra, Rb, J1, delta, L);
-    delta2J0 = delta * deltaJ0;
-  } else {
-    delta = 0.0;
-  }
-  // T = tb Rb - ta Ra = L Rb + ta J1 (all terms one sign when ta, tb are)
-  const double Tq = (ta >= 0.0 || tb <= 0.0) ? L * Rb + ta * J1 : tb * Rb - ta * Ra;
-  const double J2 = 0.5 * (Tq - delta2J0);
-  const double K0 = 0.5 * (Tq + delta2J0);
-  const double K1 = J1 * (Ra * Ra + Ra * Rb + Rb * Rb) * kThird;
+  const EdgeIntegrals ei = edgeIntegrals(ta, L, Ra, Rb, rax * ey - ray * ex, deltaZero);
+  const double delta = ei.delta, J1 = ei.J1, deltaJ0 = ei.deltaJ0, delta2J0 = ei.delta2J0,
+               J2 = ei.J2, K0 = ei.K0, K1 = ei.K1;
   const double ce = cx * ex + cy * ey;
   const double cn = cx * nx + cy * ny;
 

@@ -27,6 +27,7 @@
 // convex (the far rule fans from vertex 0); this is not checked here (PatchShape::polygon checks
 // it).
 #include "exact_edge_integrals.hpp"
+#include "gauss_tables.hpp"
 
 #include <patchspin/internal/exact.hpp>
 
@@ -49,45 +50,12 @@ constexpr double kFarRatio = 8.0;
 // of F); well below the 1e-10 contract.
 constexpr double kDefaultQuadratureTol = 1e-13;
 // Gauss-Legendre orders available to the far branch.
-constexpr int kMaxOrder = 24;
+constexpr int kMaxOrder = kGaussMaxOrder;
 // |delta| below this times the edge length is rounding noise of an ICR on the
 // edge's line (e.g. exactly on a vertex).
 constexpr double kDeltaZeroRel = 1e-15;
 // Polygons up to this many vertices are handled without heap allocation.
 constexpr std::size_t kStackVertices = 32;
-
-// Gauss-Legendre rules on [0, 1], orders 1..kMaxOrder, by Newton on P_n.
-struct GaussTables {
-  std::array<std::array<double, kMaxOrder>, kMaxOrder + 1> x{}, w{};
-  GaussTables() {
-    const double pi = std::acos(-1.0);
-    for (int n = 1; n <= kMaxOrder; ++n) {
-      for (int i = 0; i < n; ++i) {
-        double z = std::cos(pi * (i + 0.75) / (n + 0.5));
-        double dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-          double p0 = 1.0, p1 = 0.0;
-          for (int j = 1; j <= n; ++j) {
-            const double p2 = p1;
-            p1 = p0;
-            p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-          }
-          dp = n * (z * p0 - p1) / (z * z - 1.0);
-          const double dz = p0 / dp;
-          z -= dz;
-          if (std::abs(dz) < 1e-17) break;
-        }
-        x[n][i] = 0.5 * (1.0 - z);
-        w[n][i] = 1.0 / ((1.0 - z * z) * dp * dp);  // = 2/((1-z^2)P'^2) / 2
-      }
-    }
-  }
-};
-
-const GaussTables& gaussTables() {
-  static const GaussTables tables;
-  return tables;
-}
 
 [[noreturn]] void fail(const std::string& what) {
   throw Error("exactPolygonBasis: " + what);
