@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace patchspin::testing::exact_arc {
@@ -100,13 +101,9 @@ inline Vec3 columnScales(const Region& region, double rho) {
   return Vec3(s, s * mx, s * my);
 }
 
-// F by brute force: x outer, split at the pieces' end points, the arcs'
-// extreme x and the ICR's x; y inner split at the ICR's y.
+// F by brute force (exact_polygon::oracleFBetweenChords), x split at the
+// pieces' end points and the arcs' extreme x.
 inline Mat3 oracleF(const Region& region, double rho, const Vec3& w) {
-  using exact_polygon::integrateSplit;
-  using exact_polygon::kernel;
-  const bool hasIcr = w.z() != 0.0;
-  const double cx = hasIcr ? -rho * w.y() / w.z() : 0.0, cy = hasIcr ? rho * w.x() / w.z() : 0.0;
   std::vector<double> xbreaks;
   for (const BoundaryPiece& p : region) {
     xbreaks.push_back(p.start().x());
@@ -119,30 +116,9 @@ inline Mat3 oracleF(const Region& region, double rho, const Vec3& w) {
   // the extremes of x are among the pieces' ends and the arcs' extreme points
   const double xmin = *std::min_element(xbreaks.begin(), xbreaks.end());
   const double xmax = *std::max_element(xbreaks.begin(), xbreaks.end());
-  if (hasIcr) xbreaks.push_back(cx);
-  const Vec3 scale = columnScales(region, rho);
-  Vec9 tol;
-  for (int k = 0; k < 3; ++k)
-    tol.segment<3>(3 * k).setConstant(exact_polygon::kOracleTol * scale[k]);
-  const Vec9 innerTol = 1e-2 * tol / (xmax - xmin);
-  auto inner = [&](double x) -> Vec9 {
-    double lo, hi;
-    chordAt(region, x, lo, hi);
-    if (!(hi > lo)) return Vec9::Zero();
-    auto fy = [&](double y) -> Vec9 {
-      const Vec3 k = kernel(w, rho, x, y);
-      Vec9 out;
-      out << k, x * k, y * k;
-      return out;
-    };
-    std::vector<double> ybreaks;
-    if (hasIcr) ybreaks.push_back(cy);
-    return integrateSplit(fy, lo, hi, ybreaks, innerTol);
-  };
-  const Vec9 v = integrateSplit(inner, xmin, xmax, xbreaks, tol);
-  Mat3 F;
-  F << v.segment<3>(0), v.segment<3>(3), v.segment<3>(6);
-  return F;
+  return exact_polygon::oracleFBetweenChords(
+      [&](double x, double& lo, double& hi) { chordAt(region, x, lo, hi); }, xmin, xmax,
+      std::move(xbreaks), columnScales(region, rho), rho, w);
 }
 
 // ---- shapes ----

@@ -178,30 +178,25 @@ inline Vec3 columnScales(const Polygon& poly, double rho) {
   return s;
 }
 
-// F by brute force: x outer, split at the vertices and the ICR's x; y inner
-// between the chains, split at the ICR's y, so that the kernel's only
-// discontinuity (the ICR) lies on panel boundaries.
-inline Mat3 oracleF(const Polygon& poly, double rho, const Vec3& w) {
+// F by brute force over the region between the chords chordAt(x, lo, hi),
+// x in [xmin, xmax]: x outer, split at xbreaks and the ICR's x; y inner,
+// split at the ICR's y, so that the kernel's only discontinuity (the ICR)
+// lies on panel boundaries. Per-entry tolerance kOracleTol * scale_k; the
+// inner integrals get 1e-2 of it per unit length so that their error is
+// smooth noise far below the outer panels' tolerance.
+template <class ChordAt>
+Mat3 oracleFBetweenChords(const ChordAt& chordAt, double xmin, double xmax,
+                          std::vector<double> xbreaks, const Vec3& scale, double rho,
+                          const Vec3& w) {
   const bool hasIcr = w.z() != 0.0;
   const double cx = hasIcr ? -rho * w.y() / w.z() : 0.0, cy = hasIcr ? rho * w.x() / w.z() : 0.0;
-  double xmin = INFINITY, xmax = -INFINITY;
-  std::vector<double> xbreaks;
-  for (const Vec2& p : poly) {
-    xmin = std::min(xmin, p.x());
-    xmax = std::max(xmax, p.x());
-    xbreaks.push_back(p.x());
-  }
   if (hasIcr) xbreaks.push_back(cx);
-  // per-entry tolerance kOracleTol * scale_k; the inner integrals get 1e-2 of
-  // it per unit length so that their error is smooth noise far below the
-  // outer panels' tolerance
-  const Vec3 scale = columnScales(poly, rho);
   Vec9 tol;
   for (int k = 0; k < 3; ++k) tol.segment<3>(3 * k).setConstant(kOracleTol * scale[k]);
   const Vec9 innerTol = 1e-2 * tol / (xmax - xmin);
   auto inner = [&](double x) -> Vec9 {
     double lo, hi;
-    chordAt(poly, x, lo, hi);
+    chordAt(x, lo, hi);
     if (!(hi > lo)) return Vec9::Zero();
     auto fy = [&](double y) -> Vec9 {
       const Vec3 k = kernel(w, rho, x, y);
@@ -219,6 +214,19 @@ inline Mat3 oracleF(const Polygon& poly, double rho, const Vec3& w) {
   F.col(1) = v.segment<3>(3);
   F.col(2) = v.segment<3>(6);
   return F;
+}
+
+// F by brute force on a convex polygon, x split at its vertices.
+inline Mat3 oracleF(const Polygon& poly, double rho, const Vec3& w) {
+  double xmin = INFINITY, xmax = -INFINITY;
+  std::vector<double> xbreaks;
+  for (const Vec2& p : poly) {
+    xmin = std::min(xmin, p.x());
+    xmax = std::max(xmax, p.x());
+    xbreaks.push_back(p.x());
+  }
+  return oracleFBetweenChords([&](double x, double& lo, double& hi) { chordAt(poly, x, lo, hi); },
+                              xmin, xmax, std::move(xbreaks), columnScales(poly, rho), rho, w);
 }
 
 // max over columns of the normwise relative error
