@@ -21,6 +21,7 @@
 // dA = l ((x - g) x x'(s)) dl ds; the integrand is analytic there.
 // Both in the frame centred at g (P' = P - g), moved back to O as in
 // exact_polygon.cpp. Guarded by exact_arc_region_test.cpp.
+#include "exact_area_rule.hpp"
 #include "exact_boundary_moments.hpp"
 #include "gauss_tables.hpp"
 
@@ -48,7 +49,6 @@ constexpr double kFarRatio = 8.0;
 // arcs' end points).
 constexpr double kClosureRel = 1e-9;
 constexpr double kDeltaZeroRel = 1e-15;
-constexpr int kMaxOrder = kGaussMaxOrder;
 constexpr int kArcOrder = 10;
 
 [[noreturn]] void fail(const std::string& what) {
@@ -106,12 +106,11 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const V
   }
 }
 
-// Far branch: fan rule of order n from the g-frame origin; with the
-// Jacobian dk/dw' = m m^T / |v|, m = (-u_y, u_x, (P.u)/rho) (exact_polygon.cpp).
+// Far branch: fan rule of order n from the g-frame origin, the kernel at each
+// node by addKernelNode (exact_area_rule.hpp).
 void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Vec3& wl, double rho,
                int n, bool wantJacobian, ExactBasis& acc) {
   const GaussTables& gt = gaussTables();
-  Mat3& F = acc.F;
   const double inv = 1.0 / rho;
   // order along the piece: n, at least kArcOrder on arcs (trigonometric in t)
   auto addSpan = [&](auto&& point, auto&& tangent, double length, int nt) {
@@ -123,17 +122,11 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Ve
         const double l = gt.x[n][j];
         const Vec2 P = l * x;
         const double wt = gt.w[nt][i] * gt.w[n][j] * l * jac;
-        const double vx = wl.x() - wl.z() * P.y() * inv, vy = wl.y() + wl.z() * P.x() * inv;
-        const double invV = 1.0 / std::sqrt(vx * vx + vy * vy);
-        const double ux = vx * invV, uy = vy * invV;
-        const Vec3 k(ux, uy, (P.x() * uy - P.y() * ux) * inv);
         const Vec3 phi = wt * Vec3(1.0, P.x(), P.y());
-        F.noalias() += k * phi.transpose();
-        if (wantJacobian) {
-          const Vec3 mv(-uy, ux, (P.x() * ux + P.y() * uy) * inv);
-          const Mat3 mm = (invV * mv) * mv.transpose();
-          for (int b = 0; b < 3; ++b) acc.dF[b].noalias() += phi[b] * mm;
-        }
+        if (wantJacobian)
+          addKernelNode<true, 3>(P, phi, wl, inv, acc.F, acc.dF.data());
+        else
+          addKernelNode<false, 3>(P, phi, wl, inv, acc.F, nullptr);
       }
     }
   };
@@ -161,19 +154,13 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Ve
   }
 }
 
-// Order of the far rule for the ICR at kappa region radii (kappa^2 given;
-// +inf for translation), the polygon's estimate beta^(3 - 2n) with
-// K = kappa - 1; one more polynomial degree with the Jacobian. Along arcs at
-// least kArcOrder (the area element is trigonometric in t; order 6 lost
-// 1.6e-10 on the thin segment's arc, whose area is 1/10 of a^2 times its span).
-int farOrder(double kappaSq, bool jacobian) {
-  constexpr double kTol = 1e-13;
-  if (!std::isfinite(kappaSq)) return 3;       // translation: polynomial of degree <= 3 in l
-  const double degree = jacobian ? 4.0 : 3.0;  // the Jacobian's integrand: one more
-  const double K = std::sqrt(kappaSq) - 1.0;
-  const double beta = K + std::sqrt(K * K - 1.0);
-  const double n = 0.5 * degree + 0.5 * std::log(1.0 / kTol) / std::log(beta);
-  return std::clamp(static_cast<int>(std::ceil(n)), 3, kMaxOrder);
+// Order of the far rule (exact_area_rule.hpp's farOrder at 1e-13, well below
+// the 1e-10 contract), at least 3. Along arcs at least kArcOrder (the area
+// element is trigonometric in t; order 6 lost 1.6e-10 on the thin segment's
+// arc, whose area is 1/10 of a^2 times its span).
+constexpr double kQuadratureTol = 1e-13;
+int arcFarOrder(double kappaSq, bool jacobian) {
+  return std::max(3, farOrder(kappaSq, kQuadratureTol, jacobian));
 }
 
 }  // namespace
@@ -218,36 +205,16 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
       fail("piece " + std::to_string(i) + " does not end where the next starts");
   }
 
-  Mat3 S = Mat3::Identity();
-  S(0, 2) = -g.y() / rho;
-  S(1, 2) = g.x() / rho;
-  const double wScale = w.cwiseAbs().maxCoeff();
-  const Vec3 wl = S * (w / wScale);
-  const double planarSq = rho * rho * (wl.x() * wl.x() + wl.y() * wl.y());
-  const double w3Sq = wl.z() * wl.z();
-  const bool far = planarSq > kFarRatio * kFarRatio * size * size * w3Sq;
+  // g's frame (exact_area_rule.hpp), kappa in units of size
+  const RegionFrame frame(g, rho, w);
   ExactBasis l;  // g-frame
-  if (far) {
-    const double kappaSq = w3Sq > 0.0 ? planarSq / (size * size * w3Sq) : INFINITY;
-    farBranch(boundary, g, wl, rho, farOrder(kappaSq, wantJacobian), wantJacobian, l);
+  if (frame.far(kFarRatio, size * size)) {
+    const int n = arcFarOrder(frame.kappaSq(size * size), wantJacobian);
+    farBranch(boundary, g, frame.wl, rho, n, wantJacobian, l);
   } else {
-    nearBranch(boundary, g, wl, rho, size, wantJacobian, l);
+    nearBranch(boundary, g, frame.wl, rho, size, wantJacobian, l);
   }
-  // back to O (exact_polygon.cpp): T = S^T, phi = (1, gx + x', gy + y'),
-  // dF[k] = T dF'[k] S / wScale
-  const Mat3 T = S.transpose();
-  Mat3 Fm = l.F;
-  Fm.col(1) += g.x() * l.F.col(0);
-  Fm.col(2) += g.y() * l.F.col(0);
-  out.F.noalias() = T * Fm;
-  if (!wantJacobian) {
-    for (Mat3& m : out.dF) m.setZero();
-    return;
-  }
-  const Mat3 Sw = S / wScale;
-  out.dF[0].noalias() = T * l.dF[0] * Sw;
-  out.dF[1].noalias() = T * (l.dF[1] + g.x() * l.dF[0]) * Sw;
-  out.dF[2].noalias() = T * (l.dF[2] + g.y() * l.dF[0]) * Sw;
+  basisAtO(l.F, l.dF, g, frame, wantJacobian, out);
 }
 
 }  // namespace patchspin::internal

@@ -26,6 +26,7 @@
 // branch's order (measured error <= 0.02 tolerance); the edge sum has no knob. The polygon must be
 // convex (the far rule fans from vertex 0); this is not checked here (PatchShape::polygon checks
 // it).
+#include "exact_area_rule.hpp"
 #include "exact_edge_integrals.hpp"
 #include "gauss_tables.hpp"
 
@@ -49,8 +50,6 @@ constexpr double kFarRatio = 8.0;
 // Default target of the far branch's quadrature error (relative to the scale
 // of F); well below the 1e-10 contract.
 constexpr double kDefaultQuadratureTol = 1e-13;
-// Gauss-Legendre orders available to the far branch.
-constexpr int kMaxOrder = kGaussMaxOrder;
 // |delta| below this times the edge length is rounding noise of an ICR on the
 // edge's line (e.g. exactly on a vertex).
 constexpr double kDeltaZeroRel = 1e-15;
@@ -88,10 +87,8 @@ Eigen::Matrix<double, M, 1> weightsAt(const Vec2& P, const Vec3& pressure) {
 //
 // Quadrilateral (p0, p1, p2, p3) (a triangle when p3 = p0), bilinear map
 //   P(s, t) = (1-s)(1-t) p0 + s(1-t) p1 + s t p2 + (1-s) t p3,  s, t in [0, 1]
-//   dA = det[dP/ds, dP/dt] ds dt  (linear in s, t).
-// At each node, Eq. (1) and the kernel:
-//   v = M w',  M = [[1, 0, -y/rho], [0, 1, x/rho]],  k = M^T v/|v|
-//   dk/dw' = M^T (I - vv^T/|v|^2) M / |v| = m m^T / |v|,  m = M^T perp(v)/|v|.
+//   dA = det[dP/ds, dP/dt] ds dt  (linear in s, t);
+// at each node the kernel of addKernelNode (exact_area_rule.hpp).
 template <bool kJacobian, int M>
 void addQuadRule(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3, int n,
                  const Vec3& w, double rho, const Vec3& pressure, Accumulator<M>& acc) {
@@ -108,17 +105,7 @@ void addQuadRule(const Vec2& p0, const Vec2& p1, const Vec2& p2, const Vec2& p3,
       const Vec2 dPds = (1.0 - t) * e01 + t * e32;
       const double det = dPds.x() * dPdt.y() - dPds.y() * dPdt.x();
       const double wt = g.w[n][i] * g.w[n][j] * det;
-      const double vx = w.x() - w.z() * P.y() * inv, vy = w.y() + w.z() * P.x() * inv;
-      const double invV = 1.0 / std::sqrt(vx * vx + vy * vy);
-      const double ux = vx * invV, uy = vy * invV;
-      const Vec3 k(ux, uy, (P.x() * uy - P.y() * ux) * inv);
-      const Eigen::Matrix<double, M, 1> phi = wt * weightsAt<M>(P, pressure);
-      acc.F.noalias() += k * phi.transpose();
-      if constexpr (kJacobian) {
-        const Vec3 m(-uy, ux, (P.x() * ux + P.y() * uy) * inv);
-        const Mat3 mm = (invV * m) * m.transpose();
-        for (int c = 0; c < M; ++c) acc.dF[c].noalias() += phi[c] * mm;
-      }
+      addKernelNode<kJacobian, M>(P, wt * weightsAt<M>(P, pressure), w, inv, acc.F, acc.dF.data());
     }
   }
 }
@@ -130,30 +117,6 @@ void farBranch(const Vec2* v, std::size_t N, const Vec3& w, double rho, int n, c
   for (; i + 2 < N; i += 2)
     addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[i + 2], n, w, rho, pressure, acc);
   if (i + 1 < N) addQuadRule<kJacobian>(v[0], v[i], v[i + 1], v[0], n, w, rho, pressure, acc);
-}
-
-// Order n of the far rule for ICR distance ratio kappa = |c'| / Rpoly.
-// Gauss-Legendre on an interval of half-length h with the nearest
-// singularity at distance D converges like beta^(-2n), beta = K + sqrt(K^2-1),
-// K = D/h, for an analytic integrand; ours is a polynomial of degree 3
-// (pressure basis x lever arm x the bilinear map's Jacobian) times the
-// analytic v/|v|, which costs three orders of beta: error ~ C beta^(3 - 2n)
-// (measured: n = 2 gives ~1e-3/kappa, n = 3 ~kappa^-3); the Jacobian's
-// integrand has degree 4, one more. A fan piece spans at
-// most 2 Rpoly and c is at least (kappa - 1) Rpoly from it, so
-// K >= kappa - 1 (conservative). With kErrorConstant = 1 the measured
-// errors stay below 0.02 tol for tol in [1e-13, 1e-4] over kappa in [8, 1e7]
-// (tolerance test: against the default accuracy).
-int farOrder(double kappaSq, double tol, bool jacobian) {
-  constexpr double kErrorConstant = 1.0;
-  // the Jacobian's integrand m m^T phi det has one more polynomial degree
-  const double degree = jacobian ? 4.0 : 3.0;
-  const int minOrder = jacobian ? 3 : 2;         // exact for that degree (2n - 1 >= degree)
-  if (!std::isfinite(kappaSq)) return minOrder;  // pure translation: v/|v| constant
-  const double K = std::sqrt(kappaSq) - 1.0;
-  const double beta = K + std::sqrt(K * K - 1.0);
-  const double n = 0.5 * degree + 0.5 * std::log(kErrorConstant / tol) / std::log(beta);
-  return std::clamp(static_cast<int>(std::ceil(n)), minOrder, kMaxOrder);
 }
 
 // ---- near branch ----
@@ -234,7 +197,7 @@ void nearColumns(const Vec2* v, std::size_t N, const Vec3& wl, double rho, bool 
 template <int M>
 void evaluateInFrame(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
                      bool wantJacobian, double tolerance, const Vec3& pressure, Accumulator<M>& acc,
-                     Vec2& g, Mat3& S, double& wScale) {
+                     Vec2& g, RegionFrame& frame) {
   const std::size_t N = vertices.size();
   if (N < 3) fail("need at least 3 vertices, got " + std::to_string(N));
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
@@ -268,21 +231,11 @@ void evaluateInFrame(const std::vector<Vec2>& vertices, double rho, const Vec3& 
   const Vec3 localPressure(pressure[0] + pressure[1] * g.x() + pressure[2] * g.y(), pressure[1],
                            pressure[2]);
 
-  // S = [[1,0,-gy/rho],[0,1,gx/rho],[0,0,1]], w' = S w; c' = rho (-w'2, w'1) / w3
-  S = Mat3::Identity();
-  S(0, 2) = -g.y() / rho;
-  S(1, 2) = g.x() / rho;
-  // F is homogeneous of degree 0 in w: scale w to max |w_i| = 1 first (keeps
-  // the squares below finite for any finite w); dF scales by 1 / wScale
-  wScale = w.cwiseAbs().maxCoeff();
-  const Vec3 wl = S * (w / wScale);
-  const double planarSq = rho * rho * (wl.x() * wl.x() + wl.y() * wl.y());
-  // kappa^2 = |c'|^2 / Rpoly^2, written without dividing by w3
-  const double w3Sq = wl.z() * wl.z();
-  const bool far = planarSq > kFarRatio * kFarRatio * radiusSq * w3Sq;
-
-  if (far) {
-    const double kappaSq = w3Sq > 0.0 ? planarSq / (radiusSq * w3Sq) : INFINITY;
+  // g's frame (exact_area_rule.hpp); kappa in circumradii
+  frame = RegionFrame(g, rho, w);
+  const Vec3& wl = frame.wl;
+  if (frame.far(kFarRatio, radiusSq)) {
+    const double kappaSq = frame.kappaSq(radiusSq);
     const double tol = tolerance > 0.0 ? std::max(tolerance, 1e-15) : kDefaultQuadratureTol;
     const int n = farOrder(kappaSq, tol, wantJacobian);
     if (wantJacobian) {
@@ -301,29 +254,9 @@ void exactPolygonBasis(const std::vector<Vec2>& vertices, double rho, const Vec3
                        bool wantJacobian, ExactBasis& out, double tolerance) {
   Accumulator<3> acc;
   Vec2 g;
-  Mat3 S;
-  double wScale = 1.0;
-  evaluateInFrame(vertices, rho, w, wantJacobian, tolerance, Vec3::Zero(), acc, g, S, wScale);
-
-  // back to O: phi = (1, gx + x', gy + y'), torque about O = T k', T = S^T
-  //   F.col(0) = T F'.col(0),  F.col(1) = T (gx F'.col(0) + F'.col(1)), ...
-  //   dF[k] = T dF'[k] S / wScale   (chain rule through w' = S w / wScale)
-  const Mat3 T = S.transpose();
-  Mat3 Fm = acc.F;
-  Fm.col(1) += g.x() * acc.F.col(0);
-  Fm.col(2) += g.y() * acc.F.col(0);
-  out.F.noalias() = T * Fm;
-  if (wantJacobian) {
-    const Mat3 d0 = acc.dF[0];
-    const Mat3 d1 = acc.dF[1] + g.x() * d0;
-    const Mat3 d2 = acc.dF[2] + g.y() * d0;
-    const Mat3 Sw = S / wScale;
-    out.dF[0].noalias() = T * d0 * Sw;
-    out.dF[1].noalias() = T * d1 * Sw;
-    out.dF[2].noalias() = T * d2 * Sw;
-  } else {
-    for (Mat3& m : out.dF) m.setZero();
-  }
+  RegionFrame frame;
+  evaluateInFrame(vertices, rho, w, wantJacobian, tolerance, Vec3::Zero(), acc, g, frame);
+  basisAtO(acc.F, acc.dF, g, frame, wantJacobian, out);
 }
 
 Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& w,
@@ -331,12 +264,11 @@ Vec3 exactPolygonLaw(const std::vector<Vec2>& vertices, double rho, const Vec3& 
   if (!pressure.allFinite()) fail("pressure coefficients must be finite");
   Accumulator<1> acc;
   Vec2 g;
-  Mat3 S;
-  double wScale = 1.0;
-  evaluateInFrame(vertices, rho, w, jacobian != nullptr, tolerance, pressure, acc, g, S, wScale);
+  RegionFrame frame;
+  evaluateInFrame(vertices, rho, w, jacobian != nullptr, tolerance, pressure, acc, g, frame);
   // back to O: torque about O = T k', T = S^T; d/dw through w' = S w / wScale
-  const Mat3 T = S.transpose();
-  if (jacobian) jacobian->noalias() = T * acc.dF[0] * (S / wScale);
+  const Mat3 T = frame.S.transpose();
+  if (jacobian) jacobian->noalias() = T * acc.dF[0] * (frame.S / frame.wScale);
   return T * acc.F.col(0);
 }
 
