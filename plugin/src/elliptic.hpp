@@ -113,8 +113,7 @@ struct EllipticFE {
 // shared by both (DLMF 19.25.5, 19.25.7):
 //   F = s R_F(c^2, d^2, 1),  E = F - (m/3) s^3 R_D(c^2, d^2, 1)
 // on [-pi/2, pi/2] (s = sin, c = cos, d^2 = c^2 + mc s^2), plus 2n times the
-// complete K = R_F(0, mc, 1), E = K - (m/3) R_D(0, mc, 1) beyond (phi in
-// period n).
+// complete K, E (completeEllipticKE) beyond (phi in period n).
 // On [-pi/2, pi/2], from s = sin phi, c = cos phi.
 inline EllipticFE reducedEllipticFE(double s, double c, double m, double mc) {
   const double c2 = c * c, d2 = c2 + mc * s * s;
@@ -137,9 +136,9 @@ inline EllipticFE ellipticFEDifference(double phi1, double s1, double c1, double
   const EllipticFE b = reducedEllipticFE(f2 * s2, f2 * c2, m, mc);
   EllipticFE out{b.F - a.F, b.E - a.E};
   if (n2 != n1) {
-    const double K = carlsonRF(0.0, mc, 1.0);
-    out.F += 2.0 * (n2 - n1) * K;
-    out.E += 2.0 * (n2 - n1) * (K - (m / 3.0) * carlsonRD(0.0, mc, 1.0));
+    const EllipticKE ke = completeEllipticKE(m, mc);
+    out.F += 2.0 * (n2 - n1) * ke.K;
+    out.E += 2.0 * (n2 - n1) * ke.E;
   }
   return out;
 }
