@@ -108,10 +108,9 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   };
   if (in.warmSlip.norm() > 0.0) scoreCandidate(in.warmSlip.normalized(), true);
   if (!(bestScore < 0.0)) {
-    // (only a candidate: the ellipsoidal solve's refusal is not the exact
-    // block's, which goes on without it; the fuzz case that showed it, round
-    // 3 item 34, lies outside both laws' domain since round 5:
-    // FrictionBlock.BothLawsRefuseAnAlmostAllNegativePressure)
+    // (only a candidate: an ellipsoidal refusal is caught and the exact block
+    // goes on without it; the one input known to reach it is refused by both
+    // laws before, FrictionBlock.BothLawsRefuseAnAlmostAllNegativePressure)
     Vec3 ellipsoidalSlip = Vec3::Zero();
     try {
       ellipsoidalSlip = solveEllipsoidal(patch.Pi(), in).slip;
