@@ -95,12 +95,6 @@ inline Dual3 operator*(double s, const Dual3& a) {
 inline Dual3 operator*(const Dual3& a, double s) {
   return s * a;
 }
-inline Dual3 operator/(const Dual3& a, const Dual3& b) {
-  const double inv = 1.0 / b.v;
-  const double q = a.v / b.v;  // same rounding as the double instantiation
-  return {q,
-          {(a.d[0] - q * b.d[0]) * inv, (a.d[1] - q * b.d[1]) * inv, (a.d[2] - q * b.d[2]) * inv}};
-}
 inline Dual3 reciprocal(const Dual3& a) {
   const double r = 1.0 / a.v;
   const double h = -r * r;
@@ -108,9 +102,6 @@ inline Dual3 reciprocal(const Dual3& a) {
 }
 inline double reciprocal(double a) {
   return 1.0 / a;
-}
-inline Dual3 operator/(const Dual3& a, double s) {
-  return {a.v / s, {a.d[0] / s, a.d[1] / s, a.d[2] / s}};
 }
 inline Dual3 sqrt(const Dual3& a) {
   const double r = std::sqrt(a.v);
