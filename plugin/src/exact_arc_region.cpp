@@ -111,7 +111,8 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const V
 }
 
 // Order of the far rule on one arc span [tm - H, tm + H] (of the circle
-// (o, r), g-frame), for the target tol relative to F's scale; zetaO = ICR - o
+// (o, r), g-frame; cm, sm = cos, sin tm), for the target tol relative to F's
+// scale; zetaO = ICR - o
 // (ignored for translation, finite = false). In t the boundary integrand
 // (exact_far_green.hpp) is a trigonometric polynomial (frequencies up to
 // kFreq = 2 for F, 4 with dF; coefficients up to (r/size)^kFreq of the
@@ -125,8 +126,8 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const V
 // The order is the larger of the two. kSingularExtra was fitted on the test
 // regions at 1e-13 (largest excess over 0.5 ln(1/tol)/ln rhoB at kappa = 8:
 // 1.7 for F, 3.6 with dF) and is checked by FarBranchMatchesOracleAcrossKappa.
-int arcSpanOrder(double H, double tm, const Cx& zetaO, bool finite, double r, double size,
-                 bool jacobian, double tol) {
+int arcSpanOrder(double H, double cm, double sm, const Cx& zetaO, bool finite, double r,
+                 double size, bool jacobian, double tol) {
   static const std::array<double, kGaussMaxOrder + 1> logC = [] {
     std::array<double, kGaussMaxOrder + 1> t{};
     for (int n = 1; n <= kGaussMaxOrder; ++n)
@@ -137,21 +138,23 @@ int arcSpanOrder(double H, double tm, const Cx& zetaO, bool finite, double r, do
   const double kFreq = jacobian ? 4.0 : 2.0;
   const double kSingularExtra = jacobian ? 4.0 : 2.0;
   const double logTol = std::log(tol);
-  const double logAmp = kFreq * std::max(0.0, std::log(r / size));
+  const double logAmp = r > size ? kFreq * std::log(r / size) : 0.0;
   const double logX = std::log(kFreq * H);
   int n = 2;
   while (n <= kGaussMaxOrder && logAmp + logC[n] + 2.0 * n * logX > logTol) ++n;
   if (!finite) return n;
-  const double dist = std::hypot(zetaO.re, zetaO.im);
-  const double im = -std::log(dist / r);
-  const double re = std::remainder(std::atan2(zetaO.im, zetaO.re) - tm, 2.0 * M_PI);
-  double rhoB = INFINITY;
-  for (double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
-    const std::complex<double> K((re + shift) / H, im / H);
-    const std::complex<double> root = std::sqrt(K * K - 1.0);
-    rhoB = std::min(rhoB, std::max(std::abs(K + root), std::abs(K - root)));
-  }
-  if (!(rhoB > 1.0 + 1e-9)) return kGaussMaxOrder + 1;  // split the span
+  // K = (t* - tm) / H; t*'s 2 pi images have the same imaginary part and a
+  // larger real one, so a larger ellipse; rhoB = |K + sqrt(K^2 - 1)| on the
+  // branch with |.| >= 1
+  const double im = -0.5 * std::log((zetaO.re * zetaO.re + zetaO.im * zetaO.im) / (r * r)) / H;
+  const double re = std::atan2(cm * zetaO.im - sm * zetaO.re, cm * zetaO.re + sm * zetaO.im) / H;
+  // sqrt(K^2 - 1) = sqrt(a + i b), principal
+  const double a = re * re - im * im - 1.0, b = 2.0 * re * im;
+  const double m = std::sqrt(a * a + b * b);
+  const double sr = std::sqrt(0.5 * (m + a)), si = std::copysign(std::sqrt(0.5 * (m - a)), b);
+  const double p2 = (re + sr) * (re + sr) + (im + si) * (im + si);
+  const double q2 = (re - sr) * (re - sr) + (im - si) * (im - si);
+  const double rhoB = std::sqrt(std::max(p2, q2));
   const double nSingular = kSingularExtra - 0.5 * logTol / std::log(rhoB);
   return std::max(n, static_cast<int>(std::min(std::ceil(nSingular), kGaussMaxOrder + 1.0)));
 }
@@ -192,13 +195,16 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Ve
     const double span = p.angle1 - p.angle0;
     constexpr int kMaxParts = 64;
     std::array<int, kMaxParts> orders{};
+    std::array<double, kMaxParts> cms{}, sms{};
     int parts = 1;
     for (;; ++parts) {
       const double H = 0.5 * span / parts;
       bool fits = true;
       for (int q = 0; q < parts && fits; ++q) {
-        orders[q] = arcSpanOrder(H, p.angle0 + (2 * q + 1) * H, zetaO, finite, p.radius, size,
-                                 wantJacobian, kQuadratureTol);
+        const double tm = p.angle0 + (2 * q + 1) * H;
+        cms[q] = std::cos(tm), sms[q] = std::sin(tm);
+        orders[q] = arcSpanOrder(H, cms[q], sms[q], zetaO, finite, p.radius, size, wantJacobian,
+                                 kQuadratureTol);
         fits = orders[q] <= kGaussMaxOrder;
       }
       if (fits) break;
@@ -210,8 +216,7 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Ve
     const double H = 0.5 * span / parts;
     for (int q = 0; q < parts; ++q) {
       const int nt = orders[q];
-      const double tm = p.angle0 + (2 * q + 1) * H;
-      const double cm = std::cos(tm), sm = std::sin(tm);
+      const double cm = cms[q], sm = sms[q];
       // t = tm + delta, z = o + r e^(it), dz/(2i) = (r H w / 2) e^(it) per node (weights on [0, 1])
       for (int i = 0; i < (nt + 1) / 2; ++i) {
         const double delta = (2.0 * gt.x[nt][i] - 1.0) * H;
@@ -245,11 +250,21 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   if (N < 1) fail("need at least 1 boundary piece");
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
   if (!w.allFinite() || w.cwiseAbs().maxCoeff() == 0.0) fail("w must be finite and nonzero");
+  // the pieces' end points, once each (an arc's cost a cosine and a sine)
+  constexpr std::size_t kStackPieces = 16;
+  std::array<Vec2, 2 * kStackPieces> stackEnds;
+  std::vector<Vec2> heapEnds;
+  Vec2* ends = stackEnds.data();  // start, end of piece i at 2i, 2i + 1
+  if (N > kStackPieces) {
+    heapEnds.resize(2 * N);
+    ends = heapEnds.data();
+  }
   // frame centre g: mean of the pieces' start points and arc mid points;
   // size: a bound of |P - g| over the region
   Vec2 g = Vec2::Zero();
   int count = 0;
-  for (const BoundaryPiece& p : boundary) {
+  for (std::size_t i = 0; i < N; ++i) {
+    const BoundaryPiece& p = boundary[i];
     if (p.kind == BoundaryPiece::Kind::Arc) {
       if (!(p.radius > 0.0) || !(p.angle1 > p.angle0) || !(p.angle1 - p.angle0 <= 2.0 * M_PI))
         fail("an arc needs radius > 0 and 0 < angle1 - angle0 <= 2 pi");
@@ -257,7 +272,9 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
       g += p.centre + p.radius * Vec2(std::cos(tm), std::sin(tm));
       ++count;
     }
-    g += p.start();
+    ends[2 * i] = p.start();
+    ends[2 * i + 1] = p.end();
+    g += ends[2 * i];
     ++count;
   }
   g /= count;
@@ -265,8 +282,9 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   // size = max |P - g| on the boundary: a piece's ends, or an arc's point
   // farthest from g (direction g -> centre) when the arc contains it
   double size = 0.0;
-  for (const BoundaryPiece& p : boundary) {
-    size = std::max({size, (p.start() - g).norm(), (p.end() - g).norm()});
+  for (std::size_t i = 0; i < N; ++i) {
+    const BoundaryPiece& p = boundary[i];
+    size = std::max({size, (ends[2 * i] - g).norm(), (ends[2 * i + 1] - g).norm()});
     if (p.kind == BoundaryPiece::Kind::Arc) {
       const Vec2 away = p.centre - g;
       const double t = std::atan2(away.y(), away.x());
@@ -275,7 +293,7 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
     }
   }
   for (std::size_t i = 0; i < N; ++i) {
-    if ((boundary[i].end() - boundary[(i + 1) % N].start()).norm() > kClosureRel * size)
+    if ((ends[2 * i + 1] - ends[2 * ((i + 1) % N)]).norm() > kClosureRel * size)
       fail("piece " + std::to_string(i) + " does not end where the next starts");
   }
 
