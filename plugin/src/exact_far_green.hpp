@@ -94,35 +94,36 @@ inline void addFarGreenNode(Cx z, Cx W, Cx lambda, FarGreenSums& s) {
   const Cx J1 = (2.0 / 3.0) * (Cx{2.0 + sig.re, sig.im} * q2);
   const Cx J2 = (2.0 / 15.0) *
                 (Cx{3.0 * sig2.re + 9.0 * sig.re + 8.0, 3.0 * sig2.im + 9.0 * sig.im} * (q2 * q));
-  const Cx e = W * h * zb;
-  const Cx eJ0 = e * J0, eJ1 = e * zb * J1;
+  const Cx Wzb = W * zb;
+  const Cx e = Wzb * h, eZb = e * zb;
+  const Cx eJ0 = e * J0, eJ1 = eZb * J1;
   s.I[0] += eJ0;
   s.I[1] += z * eJ0;
   s.I[2] += eJ1;
   s.I[3] += z * eJ1;
-  s.I[4] += e * (zb * zb) * J2;
+  s.I[4] += (eZb * zb) * J2;
   if constexpr (kJacobian) {
-    const double hInvScale = 1.0 / wAbs;
-    const Cx hInv{sig.re * hInvScale, sig.im * hInvScale};  // conj(h) / |h|^2
+    // h^-1 = sigma / |h|^2, h^-3 = sigma^3 / |h|^6
+    const double inv = 1.0 / wAbs, inv3 = inv * inv * inv;
     const Cx z2 = z * z;
-    const Cx f = W * hInv * zb;
-    const Cx fJ0 = f * J0, fJ1 = f * zb * J1;
+    const Cx f = inv * (Wzb * sig);
+    const Cx fJ0 = f * J0, fJ1 = (f * zb) * J1;
     s.K1[0] += fJ0;
     s.K1[1] += z * fJ0;
     s.K1[2] += z * fJ1;
     s.K1[3] += z2 * fJ0;
     s.K1[4] += z2 * fJ1;
-    const Cx M0 = (2.0 / 3.0) * (Cx{1.0 + sig.re + sig2.re, sig.im + sig2.im} * q);
     const Cx sig3 = sig2 * sig;
+    const Cx M0 = (2.0 / 3.0) * (Cx{1.0 + sig.re + sig2.re, sig.im + sig2.im} * q);
     const Cx M1 = (2.0 / 15.0) * (Cx{3.0 * sig3.re + 6.0 * sig2.re + 4.0 * sig.re + 2.0,
                                      3.0 * sig3.im + 6.0 * sig2.im + 4.0 * sig.im} *
                                   q2);
-    const Cx p = W * (hInv * hInv * hInv) * zb;
-    const Cx pM0 = p * M0, pM1 = p * zb * M1;
+    const Cx p = inv3 * (Wzb * sig3);
+    const Cx pM0 = p * M0, pM1 = (p * zb) * M1;
     s.K2c[0] += pM0;
     s.K2c[1] += z * pM0;
     s.K2c[2] += z2 * pM0;
-    s.K2c[3] += z2 * z * pM0;
+    s.K2c[3] += (z2 * z) * pM0;
     s.K2c[4] += pM1;
     s.K2c[5] += z * pM1;
     s.K2c[6] += z2 * pM1;

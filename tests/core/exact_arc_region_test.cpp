@@ -336,8 +336,9 @@ void lawFrame(const Region& region, Vec2& g, double& radius) {
 // The far branch (ICR beyond 8 region radii of g, or w3 = 0: Green's
 // theorem and a boundary Gauss rule whose orders target 1e-13 of F's
 // scale) at kappa from just beyond the switch to 1e7 and at infinity, in 8
-// directions each, both spins, on every test region, the whole disk and a
-// disk cut at R (1 - 1e-8) (arcs of 2 pi and almost 2 pi):
+// directions each, both spins, on every test region, the whole disk, a
+// disk cut at R (1 - 1e-8) (arcs of 2 pi and almost 2 pi) and a sliver cap
+// (height R / 200: an arc of radius 10 region radii):
 //  * F (alone and with dF: the rule's orders differ) against the oracle to
 //    kFarOracleTol = 2e-12 of the column scale: 20
 //    times the rule's target, twice the oracle's own per-entry tolerance
