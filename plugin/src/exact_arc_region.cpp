@@ -16,11 +16,14 @@
 // grows like kappa^3 eps (moments of size kappa^3, result of size 1), as the
 // polygon's edge sum.
 //
-// Far branch (includes w3 = 0): tensor Gauss-Legendre on the fan from g to
-// each piece (arcs split into spans <= pi/2), P = g + l (x(s) - g),
-// dA = l ((x - g) x x'(s)) dl ds; the integrand is analytic there.
-// Both in the frame centred at g (P' = P - g), moved back to O as in
-// exact_polygon.cpp. Guarded by exact_arc_region_test.cpp.
+// Far branch (includes w3 = 0): in complex form the kernel and dF's
+// integrand are products of a holomorphic and an antiholomorphic function,
+// and Green's theorem turns them into one boundary integral
+// (exact_far_green.hpp), integrated by Gauss-Legendre on each piece with
+// orders that target kQuadratureTol (farOrder on segments, arcSpanOrder on
+// arcs). Both branches in the frame centred at g (P' = P - g), moved back to
+// O as in exact_polygon.cpp. Guarded by exact_arc_region_test.cpp
+// (FarBranchMatchesOracleAcrossKappa for the far branch).
 #include "exact_area_rule.hpp"
 #include "exact_boundary_moments.hpp"
 #include "exact_far_green.hpp"
