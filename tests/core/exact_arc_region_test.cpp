@@ -424,6 +424,38 @@ TEST(ExactArcRegionBasis, FarBranchMatchesOracleAcrossKappa) {
       worst, worstFd, worstEuler);
 }
 
+// More pieces than exactArcRegionBasis keeps on the stack (16): a 20-gon
+// given as 20 segments against the polygon law on its vertices (an
+// independent edge sum and fan rule), near and far ICRs and w3 = 0. Both
+// laws are within ~1e-13 of their oracles, so kPolygonAgreementTol = 1e-12
+// of the column scale.
+TEST(ExactArcRegionBasis, ManySegmentsMatchPolygonLaw) {
+  constexpr double kPolygonAgreementTol = 1e-12;
+  std::vector<Vec2> poly;
+  Region region;
+  for (int i = 0; i < 20; ++i)
+    poly.push_back(onCircle(Vec2(0.2, -0.1), 0.5, 2.0 * M_PI * i / 20.0));
+  for (int i = 0; i < 20; ++i)
+    region.push_back(BoundaryPiece::segment(poly[i], poly[(i + 1) % 20]));
+  const double rho = 0.4;
+  const Vec3 scale = columnScales(region, rho);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  double worst = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    Vec3 w(normal(rng), normal(rng), normal(rng));
+    if (i % 3 == 0) w.z() *= 1e-2;  // far ICRs
+    if (i % 10 == 0) w.z() = 0.0;
+    ExactBasis arc, ref;
+    exactArcRegionBasis(region, rho, w, false, arc);
+    internal::exactPolygonBasis(poly, rho, w, false, ref);
+    const double err = relativeError(arc.F, ref.F, scale);
+    worst = std::max(worst, err);
+    EXPECT_LE(err, kPolygonAgreementTol) << "w = " << w.transpose();
+  }
+  std::printf("20 segments against the polygon law: worst %.3g\n", worst);
+}
+
 // The cut shrinks to nothing: a disk segment cut at h = R (1 - eps) differs
 // from the whole disk by the cap of area ~ (4 sqrt(2) / 3) R^2 eps^(3/2), whose
 // contribution to every column is at most its area times the column scale per
