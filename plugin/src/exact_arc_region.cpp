@@ -16,13 +16,17 @@
 // grows like kappa^3 eps (moments of size kappa^3, result of size 1), as the
 // polygon's edge sum.
 //
-// Far branch (includes w3 = 0): tensor Gauss-Legendre on the fan from g to
-// each piece (arcs split into spans <= pi/2), P = g + l (x(s) - g),
-// dA = l ((x - g) x x'(s)) dl ds; the integrand is analytic there.
-// Both in the frame centred at g (P' = P - g), moved back to O as in
-// exact_polygon.cpp. Guarded by exact_arc_region_test.cpp.
+// Far branch (includes w3 = 0): in complex form the kernel and dF's
+// integrand are products of a holomorphic and an antiholomorphic function,
+// and Green's theorem turns them into one boundary integral
+// (exact_far_green.hpp), integrated by Gauss-Legendre on each piece with
+// orders that target kQuadratureTol (farOrder on segments, arcSpanOrder on
+// arcs). Both branches in the frame centred at g (P' = P - g), moved back to
+// O as in exact_polygon.cpp. Guarded by exact_arc_region_test.cpp
+// (FarBranchMatchesOracleAcrossKappa for the far branch).
 #include "exact_area_rule.hpp"
 #include "exact_boundary_moments.hpp"
+#include "exact_far_green.hpp"
 #include "gauss_tables.hpp"
 
 #include <patchspin/internal/exact.hpp>
@@ -30,6 +34,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <string>
 
 namespace patchspin::internal {
@@ -49,7 +54,9 @@ constexpr double kFarRatio = 8.0;
 // arcs' end points).
 constexpr double kClosureRel = 1e-9;
 constexpr double kDeltaZeroRel = 1e-15;
-constexpr int kArcOrder = 10;
+// Target of the far rule's quadrature error relative to F's scale, well
+// below the 1e-10 contract (as the polygon law's default).
+constexpr double kQuadratureTol = 1e-13;
 
 [[noreturn]] void fail(const std::string& what) {
   throw Error("exactArcRegionBasis: " + what);
@@ -106,59 +113,134 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const V
   }
 }
 
-// Far branch: fan rule of order n from the g-frame origin, the kernel at each
-// node by addKernelNode (exact_area_rule.hpp).
+// Order of the far rule on one arc span [tm - H, tm + H] (of the circle
+// (o, r), g-frame; cm, sm = cos, sin tm), for the target tol relative to F's
+// scale; zetaO = ICR - o
+// (ignored for translation, finite = false). In t the boundary integrand
+// (exact_far_green.hpp) is a trigonometric polynomial (frequencies up to
+// kFreq = 2 for F, 4 with dF; coefficients up to (r/size)^kFreq of the
+// scale) times a function whose only singularity is the ICR, at
+// t* = arg(zetaO) - i ln(|zetaO| / r). Gauss-Legendre's error is
+//  * for e^(ikt): c_n (kH)^(2n), c_n = 2^(2n+1) (n!)^4 / ((2n+1) ((2n)!)^3);
+//  * for the singular factor: ~ rhoB^(-2n), rhoB the Bernstein ellipse of
+//    [tm - H, tm + H] through t* (nearest of its 2 pi images), plus
+//    kSingularExtra orders for the polynomial factor and the kernel's growth
+//    (dF's kernel has conj(h)^-3).
+// The order is the larger of the two. kSingularExtra was fitted on the test
+// regions at 1e-13 (largest excess over 0.5 ln(1/tol)/ln rhoB at kappa = 8:
+// 1.7 for F, 3.6 with dF) and is checked by FarBranchMatchesOracleAcrossKappa.
+int arcSpanOrder(double H, double cm, double sm, const Cx& zetaO, bool finite, double r,
+                 double size, bool jacobian, double tol) {
+  static const std::array<double, kGaussMaxOrder + 1> logC = [] {
+    std::array<double, kGaussMaxOrder + 1> t{};
+    for (int n = 1; n <= kGaussMaxOrder; ++n)
+      t[n] = (2 * n + 1) * std::log(2.0) + 4.0 * std::lgamma(n + 1.0) - std::log(2.0 * n + 1.0) -
+             3.0 * std::lgamma(2.0 * n + 1.0);
+    return t;
+  }();
+  const double kFreq = jacobian ? 4.0 : 2.0;
+  const double kSingularExtra = jacobian ? 4.0 : 2.0;
+  const double logTol = std::log(tol);
+  const double logAmp = r > size ? kFreq * std::log(r / size) : 0.0;
+  const double logX = std::log(kFreq * H);
+  int n = 2;
+  while (n <= kGaussMaxOrder && logAmp + logC[n] + 2.0 * n * logX > logTol) ++n;
+  if (!finite) return n;
+  // K = (t* - tm) / H; t*'s 2 pi images have the same imaginary part and a
+  // larger real one, so a larger ellipse; rhoB = |K + sqrt(K^2 - 1)| on the
+  // branch with |.| >= 1
+  const double im = -0.5 * std::log((zetaO.re * zetaO.re + zetaO.im * zetaO.im) / (r * r)) / H;
+  const double re = std::atan2(cm * zetaO.im - sm * zetaO.re, cm * zetaO.re + sm * zetaO.im) / H;
+  // sqrt(K^2 - 1) = sqrt(a + i b), principal
+  const double a = re * re - im * im - 1.0, b = 2.0 * re * im;
+  const double m = std::sqrt(a * a + b * b);
+  const double sr = std::sqrt(0.5 * (m + a)), si = std::copysign(std::sqrt(0.5 * (m - a)), b);
+  const double p2 = (re + sr) * (re + sr) + (im + si) * (im + si);
+  const double q2 = (re - sr) * (re - sr) + (im - si) * (im - si);
+  const double rhoB = std::sqrt(std::max(p2, q2));
+  const double nSingular = kSingularExtra - 0.5 * logTol / std::log(rhoB);
+  return std::max(n, static_cast<int>(std::min(std::ceil(nSingular), kGaussMaxOrder + 1.0)));
+}
+
+// Far branch: Green's theorem turns F and dF into one boundary integral
+// (exact_far_green.hpp): Gauss-Legendre of order n (farOrder) on each
+// segment; each arc in the fewest equal spans whose orders (arcSpanOrder)
+// stay within the tables, the nodes in pairs symmetric about a span's middle
+// (one cosine and sine per pair).
 void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Vec3& wl, double rho,
-               int n, bool wantJacobian, ExactBasis& acc) {
+               int n, double size, bool wantJacobian, ExactBasis& acc) {
   const GaussTables& gt = gaussTables();
-  const double inv = 1.0 / rho;
-  // order along the piece: n, at least kArcOrder on arcs (trigonometric in t)
-  auto addSpan = [&](auto&& point, auto&& tangent, double length, int nt) {
-    for (int i = 0; i < nt; ++i) {
-      const double s = gt.x[nt][i];
-      const Vec2 x = point(s), dx = tangent(s) * length;
-      const double jac = x.x() * dx.y() - x.y() * dx.x();
-      for (int j = 0; j < n; ++j) {
-        const double l = gt.x[n][j];
-        const Vec2 P = l * x;
-        const double wt = gt.w[nt][i] * gt.w[n][j] * l * jac;
-        const Vec3 phi = wt * Vec3(1.0, P.x(), P.y());
-        if (wantJacobian)
-          addKernelNode<true, 3>(P, phi, wl, inv, acc.F, acc.dF.data());
-        else
-          addKernelNode<false, 3>(P, phi, wl, inv, acc.F, nullptr);
-      }
-    }
+  // lambda = -i beta / omega, beta = w'3 / rho; the ICR zeta = 1 / lambda
+  const double omSq = wl.x() * wl.x() + wl.y() * wl.y();
+  const double beta = wl.z() / rho;
+  const Cx lambda{-beta * wl.y() / omSq, -beta * wl.x() / omSq};
+  const bool finite = beta != 0.0;
+  const Vec2 zeta = finite ? Vec2(-wl.y() / beta, wl.x() / beta) : Vec2::Zero();
+  FarGreenSums sums;
+  auto node = [&](Cx z, Cx W) {
+    if (wantJacobian)
+      addFarGreenNode<true>(z, W, lambda, sums);
+    else
+      addFarGreenNode<false>(z, W, lambda, sums);
   };
   for (const BoundaryPiece& piece : pieces) {
     const BoundaryPiece p = shifted(piece, g);
     if (p.kind == BoundaryPiece::Kind::Segment) {
-      addSpan([&](double s) -> Vec2 { return p.a + s * (p.b - p.a); },
-              [&](double) -> Vec2 { return p.b - p.a; }, 1.0, n);
+      const Vec2 d = p.b - p.a;
+      const Cx dz2i{0.5 * d.y(), -0.5 * d.x()};  // (b - a) / (2i)
+      for (int i = 0; i < n; ++i) {
+        const Vec2 x = p.a + gt.x[n][i] * d;
+        node(Cx{x.x(), x.y()}, gt.w[n][i] * dz2i);
+      }
       continue;
     }
+    const Cx zetaO{zeta.x() - p.centre.x(), zeta.y() - p.centre.y()};
     const double span = p.angle1 - p.angle0;
-    const int parts = std::max(1, static_cast<int>(std::ceil(span / (0.5 * M_PI))));
-    const double h = span / parts;
+    constexpr int kMaxParts = 64;
+    std::array<int, kMaxParts> orders{};
+    std::array<double, kMaxParts> cms{}, sms{};
+    int parts = 1;
+    for (;; ++parts) {
+      const double H = 0.5 * span / parts;
+      bool fits = true;
+      for (int q = 0; q < parts && fits; ++q) {
+        const double tm = p.angle0 + (2 * q + 1) * H;
+        cms[q] = std::cos(tm), sms[q] = std::sin(tm);
+        orders[q] = arcSpanOrder(H, cms[q], sms[q], zetaO, finite, p.radius, size, wantJacobian,
+                                 kQuadratureTol);
+        fits = orders[q] <= kGaussMaxOrder;
+      }
+      if (fits) break;
+      if (parts == kMaxParts) {  // not reached for ICRs beyond kFarRatio
+        orders.fill(kGaussMaxOrder);
+        break;
+      }
+    }
+    const double H = 0.5 * span / parts;
     for (int q = 0; q < parts; ++q) {
-      const double t0 = p.angle0 + q * h;
-      addSpan(
-          [&](double s) -> Vec2 {
-            return p.centre + p.radius * Vec2(std::cos(t0 + s * h), std::sin(t0 + s * h));
-          },
-          [&](double s) -> Vec2 {
-            return p.radius * Vec2(-std::sin(t0 + s * h), std::cos(t0 + s * h));
-          },
-          h, std::max(n, kArcOrder));
+      const int nt = orders[q];
+      const double cm = cms[q], sm = sms[q];
+      // t = tm + delta, z = o + r e^(it), dz/(2i) = (r H w / 2) e^(it) per node (weights on [0, 1])
+      for (int i = 0; i < (nt + 1) / 2; ++i) {
+        const double delta = (2.0 * gt.x[nt][i] - 1.0) * H;
+        const double cd = std::cos(delta), sd = std::sin(delta);
+        const double wr = gt.w[nt][i] * p.radius * H;
+        for (int side = 0; side < (2 * i + 1 == nt ? 1 : 2); ++side) {
+          const double s = side == 0 ? sd : -sd;
+          const double ct = cm * cd - sm * s, st = sm * cd + cm * s;
+          node(Cx{p.centre.x() + p.radius * ct, p.centre.y() + p.radius * st},
+               Cx{wr * ct, wr * st});
+        }
+      }
     }
   }
+  farGreenBasis(sums, wl, rho, wantJacobian, acc);
 }
 
-// Order of the far rule (exact_area_rule.hpp's farOrder at 1e-13, well below
-// the 1e-10 contract), at least 3. Along arcs at least kArcOrder (the area
-// element is trigonometric in t; order 6 lost 1.6e-10 on the thin segment's
-// arc, whose area is 1/10 of a^2 times its span).
-constexpr double kQuadratureTol = 1e-13;
+// Order of the far rule on segments: exact_area_rule.hpp's farOrder at
+// kQuadratureTol (its model, a polynomial of degree 3 (4 with dF) times a
+// function analytic up to the ICR, fits the boundary integrand as it fitted
+// the area rule's radial direction), at least 3.
 int arcFarOrder(double kappaSq, bool jacobian) {
   return std::max(3, farOrder(kappaSq, kQuadratureTol, jacobian));
 }
@@ -171,11 +253,21 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   if (N < 1) fail("need at least 1 boundary piece");
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
   if (!w.allFinite() || w.cwiseAbs().maxCoeff() == 0.0) fail("w must be finite and nonzero");
+  // the pieces' end points, once each (an arc's cost a cosine and a sine)
+  constexpr std::size_t kStackPieces = 16;
+  std::array<Vec2, 2 * kStackPieces> stackEnds;
+  std::vector<Vec2> heapEnds;
+  Vec2* ends = stackEnds.data();  // start, end of piece i at 2i, 2i + 1
+  if (N > kStackPieces) {
+    heapEnds.resize(2 * N);
+    ends = heapEnds.data();
+  }
   // frame centre g: mean of the pieces' start points and arc mid points;
   // size: a bound of |P - g| over the region
   Vec2 g = Vec2::Zero();
   int count = 0;
-  for (const BoundaryPiece& p : boundary) {
+  for (std::size_t i = 0; i < N; ++i) {
+    const BoundaryPiece& p = boundary[i];
     if (p.kind == BoundaryPiece::Kind::Arc) {
       if (!(p.radius > 0.0) || !(p.angle1 > p.angle0) || !(p.angle1 - p.angle0 <= 2.0 * M_PI))
         fail("an arc needs radius > 0 and 0 < angle1 - angle0 <= 2 pi");
@@ -183,7 +275,9 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
       g += p.centre + p.radius * Vec2(std::cos(tm), std::sin(tm));
       ++count;
     }
-    g += p.start();
+    ends[2 * i] = p.start();
+    ends[2 * i + 1] = p.end();
+    g += ends[2 * i];
     ++count;
   }
   g /= count;
@@ -191,8 +285,9 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   // size = max |P - g| on the boundary: a piece's ends, or an arc's point
   // farthest from g (direction g -> centre) when the arc contains it
   double size = 0.0;
-  for (const BoundaryPiece& p : boundary) {
-    size = std::max({size, (p.start() - g).norm(), (p.end() - g).norm()});
+  for (std::size_t i = 0; i < N; ++i) {
+    const BoundaryPiece& p = boundary[i];
+    size = std::max({size, (ends[2 * i] - g).norm(), (ends[2 * i + 1] - g).norm()});
     if (p.kind == BoundaryPiece::Kind::Arc) {
       const Vec2 away = p.centre - g;
       const double t = std::atan2(away.y(), away.x());
@@ -201,7 +296,7 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
     }
   }
   for (std::size_t i = 0; i < N; ++i) {
-    if ((boundary[i].end() - boundary[(i + 1) % N].start()).norm() > kClosureRel * size)
+    if ((ends[2 * i + 1] - ends[2 * ((i + 1) % N)]).norm() > kClosureRel * size)
       fail("piece " + std::to_string(i) + " does not end where the next starts");
   }
 
@@ -210,7 +305,7 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   ExactBasis l;  // g-frame
   if (frame.far(kFarRatio, size * size)) {
     const int n = arcFarOrder(frame.kappaSq(size * size), wantJacobian);
-    farBranch(boundary, g, frame.wl, rho, n, wantJacobian, l);
+    farBranch(boundary, g, frame.wl, rho, n, size, wantJacobian, l);
   } else {
     nearBranch(boundary, g, frame.wl, rho, size, wantJacobian, l);
   }

@@ -312,6 +312,150 @@ TEST(ExactArcRegionBasis, JacobianAgreesWithFinePolygons) {
   std::printf("worst |dF - dF(1024)| / |dF(256) - dF(1024)|: %.3g (1/15 expected)\n", worstRatio);
 }
 
+// The frame centre g and region radius of exactArcRegionBasis (as
+// exact_arc_region.cpp defines them: g the mean of the pieces' start points
+// and arc mid points, the radius the largest |P - g| on the boundary, here
+// from dense samples plus the arcs' extremes), so that the ICR can be placed
+// kappa radii from g.
+void lawFrame(const Region& region, Vec2& g, double& radius) {
+  g = Vec2::Zero();
+  int count = 0;
+  for (const BoundaryPiece& p : region) {
+    if (p.kind == BoundaryPiece::Kind::Arc) {
+      g += onCircle(p.centre, p.radius, 0.5 * (p.angle0 + p.angle1));
+      ++count;
+    }
+    g += p.start();
+    ++count;
+  }
+  g /= count;
+  radius = 0.0;
+  for (const Vec2& p : boundarySamples(region, 20000)) radius = std::max(radius, (p - g).norm());
+}
+
+// The far branch (ICR beyond 8 region radii of g, or w3 = 0: Green's
+// theorem and a boundary Gauss rule whose orders target 1e-13 of F's
+// scale) at kappa from just beyond the switch to 1e7 and at infinity, in 8
+// directions each, both spins, on every test region, the whole disk, a
+// disk cut at R (1 - 1e-8) (arcs of 2 pi and almost 2 pi) and a sliver cap
+// (height R / 200: an arc of radius 10 region radii):
+//  * F (alone and with dF: the rule's orders differ) against the oracle to
+//    kFarOracleTol = 2e-12 of the column scale: 20
+//    times the rule's target, twice the oracle's own per-entry tolerance
+//    (1e-12, an overestimate), 50 times under the 1e-10 contract;
+//  * dF against Richardson-extrapolated central differences (as
+//    JacobianMatchesFiniteDifferences, step 1e-3 / (1 + max|P|/rho)) to
+//    kFarFdTol = 1e-9 of the column scale: the differences' own error
+//    (measured up to 1.5e-10, not shrinking with h: F's rounding and its
+//    quadrature error, which jumps where the rule's order changes, over h),
+//    a tenth of JacobianMatchesFiniteDifferences' 1e-8;
+//    kappa starts at 8.1 so that the steps, which change kappa by < 0.5 %,
+//    stay in the far branch (the near branch's rounding / h would dominate);
+//  * dF[k] w = 0 to kEulerTol (degree-0 homogeneity).
+TEST(ExactArcRegionBasis, FarBranchMatchesOracleAcrossKappa) {
+  constexpr double kFarOracleTol = 2e-12;
+  constexpr double kFarFdTol = 1e-9;
+  constexpr double kEulerTol = 1e-12;
+  constexpr double kStep = 1e-3;
+  double worst = 0.0, worstFd = 0.0, worstEuler = 0.0;
+  testing::exact_polygon::gOracleCapped = 0;
+  std::vector<NamedRegion> regions = testRegions();
+  const Vec2 o(0.3, -0.2);
+  regions.push_back({"whole disk", {BoundaryPiece::arc(o, 0.7, -1.0, -1.0 + 2.0 * M_PI)}, 0.45});
+  regions.push_back(
+      {"disk cut at R (1 - 1e-8)", diskSegment(o, 0.7, 0.7, 0.7 * (1.0 - 1e-8)), 0.45});
+  for (const NamedRegion& nr : regions) {
+    const Vec3 scale = columnScales(nr.region, nr.rho);
+    Vec2 g;
+    double radius;
+    lawFrame(nr.region, g, radius);
+    double rmax = 0.0;
+    for (const Vec2& p : boundarySamples(nr.region, 2000)) rmax = std::max(rmax, p.norm());
+    const double h = kStep / (1.0 + rmax / nr.rho);
+    std::vector<std::pair<std::string, Vec3>> ws;
+    for (int i = 0; i < 8; ++i) {
+      const double a = 0.3 + 2.0 * M_PI * i / 8.0;
+      const Vec2 e(std::cos(a), std::sin(a));
+      ws.push_back({"translation " + std::to_string(i), Vec3(e.x(), e.y(), 0.0)});
+      for (double kappa : {8.1, 9.0, 12.0, 20.0, 50.0, 1e2, 1e3, 1e4, 1e5, 1e7}) {
+        const double spin = i % 2 == 0 ? 1.0 : -1.0;
+        ws.push_back({"kappa " + std::to_string(kappa) + " direction " + std::to_string(i),
+                      wForIcr(g + kappa * radius * e, nr.rho, spin)});
+      }
+    }
+    for (const auto& [label, w] : ws) {
+      ExactBasis out, alone;
+      exactArcRegionBasis(nr.region, nr.rho, w, true, out);
+      exactArcRegionBasis(nr.region, nr.rho, w, false, alone);  // F alone: its own orders
+      const Mat3 ref = oracleF(nr.region, nr.rho, w);
+      for (const Mat3& F : {out.F, alone.F}) {
+        const double err = relativeError(F, ref, scale);
+        worst = std::max(worst, err);
+        EXPECT_LE(err, kFarOracleTol) << nr.name << " / " << label;
+      }
+      for (int j = 0; j < 3; ++j) {
+        auto central = [&](double step) {
+          ExactBasis plus, minus;
+          Vec3 wp = w, wm = w;
+          wp[j] += step;
+          wm[j] -= step;
+          exactArcRegionBasis(nr.region, nr.rho, wp, false, plus);
+          exactArcRegionBasis(nr.region, nr.rho, wm, false, minus);
+          return Mat3((plus.F - minus.F) / (2.0 * step));
+        };
+        const Mat3 fd = (4.0 * central(0.5 * h) - central(h)) / 3.0;
+        for (int k = 0; k < 3; ++k) {
+          const double e = (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k];
+          worstFd = std::max(worstFd, e);
+          EXPECT_LE(e, kFarFdTol) << nr.name << " / " << label << " column " << k << " dw" << j;
+        }
+      }
+      for (int k = 0; k < 3; ++k) {
+        const double e = (out.dF[k] * w).cwiseAbs().maxCoeff() / scale[k];
+        worstEuler = std::max(worstEuler, e);
+        EXPECT_LE(e, kEulerTol) << nr.name << " / " << label;
+      }
+    }
+  }
+  EXPECT_EQ(testing::exact_polygon::gOracleCapped, 0);
+  std::printf(
+      "far branch: worst F error against the oracle %.3g, dF against differences %.3g, "
+      "|dF w| %.3g\n",
+      worst, worstFd, worstEuler);
+}
+
+// More pieces than exactArcRegionBasis keeps on the stack (16): a 20-gon
+// given as 20 segments against the polygon law on its vertices (an
+// independent edge sum and fan rule), near and far ICRs and w3 = 0. Both
+// laws are within ~1e-13 of their oracles, so kPolygonAgreementTol = 1e-12
+// of the column scale.
+TEST(ExactArcRegionBasis, ManySegmentsMatchPolygonLaw) {
+  constexpr double kPolygonAgreementTol = 1e-12;
+  std::vector<Vec2> poly;
+  Region region;
+  for (int i = 0; i < 20; ++i)
+    poly.push_back(onCircle(Vec2(0.2, -0.1), 0.5, 2.0 * M_PI * i / 20.0));
+  for (int i = 0; i < 20; ++i)
+    region.push_back(BoundaryPiece::segment(poly[i], poly[(i + 1) % 20]));
+  const double rho = 0.4;
+  const Vec3 scale = columnScales(region, rho);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  double worst = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    Vec3 w(normal(rng), normal(rng), normal(rng));
+    if (i % 3 == 0) w.z() *= 1e-2;  // far ICRs
+    if (i % 10 == 0) w.z() = 0.0;
+    ExactBasis arc, ref;
+    exactArcRegionBasis(region, rho, w, false, arc);
+    internal::exactPolygonBasis(poly, rho, w, false, ref);
+    const double err = relativeError(arc.F, ref.F, scale);
+    worst = std::max(worst, err);
+    EXPECT_LE(err, kPolygonAgreementTol) << "w = " << w.transpose();
+  }
+  std::printf("20 segments against the polygon law: worst %.3g\n", worst);
+}
+
 // The cut shrinks to nothing: a disk segment cut at h = R (1 - eps) differs
 // from the whole disk by the cap of area ~ (4 sqrt(2) / 3) R^2 eps^(3/2), whose
 // contribution to every column is at most its area times the column scale per
