@@ -158,6 +158,13 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   double prevRes = INFINITY;
   for (int it = 0; it < kMaxIterations && !slipProven; ++it) {
     q = patch.unitQ(Model::Exact, w, &J);
+    // The law is odd, q(-w) = -q(w), so J(-w) = J(w): an iterate whose value
+    // points away from lambda0 is taken at -w, on lambda0's side, without an
+    // evaluation. Else Newton on the residual across l meets the antipodal
+    // root, q(w) along -l, as readily (from a warm start of an earlier visit
+    // whose lambda0 has turned over), and stays there
+    // (ExactBlock.GaugeStartedAtTheAntipodeIsTheBoundaryPoint).
+    if (q.dot(l) < 0.0) w = -w, q = -q;
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
     if (res.norm() <= tol * q.norm() && q.dot(l) > 0.0) {
       gaugeFound = true;
