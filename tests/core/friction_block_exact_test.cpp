@@ -436,5 +436,58 @@ TEST(ExactBlock, GaugeStartedAtTheAntipodeIsTheBoundaryPoint) {
   }
 }
 
+// A gauge iterate w whose law value separates lambda0 from L E (h(w) =
+// lambda0.w - L q(w).w < 0) proves the slip and starts the iteration on D
+// there: the block then solves exactly as with w given as the warm-start
+// slip (the same certificate and start, the candidates skipped). Asserted
+// for blocks that slip (f > 1) and whose ellipsoidal solution proves
+// nothing (checked here with the law): started from the gauge direction u
+// (its h = (1 - f) L |q(u).u| < 0), the block takes the warm-started
+// block's iterations and returns its impulse (without the rule the gauge
+// converged first and the candidates chose the start: other iterations);
+// the impulse is the law at the slip by quadrature (kQuadrature of |q|, the
+// oracle's 1e-12 and the law's round-off, plus the iteration's own
+// resolution: it stops at kIterationTol of the slip scale |b| + L |K|, which
+// fixes the slip's direction to that over |s|, and the law's Jacobian is
+// O(|q|) on these patches), and slip = b + K impulse.
+TEST(ExactBlock, GaugeIterateThatSeparatesProvesTheSlip) {
+  constexpr double kQuadrature = 1e-11, kIterationTol = 1e-14;
+  for (const FrictionPatch& patch : gaugeTestPatches()) {
+    std::mt19937 rng(53);
+    int gaugeStarted = 0;
+    for (int trial = 0; trial < 200 && gaugeStarted < 15; ++trial) {
+      const double f = std::uniform_real_distribution<double>(1.001, 1.1)(rng);
+      const BoundaryBlock block = boundaryBlock(patch, rng, f);
+      const FrictionBlockInput& in = block.in;
+      const Vec3 lambda0 = -in.K.inverse() * in.b;
+      auto gap = [&](const Vec3& u) {
+        return lambda0.dot(u) - in.L * patch.unitQ(Model::Exact, u).dot(u);
+      };
+      const Vec3 ellipsoidal = solveFrictionBlock(patch, Model::Ellipsoidal, in).slip;
+      if (!ellipsoidal.isZero(0.0) && gap(ellipsoidal.normalized()) < 0.0) continue;
+      // (scaled to a largest entry of 1: the gauge's start and the warm slip
+      // are then the same unit vector to the bit)
+      const Vec3 u = block.u / block.u.cwiseAbs().maxCoeff();
+      ASSERT_LT(gap(u.normalized()), 0.0);
+      ++gaugeStarted;
+      FrictionBlockInput viaGauge = in, viaWarmSlip = in;
+      viaGauge.warmGauge = u;
+      viaWarmSlip.warmSlip = u;
+      const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, viaGauge);
+      const FrictionBlockResult expected = solveFrictionBlock(patch, Model::Exact, viaWarmSlip);
+      ASSERT_FALSE(r.sticking) << f;
+      EXPECT_EQ(r.iterations, expected.iterations);
+      EXPECT_EQ(r.impulse, expected.impulse);
+      expectSlipIsBPlusKImpulse(in, r);
+      const Vec3 q = lawByQuadrature(patch, r.slip);
+      const double scale = in.b.norm() + in.L * in.K.norm();
+      EXPECT_LT((r.impulse / in.L - q).norm(),
+                (kQuadrature + kIterationTol * scale / r.slip.norm()) * q.norm())
+          << f;
+    }
+    EXPECT_GE(gaugeStarted, 10);
+  }
+}
+
 }  // namespace
 }  // namespace patchspin
