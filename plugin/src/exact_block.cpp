@@ -155,10 +155,32 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // q = 0; kMaxGaugeStep of the tangent plane is a quarter turn)
   constexpr double kTinyNorm = 1e-300, kMaxGaugeStep = 0.5;
   Vec3 prevW = w, prevQ = Vec3::Zero();
+  bool gaugeProvesSlip = false;
   double prevRes = INFINITY;
   for (int it = 0; it < kMaxIterations && !slipProven; ++it) {
     q = patch.unitQ(Model::Exact, w, &J);
+    // The law is odd, q(-w) = -q(w), so J(-w) = J(w): an iterate whose value
+    // points away from lambda0 is taken at -w, on lambda0's side, without an
+    // evaluation. Else Newton on the residual across l meets the antipodal
+    // root, q(w) along -l, as readily (from a warm start of an earlier visit
+    // whose lambda0 has turned over), and stays there
+    // (ExactBlock.GaugeStartedAtTheAntipodeIsTheBoundaryPoint).
+    if (q.dot(l) < 0.0) w = -w, q = -q;
     const Eigen::Vector2d res(e1.dot(q), e2.dot(q));
+    // Every iterate's q(w) is a law value, a support point of E: its gap
+    // h(w) < 0 (see `gap`) proves the slip as a candidate's does, and its
+    // value and Jacobian start the iteration on D below without the further
+    // candidates (ExactBlock.GaugeIterateThatSeparatesProvesTheSlip). At the
+    // gauge point h = (|lambda0| - L |q|) (l.w) with l.w < 0 (q.w < 0 for
+    // every law value), so a slip is proven there at the latest.
+    const double hw = -w.dot(Kinvb) - in.L * q.dot(w);
+    if (hw < 0.0) {
+      if (res.norm() <= tol * q.norm()) out.gaugeSlip = w, out.gaugeValue = q;
+      gaugeProvesSlip = true;
+      bestScore = hw / std::sqrt(w.dot(Kinv * w)), bestU = w, bestQ = q, bestH = hw;
+      bestHasJ = true, bestJ = J;
+      break;
+    }
     if (res.norm() <= tol * q.norm() && q.dot(l) > 0.0) {
       gaugeFound = true;
       out.gaugeSlip = w, out.gaugeValue = q;
@@ -198,11 +220,12 @@ FrictionBlockResult solveExact(const FrictionPatch& patch, const FrictionBlockIn
   // (h is the support gap of lambda0 against L E), and D(r* u) = D(0) -
   // h(u)^2 / (2 u^T K^-1 u). So the slip lies in the cone h < 0, where D
   // restricted to radially optimal points is smooth. Start from the best of a
-  // few candidate directions (warm start, ellipsoidal solution, b, the gauge
-  // direction, and a coarse sphere if none has h < 0), then damped Newton on
+  // few candidate directions (warm start, ellipsoidal solution, the gauge
+  // iterate that proved the slip, else b, the gauge direction, and a coarse
+  // sphere if none has h < 0), then damped Newton on
   // D with every trial moved to r* on its ray; trials outside the cone are
   // rejected, which keeps the iterates off the kink of D at s = 0.
-  if (!slipProven) {
+  if (!slipProven && !gaugeProvesSlip) {
     scoreCandidate(in.b.normalized(), false);
     scoreCandidate(w, false);
     // -lambda0 = K^-1 b: its gap is L h_E(l) - |lambda0|, the plain gauge

@@ -17,6 +17,8 @@
 #include "oracle.hpp"
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace patchspin {
 namespace {
@@ -329,6 +331,162 @@ TEST(ExactBlock, RefusesALawWithoutDigits) {
   slide.b = Vec3(1.0, 0.5, 0.25);
   slide.L = 0.5;
   EXPECT_NO_THROW(solveFrictionBlock(ordinary, Model::Exact, slide));
+}
+
+// Blocks at E's boundary for the gauge tests below: lambda0 = f L q(u) for a
+// random unit u, so whether the block sticks (f <= 1) is known without the
+// solver, and u is where E's boundary point along lambda0 lies.
+struct BoundaryBlock {
+  FrictionBlockInput in;
+  Vec3 u;
+};
+BoundaryBlock boundaryBlock(const FrictionPatch& patch, std::mt19937& rng, double f) {
+  std::uniform_real_distribution<double> entry(-1.0, 1.0), eig(0.2, 5.0);
+  std::normal_distribution<double> n;
+  Mat3 A;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) A(i, j) = entry(rng);
+  const Mat3 Qm = Eigen::HouseholderQR<Mat3>(A).householderQ();
+  BoundaryBlock block;
+  block.in.K = Qm * Vec3(eig(rng), eig(rng), eig(rng)).asDiagonal() * Qm.transpose();
+  block.in.L = 0.5;
+  block.u = Vec3(n(rng), n(rng), n(rng)).normalized();
+  block.in.b = -block.in.K * (f * block.in.L * patch.unitQ(Model::Exact, block.u));
+  return block;
+}
+
+// The law by quadrature of Eq. (16) (tests/support/oracle.hpp), q = Q / Pz
+// with mu = 1.
+Vec3 lawByQuadrature(const FrictionPatch& patch, const Vec3& w) {
+  return patchspin::testing::bruteForceQ(patch.shape(),
+                                         patchspin::testing::linearField(patch.pressure()), 1.0,
+                                         patch.rho(), w, 1e-12) /
+         patch.Pz();
+}
+
+std::vector<FrictionPatch> gaugeTestPatches() {
+  const PatchShape disk = PatchShape::disk(0.05);
+  const PatchShape rect = PatchShape::rectangle(0.08, 0.04, Vec2(0.01, -0.005));
+  return {FrictionPatch(disk, LinearPressure::fromLoads(disk, {10.0, 0.06, -0.04}), 0.5),
+          FrictionPatch(rect, LinearPressure::fromLoads(rect, {10.0, 0.02, 0.03}), 0.5)};
+}
+
+// A gauge iteration started at the antipode -w of E's boundary point q(w)
+// along lambda0 (a warm start kept from a visit whose lambda0 has since
+// turned over) has the root q(-w) = -q(w) along -lambda0 at hand: the law is
+// odd, and the iterate is taken at w at once. Asserted for blocks that stick
+// (f < 1, beyond the quick octahedron test): the same decision and impulse
+// as the cold start, the boundary point found at the first evaluation
+// (iterations 0: without the rule, Newton stayed at the antipode for all
+// kMaxIterations), and that point checked against quadrature: the gauge
+// value is the law at the gauge slip (kQuadrature: the oracle's 1e-12 and
+// the law's round-off), parallel to lambda0 (kParallelTol: the gauge's
+// tolerance 1e-14 amplified by its 2x2 solve) and on its side.
+TEST(ExactBlock, GaugeStartedAtTheAntipodeIsTheBoundaryPoint) {
+  constexpr double kQuadrature = 1e-11, kParallelTol = 1e-10;
+  // b + K impulse = 0 for a stick, to the round-off of the stick solve
+  constexpr double kStickSolve = 1e-12;
+  for (const FrictionPatch& patch : gaugeTestPatches()) {
+    std::mt19937 rng(47);
+    int located = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      const double f = std::uniform_real_distribution<double>(0.9, 0.999)(rng);
+      const FrictionBlockInput in = boundaryBlock(patch, rng, f).in;
+      const FrictionBlockResult cold = solveFrictionBlock(patch, Model::Exact, in);
+      ASSERT_TRUE(cold.sticking) << f;
+      if (cold.gaugeSlip.isZero(0.0)) continue;  // the octahedron held it
+      ++located;
+      FrictionBlockInput warm = in;
+      warm.warmGauge = -cold.gaugeSlip;
+      const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, warm);
+      ASSERT_TRUE(r.sticking);
+      EXPECT_EQ(r.iterations, 0);
+      EXPECT_LT((in.b + in.K * r.impulse).norm(), kStickSolve * in.b.norm());
+      EXPECT_EQ(r.impulse, cold.impulse);
+      const Vec3 lambda0 = -in.K.inverse() * in.b;
+      const Vec3 w = r.gaugeSlip, q = r.gaugeValue;
+      ASSERT_NEAR(w.norm(), 1.0, 1e-15);
+      EXPECT_LT((q - lawByQuadrature(patch, w)).norm(), kQuadrature * q.norm());
+      EXPECT_LT(q.normalized().cross(lambda0.normalized()).norm(), kParallelTol);
+      EXPECT_GT(q.dot(lambda0), 0.0);
+    }
+    EXPECT_GE(located, 20);
+    // and blocks that slip (f > 1, by 0.1 to 1 %), started at the antipode
+    // of their boundary point's slip u: the slip (without the rule the
+    // trapped iteration left the decision to the candidates and the
+    // 128-direction sphere, which missed the narrow cone h < 0 and stuck the
+    // first of these blocks), its slip as from u itself to the tolerance
+    // (kAgree of the slip scale, as WarmStartedSlipIsTheLawAtItsSlip), and
+    // short of the gauge's cap of kMaxIterations = 100, which the trapped
+    // iteration spent
+    constexpr double kAgree = 2.0, kTol = 1e-14;
+    for (int trial = 0; trial < 20; ++trial) {
+      const double f = std::uniform_real_distribution<double>(1.001, 1.01)(rng);
+      const BoundaryBlock block = boundaryBlock(patch, rng, f);
+      FrictionBlockInput antipode = block.in, fromU = block.in;
+      antipode.warmGauge = -block.u;
+      fromU.warmGauge = block.u;
+      const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, antipode),
+                                expected = solveFrictionBlock(patch, Model::Exact, fromU);
+      ASSERT_FALSE(r.sticking) << f;
+      EXPECT_LT(r.iterations, 100);
+      const double scale = block.in.b.norm() + block.in.L * block.in.K.norm();
+      EXPECT_LT((r.slip - expected.slip).norm(), kAgree * kTol * scale);
+    }
+  }
+}
+
+// A gauge iterate w whose law value separates lambda0 from L E (h(w) =
+// lambda0.w - L q(w).w < 0) proves the slip and starts the iteration on D
+// there: the block then solves exactly as with w given as the warm-start
+// slip (the same certificate and start, the candidates skipped). Asserted
+// for blocks that slip (f > 1) and whose ellipsoidal solution proves
+// nothing (checked here with the law): started from the gauge direction u
+// (its h = (1 - f) L |q(u).u| < 0), the block takes the warm-started
+// block's iterations and returns its impulse (without the rule the gauge
+// converged first and the candidates chose the start: other iterations);
+// the impulse is the law at the slip by quadrature (kQuadrature of |q|, the
+// oracle's 1e-12 and the law's round-off, plus the iteration's own
+// resolution: it stops at kIterationTol of the slip scale |b| + L |K|, which
+// fixes the slip's direction to that over |s|, and the law's Jacobian is
+// O(|q|) on these patches), and slip = b + K impulse.
+TEST(ExactBlock, GaugeIterateThatSeparatesProvesTheSlip) {
+  constexpr double kQuadrature = 1e-11, kIterationTol = 1e-14;
+  for (const FrictionPatch& patch : gaugeTestPatches()) {
+    std::mt19937 rng(53);
+    int gaugeStarted = 0;
+    for (int trial = 0; trial < 200 && gaugeStarted < 15; ++trial) {
+      const double f = std::uniform_real_distribution<double>(1.001, 1.1)(rng);
+      const BoundaryBlock block = boundaryBlock(patch, rng, f);
+      const FrictionBlockInput& in = block.in;
+      const Vec3 lambda0 = -in.K.inverse() * in.b;
+      auto gap = [&](const Vec3& u) {
+        return lambda0.dot(u) - in.L * patch.unitQ(Model::Exact, u).dot(u);
+      };
+      const Vec3 ellipsoidal = solveFrictionBlock(patch, Model::Ellipsoidal, in).slip;
+      if (!ellipsoidal.isZero(0.0) && gap(ellipsoidal.normalized()) < 0.0) continue;
+      // (scaled to a largest entry of 1: the gauge's start and the warm slip
+      // are then the same unit vector to the bit)
+      const Vec3 u = block.u / block.u.cwiseAbs().maxCoeff();
+      ASSERT_LT(gap(u.normalized()), 0.0);
+      ++gaugeStarted;
+      FrictionBlockInput viaGauge = in, viaWarmSlip = in;
+      viaGauge.warmGauge = u;
+      viaWarmSlip.warmSlip = u;
+      const FrictionBlockResult r = solveFrictionBlock(patch, Model::Exact, viaGauge);
+      const FrictionBlockResult expected = solveFrictionBlock(patch, Model::Exact, viaWarmSlip);
+      ASSERT_FALSE(r.sticking) << f;
+      EXPECT_EQ(r.iterations, expected.iterations);
+      EXPECT_EQ(r.impulse, expected.impulse);
+      expectSlipIsBPlusKImpulse(in, r);
+      const Vec3 q = lawByQuadrature(patch, r.slip);
+      const double scale = in.b.norm() + in.L * in.K.norm();
+      EXPECT_LT((r.impulse / in.L - q).norm(),
+                (kQuadrature + kIterationTol * scale / r.slip.norm()) * q.norm())
+          << f;
+    }
+    EXPECT_GE(gaugeStarted, 10);
+  }
 }
 
 }  // namespace
