@@ -457,7 +457,21 @@ PatchLoads arcRegionImpl(const PatchShape& shape, const PatchLoads& loads, doubl
   } else if (found != KktResult::kFound) {
     out = projectPolygonBySearch(shape, q, M, y, rho);
   }
-  return loadsOfScaled(out, rho);
+  PatchLoads result = loadsOfScaled(out, rho);
+  // where an active vertex of Q is a piece's end (on the region) its
+  // pressure may round below 0: add the uniform pressure that lifts the
+  // minimum to >= 0 (a change of round-off size), so that the result is
+  // admissible with tolerance 0 and comes back unchanged (idempotence;
+  // AdmissibleLoadsArcRegion.ProjectionIsAdmissibleIdempotentAndOrthogonal)
+  if (result.Pz > 0.0) {
+    for (int attempt = 0; attempt < 4 && !isAdmissible(shape, result, 0.0); ++attempt) {
+      const double lowest = minPressure(shape, LinearPressure::fromLoads(shape, result));
+      const double lift = -lowest * (1.0 + 4.0 * attempt) + std::numeric_limits<double>::min();
+      const PatchLoads add = loadsOf(shape, LinearPressure{lift, 0.0, 0.0});
+      result = PatchLoads{result.Pz + add.Pz, result.Tx + add.Tx, result.Ty + add.Ty};
+    }
+  }
+  return result;
 }
 
 PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads,
