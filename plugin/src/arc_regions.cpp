@@ -175,12 +175,14 @@ Vec2 startPointMean(const std::vector<BoundaryPiece>& boundary) {
 AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const Vec2& g) {
   double area = 0.0, sx = 0.0, sy = 0.0, ixx = 0.0, ixy = 0.0, iyy = 0.0;
   const std::size_t n = boundary.size();
-  std::vector<Vec2> starts(n);
-  for (std::size_t i = 0; i < n; ++i) starts[i] = boundary[i].start() - g;
-  // chord polygon: signed triangles (g, a, b) (PatchShape's polygon rows)
+  // chord polygon: signed triangles (g, a, b) (PatchShape's polygon rows),
+  // a and b consecutive start points (no allocation: the adapter calls this
+  // on every clip)
+  const Vec2 first = boundary[0].start() - g;
+  Vec2 b = first;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2& a = starts[i];
-    const Vec2& b = starts[(i + 1) % n];
+    const Vec2 a = b;
+    b = i + 1 < n ? Vec2(boundary[i + 1].start() - g) : first;
     const double c = cross(a, b);
     area += c / 2.0;
     sx += c / 6.0 * (a.x() + b.x());
