@@ -10,7 +10,11 @@
 //   bench_friction_patch_arc_region --count=SHAPE:KIND:WHAT
 //     SHAPE 0 coin over an edge, 1 lens; KIND 0 arc region, 1 64-gon;
 //     WHAT 0 exactQ, 1 exactQ with its Jacobian, 2 the PatchShape's
-//     construction (1024 times): one pass unmeasured, then one bracketed
+//     construction, 3 (arc region only) the clip: diskPolygonIntersection
+//     or diskDiskIntersection and areaMomentsOf of its result, 4
+//     nearestAdmissibleLoads of 1024 seeded inadmissible loads (Pz = 10 N,
+//     |Tx|, |Ty| < 0.3 N m) (1024 calls each): one pass unmeasured, then
+//     one bracketed
 //     by callgrind's toggles; under `valgrind --tool=callgrind
 //     --instr-atstart=no` totals / 1024 is the count per call.
 #include <patchspin/models.hpp>
@@ -121,8 +125,10 @@ BENCHMARK(BM_ExactQ)
 int countOne(const char* text) {
   int which = -1, kind = -1, what = -1;
   if (std::sscanf(text, "%d:%d:%d", &which, &kind, &what) != 3 || which < 0 || which > 1 ||
-      kind < 0 || kind > 1 || what < 0 || what > 2) {
-    std::fprintf(stderr, "bench_friction_patch_arc_region: --count=SHAPE:KIND:WHAT (0-1, 0-1, 0-2)\n");
+      kind < 0 || kind > 1 || what < 0 || what > 4 || (what == 3 && kind != 0)) {
+    std::fprintf(stderr,
+                 "bench_friction_patch_arc_region: --count=SHAPE:KIND:WHAT (0-1, 0-1, 0-4; 3 only "
+                 "with KIND 0)\n");
     return 2;
   }
 #if !PATCHSPIN_HAVE_CALLGRIND
@@ -135,7 +141,30 @@ int countOne(const char* text) {
   const std::vector<Vec3> ws = directions();
   double sink = 0.0;
   Mat3 J = Mat3::Zero();
+  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
+                                 Vec2(-0.1, 0.1)};
+  const Vec2 c1(0.1 - 0.5 * kR, 0.03), c2 = c1 + Vec2(1.2 * kR, 0.0);
+  std::vector<PatchLoads> inadmissible;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  while (what == 4 && inadmissible.size() < kDirections) {
+    const PatchLoads l{10.0, 0.3 * u(rng), 0.3 * u(rng)};
+    if (!isAdmissible(shape, l, 0.0)) inadmissible.push_back(l);
+  }
+  const double rho = shape.defaultRho();
   auto pass = [&] {
+    if (what == 4) {
+      for (const PatchLoads& l : inadmissible) sink += nearestAdmissibleLoads(shape, l, rho).Pz;
+      return;
+    }
+    if (what == 3) {
+      for (int i = 0; i < kDirections; ++i) {
+        const std::vector<BoundaryPiece> b = which == 0 ? diskPolygonIntersection(c1, kR, box)
+                                                        : diskDiskIntersection(c1, kR, c2, kR);
+        sink += areaMomentsOf(b).area;
+      }
+      return;
+    }
     if (what == 2) {
       for (int i = 0; i < kDirections; ++i) sink += makeShape(s, kind).area();
       return;

@@ -13,13 +13,14 @@
 //  * Arc regions: K is {p >= 0 on every boundary point}, on an arc a
 //    constraint between linear (its ends) and conic; admissible loads come
 //    back unchanged (the exact test, minPressure's), others are projected
-//    onto the inner approximation K_Q of the circumscribed polygon Q (each
-//    arc replaced by its tangent lines, at most kArcTangentStep apart: Q
-//    lies within R (1 / cos(kArcTangentStep / 2) - 1) = 4.7e-6 R of the arc),
-//    by the polygon's KKT walk with the region's own load matrix. The result
-//    is admissible (p >= 0 on Q, which contains the region) and at most
-//    that much of the region farther than the exact projection
-//    (AdmissibleLoads.ArcRegion* in the test).
+//    onto the inner approximation K_Q of a circumscribed polygon Q (each
+//    arc replaced by tangent lines), by the polygon's KKT walk with the
+//    region's own load matrix, coarse to fine: tangents 2 pi / 64 apart,
+//    then 2 pi / 1024 and 2 pi / 16384 apart within 2 coarser steps of the
+//    previous answer's touch angle (Q there within R (1 / cos(pi / 16384) -
+//    1) = 1.8e-8 R of the arc). The result is admissible (p >= 0 on Q, which
+//    contains the region), and farther than the exact projection by about
+//    that gap (AdmissibleLoadsArcRegion.* in the tests).
 // Tests: tests/core/admissible_loads_test.cpp (brute force, KKT,
 // idempotence) and pressure_test.cpp; fuzz/pressure_fuzz.cpp.
 #include <patchspin/pressure.hpp>
@@ -409,53 +410,134 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
 
 // ---- arc regions ----------------------------------------------------------------
 
-// Largest angle between neighbouring tangent points of the circumscribed
-// polygon on an arc (file comment): 2 pi / 1024.
-constexpr double kArcTangentStep = 2.0 * 3.14159265358979323846 / 1024.0;
+// Tangent steps of the circumscribed polygon, coarse to fine (file
+// comment): every arc at kArcTangentSteps[0]; at level l > 0 also
+// kArcTangentSteps[l] within kArcWindowSteps steps of level l - 1 of the
+// touch angle of level l - 1's projection (where its zero line touches the
+// arc: the outward normal -grad p).
+constexpr double kTwoPiArc = 2.0 * 3.14159265358979323846;
+constexpr double kArcTangentSteps[3] = {kTwoPiArc / 64.0, kTwoPiArc / 1024.0,
+                                        kTwoPiArc / 16384.0};
+constexpr double kArcWindowSteps = 2.0;
+
+struct TangentWindow {
+  double centre, halfWidth, step;
+};
 
 // The circumscribed polygon Q of an arc region: per piece its start point,
-// then for an arc of span s the m = ceil(s / kArcTangentStep) intersections
-// of its tangents at angle0 + i s / m, at radius R / cos(s / (2 m)) and the
-// mid angles (by a rotation recurrence, not a sine per vertex).
-std::vector<Vec2> circumscribedPolygon(const std::vector<BoundaryPiece>& boundary) {
-  std::vector<Vec2> q;
+// then per arc the intersections of its tangents at the sorted tangent
+// angles (its ends, the coarse grid, the windows' fine grids): the tangents
+// at unit directions u, v meet at R (u + v) / (1 + u.v). Each grid's
+// directions by a rotation recurrence (one sine and cosine per grid, not
+// per vertex; ~1e-14 off the circle after a few hundred steps, what the
+// final lift in arcRegionImpl absorbs). Q contains the region (its edges
+// are supporting lines). `near` gets the index of the vertex nearest to
+// the last window's centre (or npos).
+struct TangentPoint {
+  double angle;
+  Vec2 dir;
+};
+void addGrid(double lo, double hi, int k, std::vector<TangentPoint>& out) {
+  const double step = (hi - lo) / k;
+  const Vec2 rot(std::cos(step), std::sin(step));
+  Vec2 d(std::cos(lo), std::sin(lo));
+  for (int i = 0; i <= k; ++i) {
+    out.push_back({lo + step * i, d});
+    d = Vec2(d.x() * rot.x() - d.y() * rot.y(), d.x() * rot.y() + d.y() * rot.x());
+  }
+}
+void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary,
+                          const std::vector<TangentWindow>& windows, std::vector<Vec2>& q,
+                          std::vector<TangentPoint>& points, std::size_t& near) {
+  q.clear();
+  near = static_cast<std::size_t>(-1);
+  double nearGap = std::numeric_limits<double>::infinity();
   for (const BoundaryPiece& p : boundary) {
     q.push_back(p.start());
     if (p.kind != BoundaryPiece::Kind::Arc) continue;
-    const double span = p.angle1 - p.angle0;
-    const int m = std::max(1, static_cast<int>(std::ceil(span / kArcTangentStep)));
-    const double h = 0.5 * span / m;
-    const double r = p.radius / std::cos(h);
-    const Vec2 step(std::cos(2.0 * h), std::sin(2.0 * h));
-    Vec2 dir(std::cos(p.angle0 + h), std::sin(p.angle0 + h));
-    for (int i = 0; i < m; ++i) {
-      q.push_back(p.centre + r * dir);
-      dir = Vec2(dir.x() * step.x() - dir.y() * step.y(), dir.x() * step.y() + dir.y() * step.x());
+    const double t0 = p.angle0, t1 = p.angle1, span = t1 - t0;
+    points.clear();
+    auto byAngle = [](const TangentPoint& a, const TangentPoint& b) { return a.angle < b.angle; };
+    addGrid(t0, t1, std::max(1, static_cast<int>(std::ceil(span / kArcTangentSteps[0]))), points);
+    double lastCentre = std::numeric_limits<double>::quiet_NaN();
+    for (const TangentWindow& w : windows) {
+      // the window's centre in [t0, t0 + 2 pi), and one turn lower
+      double c = std::fmod(w.centre - t0, kTwoPiArc);
+      if (c < 0.0) c += kTwoPiArc;
+      for (const double centre : {t0 + c, t0 + c - kTwoPiArc}) {
+        const double lo = std::max(t0, centre - w.halfWidth);
+        const double hi = std::min(t1, centre + w.halfWidth);
+        if (!(hi > lo)) continue;
+        // (each grid is sorted: merged in, not sorted again)
+        const std::size_t middle = points.size();
+        addGrid(lo, hi, static_cast<int>(std::ceil((hi - lo) / w.step)), points);
+        std::inplace_merge(points.begin(), points.begin() + middle, points.end(), byAngle);
+        lastCentre = centre;
+      }
+    }
+    // angles closer than a quarter of the finest step merged (the
+    // grids overlap; near-equal tangents would make near-equal rows), the
+    // arc's ends kept exactly
+    constexpr double kMerge = 0.25 * kArcTangentSteps[2];
+    std::size_t kept = 1;
+    for (std::size_t i = 1; i < points.size(); ++i)
+      if (points[i].angle - points[kept - 1].angle > kMerge) points[kept++] = points[i];
+    points.resize(kept);
+    const TangentPoint end{t1, Vec2(std::cos(t1), std::sin(t1))};
+    if (points.size() > 1 && t1 - points.back().angle <= kMerge) {
+      points.back() = end;
+    } else if (points.back().angle != t1) {
+      points.push_back(end);
+    }
+    points.front().dir = Vec2(std::cos(t0), std::sin(t0));
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const Vec2& u = points[i - 1].dir;
+      const Vec2& v = points[i].dir;
+      q.push_back(p.centre + p.radius / (1.0 + u.dot(v)) * Vec2(u + v));
+      const double gap = std::abs(0.5 * (points[i - 1].angle + points[i].angle) - lastCentre);
+      if (gap < nearGap) nearGap = gap, near = q.size() - 1;
     }
   }
-  return q;
 }
 
 PatchLoads arcRegionImpl(const PatchShape& shape, const PatchLoads& loads, double rho) {
   if (isAdmissible(shape, loads, 0.0)) return loads;
-  const std::vector<Vec2> q = circumscribedPolygon(shape.boundary());
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
   const Mat3 M = scaledLoadMatrix(shape, rho);
-  // the most negative vertex of Q for the walk's start
   const LinearPressure p = LinearPressure::fromLoads(shape, loads);
-  std::size_t worst = 0;
-  double lowest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const double at = p.at(q[k]);
-    if (at < lowest) lowest = at, worst = k;
-  }
-  Vec3 out;
-  const KktResult found = projectPolygonByKkt(shape, q, M, y, rho, worst, out);
-  if (found == KktResult::kInside) {
-    // p >= 0 on Q to round-off: its boundary is within round-off of K_Q
-    out = y;
-  } else if (found != KktResult::kFound) {
-    out = projectPolygonBySearch(shape, q, M, y, rho);
+  std::vector<TangentWindow> windows;
+  std::vector<Vec2> q;
+  std::vector<TangentPoint> points;
+  q.reserve(256), points.reserve(256);
+  Vec3 out = Vec3::Zero();
+  for (int level = 0; level < 3; ++level) {
+    std::size_t near = 0;
+    circumscribedPolygon(shape.boundary(), windows, q, points, near);
+    // the walk's start: the vertex nearest to the last touch angle where y
+    // violates it, else the most negative vertex of Q
+    std::size_t worst = 0;
+    if (near < q.size() && p.at(q[near]) < 0.0) {
+      worst = near;
+    } else {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < q.size(); ++k) {
+        const double at = p.at(q[k]);
+        if (at < lowest) lowest = at, worst = k;
+      }
+    }
+    const KktResult found = projectPolygonByKkt(shape, q, M, y, rho, worst, out);
+    if (found == KktResult::kInside) {
+      out = y;  // p >= 0 on Q to round-off: y is on K_Q's boundary
+    } else if (found != KktResult::kFound) {
+      out = projectPolygonBySearch(shape, q, M, y, rho);
+    }
+    if (level == 2) break;
+    // refine about the touch angle of this level's pressure
+    const LinearPressure po = LinearPressure::fromLoads(shape, loadsOfScaled(out, rho));
+    if (!(out[0] > 0.0) || !(std::abs(po.cx) + std::abs(po.cy) > 0.0)) break;
+    windows.push_back(TangentWindow{std::atan2(-po.cy, -po.cx),
+                                    kArcWindowSteps * kArcTangentSteps[level],
+                                    kArcTangentSteps[level + 1]});
   }
   PatchLoads result = loadsOfScaled(out, rho);
   // where an active vertex of Q is a piece's end (on the region) its

@@ -130,6 +130,8 @@ std::vector<std::pair<std::string, Region>> testRegions() {
   out.push_back({"lens", diskDiskIntersection(Vec2(0, 0), 0.02, Vec2(0.025, 0.01), 0.02)});
   out.push_back(
       {"unequal lens", diskDiskIntersection(Vec2(0, 0), 0.02, Vec2(0.012, -0.015), 0.03)});
+  // half-angle 0.14: its segments' closed forms cancel by ~a^-2 = 50
+  out.push_back({"thin lens", diskDiskIntersection(Vec2(0, 0), 0.02, Vec2(0.0396, 0.0), 0.02)});
   // about their centroid (the Bullet layer's frame) and 3 diameters away
   const Region lensAtO = diskDiskIntersection(Vec2(-0.0125, -0.005), 0.02, Vec2(0.0125, 0.005), 0.02);
   out.push_back({"lens about its centroid", lensAtO});
