@@ -11,16 +11,16 @@
 //    oblique circular cone, the projection p = (I + mu H)^-1 y on the
 //    quadric y^T H y = 0, mu the root of a monotone secular equation.
 //  * Arc regions: K is {p >= 0 on every boundary point}, on an arc a
-//    constraint between linear (its ends) and conic; admissible loads come
-//    back unchanged (the exact test, minPressure's), others are projected
-//    onto the inner approximation K_Q of a circumscribed polygon Q (each
-//    arc replaced by tangent lines), by the polygon's KKT walk with the
-//    region's own load matrix, coarse to fine: tangents 2 pi / 64 apart,
-//    then 2 pi / 1024 and 2 pi / 16384 apart within 2 coarser steps of the
-//    previous answer's touch angle (Q there within R (1 / cos(pi / 16384) -
-//    1) = 1.8e-8 R of the arc). The result is admissible (p >= 0 on Q, which
-//    contains the region), and farther than the exact projection by about
-//    that gap (AdmissibleLoadsArcRegion.* in the tests).
+//    constraint between linear (its ends) and conic. Admissible loads come
+//    back unchanged (the exact test, minPressure's). Others: the nearest
+//    feasible KKT candidate (projectArcRegionExact: a piece end's face, a
+//    segment's edge ray, an arc point whose face projection touches there);
+//    if none is feasible, the projection onto the cone K_Q of a
+//    circumscribed polygon Q, coarse to fine (tangents 2 pi / 64 apart, then
+//    2 pi / 1024 and 2 pi / 16384 within two coarser steps of the previous
+//    answer's touch angle: within 1.8e-8 R of the arc there), admissible as
+//    Q contains the region. Last, a uniform pressure of round-off size lifts
+//    a minimum that rounds below 0 (idempotence).
 // Tests: tests/core/admissible_loads_test.cpp (brute force, KKT,
 // idempotence) and pressure_test.cpp; fuzz/pressure_fuzz.cpp.
 #include <patchspin/pressure.hpp>
@@ -500,6 +500,102 @@ void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary,
   }
 }
 
+// The exact projection onto K for an arc region, by its KKT conditions. A
+// linear pressure >= 0 on a convex region bounded by segments and strictly
+// convex arcs vanishes (if anywhere) at one piece end, along one segment, or
+// at one arc point where its outward normal is -grad p; so the projection
+// is the nearest feasible one of: each piece end's face projection, each
+// segment's edge ray (multipliers >= 0), and per arc the face projection of
+// the point P(t) whose projection's own touch angle is t (a root of
+// r(t) = cross((cos t, sin t), -grad p_z(t)), bracketed on kArcSamples
+// points and solved by the Illinois method). Feasible: minPressure >= -kExactFeasible of the mean
+// pressure. False where no candidate is feasible (the polygon scheme
+// decides then).
+constexpr int kArcSamples = 16;
+constexpr double kExactFeasible = 1e-10;
+bool projectArcRegionExact(const PatchShape& shape, const Mat3& M, const Vec3& y, double rho,
+                           Vec3& out) {
+  const bool aboutMean = shape.maxDistanceFromOrigin() > shape.diameter();
+  Mat3 PinvT;
+  PinvT << 1.0, 0.0, 0.0, 0.0, 0.0, -rho, 0.0, rho, 0.0;
+  const Mat3 MinvT = aboutMean ? Mat3::Zero() : Mat3(M.inverse().transpose());
+  // n(P): the pressure at P of scaled loads z is n(P) . z
+  auto row = [&](const Vec2& P) -> Vec3 {
+    const Vec3 phi(1.0, P.x(), P.y());
+    return aboutMean ? Vec3(PinvT * shape.solveLoadMatrix(phi)) : Vec3(MinvT * phi);
+  };
+  auto pressureOf = [&](const Vec3& z) {
+    return LinearPressure::fromLoads(shape, loadsOfScaled(z, rho));
+  };
+  double best = std::numeric_limits<double>::infinity();
+  auto consider = [&](const Vec3& z) {
+    const double d = (z - y).norm();
+    if (!(d < best) || !(z[0] > 0.0)) return;
+    const double mean = z[0] / shape.area();
+    if (!(minPressure(shape, pressureOf(z)) >= -kExactFeasible * mean)) return;
+    best = d, out = z;
+  };
+  auto face = [&](const Vec3& n, Vec3& z) {
+    const double ny = n.dot(y);
+    if (!(ny < 0.0)) return false;
+    z = y - ny / n.squaredNorm() * n;
+    return true;
+  };
+  const std::vector<BoundaryPiece>& b = shape.boundary();
+  for (const BoundaryPiece& piece : b) {
+    const Vec3 nStart = row(piece.start());
+    Vec3 z;
+    if (face(nStart, z)) consider(z);
+    if (piece.kind == BoundaryPiece::Kind::Segment) {
+      if (edgeProjection(nStart, row(piece.b), y, z)) consider(z);
+      continue;
+    }
+    // r(t) and the face projection at P(t)
+    auto residual = [&](double t, Vec3& zt) {
+      const Vec2 u(std::cos(t), std::sin(t));
+      if (!face(row(piece.centre + piece.radius * u), zt))
+        return std::numeric_limits<double>::quiet_NaN();
+      const LinearPressure pz = pressureOf(zt);
+      return u.x() * -pz.cy - u.y() * -pz.cx;
+    };
+    const double t0 = piece.angle0, span = piece.angle1 - piece.angle0;
+    double prevT = t0, prevR = residual(t0, z);
+    for (int i = 1; i <= kArcSamples; ++i) {
+      const double t = t0 + span * i / kArcSamples;
+      const double r = residual(t, z);
+      if (std::isfinite(prevR) && std::isfinite(r) && (prevR < 0.0) != (r < 0.0)) {
+        // the Illinois method on the bracket [prevT, t], to round-off
+        double a = prevT, fa = prevR, bb = t, fb = r, c = a, last = a;
+        int side = 0;
+        bool ok = false;
+        for (int it = 0; it < 100; ++it) {
+          c = (fa * bb - fb * a) / (fa - fb);
+          if (!(c > std::min(a, bb) && c < std::max(a, bb))) c = 0.5 * (a + bb);
+          const double fc = residual(c, z);
+          if (!std::isfinite(fc)) break;
+          ok = true;
+          if (fc == 0.0 ||
+              std::abs(c - last) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(c))
+            break;
+          last = c;
+          if ((fc < 0.0) == (fb < 0.0)) {
+            bb = c, fb = fc;
+            if (side == -1) fa *= 0.5;
+            side = -1;
+          } else {
+            a = c, fa = fc;
+            if (side == 1) fb *= 0.5;
+            side = 1;
+          }
+        }
+        if (ok) consider(z);  // (z: the projection at the last c)
+      }
+      prevT = t, prevR = r;
+    }
+  }
+  return std::isfinite(best);
+}
+
 PatchLoads arcRegionImpl(const PatchShape& shape, const PatchLoads& loads, double rho) {
   if (isAdmissible(shape, loads, 0.0)) return loads;
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
@@ -510,7 +606,8 @@ PatchLoads arcRegionImpl(const PatchShape& shape, const PatchLoads& loads, doubl
   std::vector<TangentPoint> points;
   q.reserve(256), points.reserve(256);
   Vec3 out = Vec3::Zero();
-  for (int level = 0; level < 3; ++level) {
+  const bool exact = projectArcRegionExact(shape, M, y, rho, out);
+  for (int level = 0; level < 3 && !exact; ++level) {
     std::size_t near = 0;
     circumscribedPolygon(shape.boundary(), windows, q, points, near);
     // the walk's start: the vertex nearest to the last touch angle where y
@@ -548,7 +645,9 @@ PatchLoads arcRegionImpl(const PatchShape& shape, const PatchLoads& loads, doubl
   if (result.Pz > 0.0) {
     for (int attempt = 0; attempt < 4 && !isAdmissible(shape, result, 0.0); ++attempt) {
       const double lowest = minPressure(shape, LinearPressure::fromLoads(shape, result));
-      const double lift = -lowest * (1.0 + 4.0 * attempt) + std::numeric_limits<double>::min();
+      // (-lowest alone may round away in Pz: plus a few ulps of the mean)
+      const double lift = -lowest + (attempt + 1) * 4.0 * std::numeric_limits<double>::epsilon() *
+                                        (result.Pz / shape.area());
       const PatchLoads add = loadsOf(shape, LinearPressure{lift, 0.0, 0.0});
       result = PatchLoads{result.Pz + add.Pz, result.Tx + add.Tx, result.Ty + add.Ty};
     }
