@@ -1,6 +1,7 @@
 // nearestAdmissibleLoads on arc regions: admissible output (p >= 0 on dense
 // boundary samples, = 0 somewhere), admissible input unchanged, idempotence,
-// the cone projection's orthogonality, and against the exact projection of
+// the cone projection's KKT conditions (orthogonality, y - Py in the polar
+// cone), and against the exact projection of
 // a disk (Kind::Disk's closed form) for a disk given as two half arcs.
 #include <patchspin/pressure.hpp>
 
@@ -71,6 +72,15 @@ TEST(AdmissibleLoadsArcRegion, ProjectionIsAdmissibleIdempotentAndOrthogonal) {
       // a cone projection: (y - P y) . P y = 0
       const Vec3 y = scaled(loads, rho), py = scaled(out, rho);
       EXPECT_NEAR((y - py).dot(py), 0.0, 1e-12 * y.squaredNorm());
+      // and y - Py in K's polar cone: (y - Py) . z <= 0 for admissible z
+      // (random pressures shifted to a minimum of 0, the boundary of K:
+      // with the two lines above, the KKT conditions of the projection)
+      for (int k = 0; k < 20; ++k) {
+        const LinearPressure slope{0.0, 1e6 * u(rng), 1e6 * u(rng)};
+        const LinearPressure q{-minPressure(shape, slope), slope.cx, slope.cy};
+        const Vec3 z = scaled(loadsOf(shape, q), rho);
+        EXPECT_LE((y - py).dot(z), 1e-12 * y.norm() * z.norm());
+      }
     }
     EXPECT_GT(projected, 50);
   }
