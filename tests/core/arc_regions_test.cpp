@@ -320,3 +320,33 @@ TEST(ArcRegions, InFrameMovesTheRegion) {
 
 }  // namespace
 }  // namespace patchspin
+
+namespace patchspin {
+namespace {
+
+// O 100 diameters from a lens: the table against quadrature (1e-10 of A
+// max|f| max|phi| as above; the rows with r come from the far branch of the
+// exact law), and Eq. (94) solved about the start points' mean: the loads of
+// the solved pressure give back the loads (1e-12 of Pz max|r|).
+TEST(ArcRegions, FarOrigin) {
+  Region lens = diskDiskIntersection(Vec2(-0.0125, -0.005), 0.02, Vec2(0.0125, 0.005), 0.02);
+  const Vec2 shift(2.4, -1.8);  // |shift| = 3 m, ~100 diameters
+  for (BoundaryPiece& p : lens) p.a += shift, p.b += shift, p.centre += shift;
+  const PatchShape shape = PatchShape::arcRegion(lens);
+  const Eigen::Matrix<double, 6, 3> ref = aq::momentTable(lens);
+  const double rmax = shape.maxDistanceFromOrigin();
+  for (int f = 0; f < 6; ++f) {
+    const double fmax = (f == 0 || f >= 4) ? 1.0 : rmax;
+    for (int k = 0; k < 3; ++k) {
+      const double scale = shape.area() * fmax * (k == 0 ? 1.0 : rmax);
+      EXPECT_NEAR(shape.momentTable().m(f, k), ref(f, k), 1e-10 * scale) << f << " " << k;
+    }
+  }
+  const Vec3 rhs(10.0, 10.0 * (shift.x() + 0.001), 10.0 * (shift.y() - 0.002));  // (Pz, Ty, -Tx)
+  const Vec3 c = shape.solveLoadMatrix(rhs);
+  const Vec3 back = shape.areaMoments().loadMatrix() * c;
+  EXPECT_LT((back - rhs).norm(), 1e-12 * 10.0 * rmax);
+}
+
+}  // namespace
+}  // namespace patchspin
