@@ -121,11 +121,11 @@ class PatchShape {
   // Disk only (Error otherwise): radius and centre. (Inline: the friction
   // solver asks for them on every visit of a disk patch.)
   double radius() const {
-    if (kind_ != Kind::Disk) throwNotA("radius() asked of a polygon patch");
+    if (kind_ != Kind::Disk) throwNotA("radius() asked of a patch that is not a disk");
     return radius_;
   }
   const Vec2& centre() const {
-    if (kind_ != Kind::Disk) throwNotA("centre() asked of a polygon patch");
+    if (kind_ != Kind::Disk) throwNotA("centre() asked of a patch that is not a disk");
     return centre_;
   }
   // Polygon only (Error otherwise): counter-clockwise vertices.
