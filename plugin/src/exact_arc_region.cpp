@@ -39,13 +39,6 @@
 
 namespace patchspin::internal {
 
-Vec2 BoundaryPiece::start() const {
-  return kind == Kind::Segment ? a : centre + radius * Vec2(std::cos(angle0), std::sin(angle0));
-}
-Vec2 BoundaryPiece::end() const {
-  return kind == Kind::Segment ? b : centre + radius * Vec2(std::cos(angle1), std::sin(angle1));
-}
-
 namespace {
 
 // Far branch beyond this many region radii (as the polygon's kFarRatio).

@@ -1,6 +1,7 @@
 // Patch shapes in the patch frame: origin O (the reference point), x and y in
 // the contact plane, z along the contact normal into the moving body.
-// Disks and convex polygons (rectangles as a helper). O may lie anywhere,
+// Disks, convex polygons (rectangles as a helper) and convex regions bounded
+// by segments and circular arcs (a disk cut by lines, a lens). O may lie anywhere,
 // inside or outside the patch, up to 1e4 patch diameters away (beyond, the
 // linear pressure about O has no digits left); every constructor throws
 // Error for a farther O, and for sizes whose moments over- or underflow
@@ -41,9 +42,52 @@ struct MomentTable {
   Eigen::Matrix<double, 6, 3> m = Eigen::Matrix<double, 6, 3>::Zero();
 };
 
+// One piece of the boundary of a convex region, the region on its left
+// (counter-clockwise): the segment from a to b, or the arc of the circle
+// (centre, radius) from angle angle0 to angle1 > angle0 (counter-clockwise,
+// so its outward normal is (cos t, sin t)). Each piece must end where the
+// next one starts (the last where the first starts).
+struct BoundaryPiece {
+  enum class Kind { Segment, Arc };
+  Kind kind = Kind::Segment;
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // segment
+  Vec2 centre = Vec2::Zero();               // arc
+  double radius = 0.0, angle0 = 0.0, angle1 = 0.0;
+
+  static BoundaryPiece segment(const Vec2& from, const Vec2& to) {
+    BoundaryPiece p;
+    p.a = from, p.b = to;
+    return p;
+  }
+  static BoundaryPiece arc(const Vec2& c, double r, double t0, double t1) {
+    BoundaryPiece p;
+    p.kind = Kind::Arc, p.centre = c, p.radius = r, p.angle0 = t0, p.angle1 = t1;
+    return p;
+  }
+  Vec2 start() const;
+  Vec2 end() const;
+};
+
+// Boundary (counter-clockwise pieces, exact: no polygonal approximation) of
+// the disk (centre, radius) intersected with a convex polygon (ccw vertices).
+// Empty if the intersection has no area; one arc of 2 pi if the disk lies in
+// the polygon; only segments if the polygon lies in the disk. Pieces shorter
+// than ~1e-12 of the radius are merged into their neighbours.
+std::vector<BoundaryPiece> diskPolygonIntersection(const Vec2& centre, double radius,
+                                                   const std::vector<Vec2>& ccwConvexPolygon);
+// Boundary of disk (c1, r1) ∩ disk (c2, r2): the lens (two arcs), the smaller
+// disk whole (one arc of 2 pi) if it lies in the other, empty if no area.
+std::vector<BoundaryPiece> diskDiskIntersection(const Vec2& c1, double r1, const Vec2& c2,
+                                                double r2);
+// Area, first and second moments about the origin of the region bounded by
+// `boundary` (Green's theorem, closed form on segments and arcs). Summed
+// about the first piece's start point and shifted, so a far origin costs no
+// digits beyond those of the shift itself.
+AreaMoments areaMomentsOf(const std::vector<BoundaryPiece>& boundary);
+
 class PatchShape {
  public:
-  enum class Kind { Disk, Polygon };
+  enum class Kind { Disk, Polygon, ArcRegion };
 
   // A disk of radius R [m] centred at `centre` (patch frame). Throws Error for
   // R <= 0 or non-finite input.
@@ -53,6 +97,17 @@ class PatchShape {
   // clockwise order, non-convexity, repeated vertices or (near-)zero area.
   // Collinear interior vertices are removed.
   static PatchShape polygon(std::vector<Vec2> vertices);
+  // A convex region bounded by counter-clockwise segments and arcs (e.g. from
+  // diskPolygonIntersection / diskDiskIntersection). Throws Error naming the
+  // problem for: no pieces, NaN/Inf, arcs with radius <= 0 or angle1 <= angle0
+  // or a span beyond 2 pi, gaps between consecutive pieces beyond 1e-9 of the
+  // region's size, clockwise order, non-convexity (a turn < 0 at a joint, an
+  // arc's angle at a joint not matching the turn) or (near-)zero area. Pieces
+  // shorter than 1e-12 of the region's size are dropped (their neighbours
+  // joined). Normalised: a boundary without arcs gives Kind::Polygon (as
+  // polygon()), a single arc of 2 pi gives Kind::Disk (as disk()), anything
+  // else Kind::ArcRegion.
+  static PatchShape arcRegion(std::vector<BoundaryPiece> boundary);
   // Rectangle lx by ly [m] centred at `centre`, rotated by `angle` [rad] about
   // its centre; sides along x and y when angle = 0.
   static PatchShape rectangle(double lx, double ly, const Vec2& centre = Vec2::Zero(),
@@ -66,15 +121,18 @@ class PatchShape {
   // Disk only (Error otherwise): radius and centre. (Inline: the friction
   // solver asks for them on every visit of a disk patch.)
   double radius() const {
-    if (kind_ != Kind::Disk) throwNotA("radius() asked of a polygon patch");
+    if (kind_ != Kind::Disk) throwNotA("radius() asked of a patch that is not a disk");
     return radius_;
   }
   const Vec2& centre() const {
-    if (kind_ != Kind::Disk) throwNotA("centre() asked of a polygon patch");
+    if (kind_ != Kind::Disk) throwNotA("centre() asked of a patch that is not a disk");
     return centre_;
   }
   // Polygon only (Error otherwise): counter-clockwise vertices.
   const std::vector<Vec2>& vertices() const;
+  // ArcRegion only (Error otherwise): counter-clockwise boundary pieces, at
+  // least one arc and at least two pieces.
+  const std::vector<BoundaryPiece>& boundary() const;
 
   const AreaMoments& areaMoments() const { return moments_; }
   // Inverse of AreaMoments::loadMatrix(), cached (Eq. (94) solved per call).
@@ -113,6 +171,7 @@ class PatchShape {
   double radius_ = 0.0;
   Vec2 centre_ = Vec2::Zero();
   std::vector<Vec2> vertices_;
+  std::vector<BoundaryPiece> boundary_;
   AreaMoments moments_;
   MomentTable table_;
   Mat3 load_inverse_ = Mat3::Identity();

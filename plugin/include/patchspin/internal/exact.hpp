@@ -17,6 +17,7 @@
 // dF[k] w = 0. Filled only when wantJacobian is true.
 #pragma once
 
+#include <patchspin/geometry.hpp>
 #include <patchspin/types.hpp>
 
 #include <array>
@@ -52,31 +53,9 @@ void exactDiskBasis(const Vec2& centre, double R, double rho, const Vec3& w, boo
 Vec3 exactDiskHertz(const Vec2& centre, double R, double rho, const Vec3& w, Mat3* jacobian,
                     double tolerance = 0.0);
 
-// One piece of the boundary of a convex region, the region on its left
-// (counter-clockwise): the segment from a to b, or the arc of the circle
-// (centre, radius) from angle angle0 to angle1 > angle0 (counter-clockwise,
-// so its outward normal is (cos t, sin t)). Each piece must end where the
-// next one starts (the last where the first starts).
-struct BoundaryPiece {
-  enum class Kind { Segment, Arc };
-  Kind kind = Kind::Segment;
-  Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // segment
-  Vec2 centre = Vec2::Zero();               // arc
-  double radius = 0.0, angle0 = 0.0, angle1 = 0.0;
-
-  static BoundaryPiece segment(const Vec2& from, const Vec2& to) {
-    BoundaryPiece p;
-    p.a = from, p.b = to;
-    return p;
-  }
-  static BoundaryPiece arc(const Vec2& c, double r, double t0, double t1) {
-    BoundaryPiece p;
-    p.kind = Kind::Arc, p.centre = c, p.radius = r, p.angle0 = t0, p.angle1 = t1;
-    return p;
-  }
-  Vec2 start() const;
-  Vec2 end() const;
-};
+// The boundary piece type is public (patchspin/geometry.hpp); this alias keeps
+// the older spelling.
+using BoundaryPiece = patchspin::BoundaryPiece;
 
 // Convex region bounded by segments and circular arcs (a disk segment, a
 // lens, a disk cut by lines), in the patch frame: the same F and dF as
