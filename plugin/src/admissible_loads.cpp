@@ -10,6 +10,16 @@
 //    c = C / rho, kappa = R / (4 rho) (the kern |cop - C| <= R / 4): an
 //    oblique circular cone, the projection p = (I + mu H)^-1 y on the
 //    quadric y^T H y = 0, mu the root of a monotone secular equation.
+//  * Arc regions: K is {p >= 0 on every boundary point}, on an arc a
+//    constraint between linear (its ends) and conic; admissible loads come
+//    back unchanged (the exact test, minPressure's), others are projected
+//    onto the inner approximation K_Q of the circumscribed polygon Q (each
+//    arc replaced by its tangent lines, at most kArcTangentStep apart: Q
+//    lies within R (1 / cos(kArcTangentStep / 2) - 1) = 4.7e-6 R of the arc),
+//    by the polygon's KKT walk with the region's own load matrix. The result
+//    is admissible (p >= 0 on Q, which contains the region) and at most
+//    that much of the region farther than the exact projection
+//    (AdmissibleLoads.ArcRegion* in the test).
 // Tests: tests/core/admissible_loads_test.cpp (brute force, KKT,
 // idempotence) and pressure_test.cpp; fuzz/pressure_fuzz.cpp.
 #include <patchspin/pressure.hpp>
@@ -132,7 +142,8 @@ Vec3 projectDisk(const Vec2& C, double R, double rho, const Vec3& y) {
 // The former candidate search (every face and adjacent-edge candidate, each
 // tested against every constraint): the fallback where the KKT search finds
 // nothing to round-off or a vertex pressure is not finite.
-Vec3 projectPolygonBySearch(const PatchShape& shape, const Mat3& M, const Vec3& y, double rho);
+Vec3 projectPolygonBySearch(const PatchShape& shape, const std::vector<Vec2>& vertices,
+                            const Mat3& M, const Vec3& y, double rho);
 
 // n_k: the vertex pressure p(v_k) = n_k . y as a row in scaled coordinates,
 // n_k = M^-T (1, x_k, y_k), M the map of pressure coefficients to scaled
@@ -143,21 +154,24 @@ Vec3 projectPolygonBySearch(const PatchShape& shape, const Mat3& M, const Vec3& 
 // size)^4 eps; P^-1 is exact up to rho's rounding), else M^-T itself.
 class VertexRows {
  public:
-  VertexRows(const PatchShape& shape, const Mat3& M, double rho)
-      : shape_(shape), aboutMean_(shape.maxDistanceFromOrigin() > shape.diameter()) {
+  VertexRows(const PatchShape& shape, const std::vector<Vec2>& vertices, const Mat3& M, double rho)
+      : shape_(shape),
+        vertices_(vertices),
+        aboutMean_(shape.maxDistanceFromOrigin() > shape.diameter()) {
     PinvT_ << 1.0, 0.0, 0.0,  //
         0.0, 0.0, -rho,       //
         0.0, rho, 0.0;
     if (!aboutMean_) Minv_ = M.inverse();
   }
   Vec3 operator()(std::size_t k) const {
-    const Vec2& v = shape_.vertices()[k % shape_.vertices().size()];
+    const Vec2& v = vertices_[k % vertices_.size()];
     const Vec3 phi(1.0, v.x(), v.y());
     return aboutMean_ ? Vec3(PinvT_ * shape_.solveLoadMatrix(phi)) : Vec3(Minv_.transpose() * phi);
   }
 
  private:
   const PatchShape& shape_;
+  const std::vector<Vec2>& vertices_;
   bool aboutMean_;
   Mat3 PinvT_;
   Mat3 Minv_ = Mat3::Zero();
@@ -202,10 +216,11 @@ enum class KktResult { kFound, kInside, kNone };
 // kInside: no vertex pressure is negative in the rows' arithmetic (y on
 // K's boundary to round-off, where the kern test rounded the other way);
 // kNone: no candidate passes to round-off (the fallback search decides).
-KktResult projectPolygonByKkt(const PatchShape& shape, const Mat3& M, const Vec3& y, double rho,
-                              std::size_t worst, Vec3& out) {
-  const std::size_t n = shape.vertices().size();
-  const VertexRows row(shape, M, rho);
+KktResult projectPolygonByKkt(const PatchShape& shape, const std::vector<Vec2>& vertices,
+                              const Mat3& M, const Vec3& y, double rho, std::size_t worst,
+                              Vec3& out) {
+  const std::size_t n = vertices.size();
+  const VertexRows row(shape, vertices, M, rho);
   // a walk from the most negative vertex: where face i's projection leaves
   // a neighbour's pressure negative, the answer lies on that side's edge ray
   // or beyond it. O(1) per step, a few steps (the faces with negative
@@ -251,15 +266,16 @@ KktResult projectPolygonByKkt(const PatchShape& shape, const Mat3& M, const Vec3
   return negative ? KktResult::kNone : KktResult::kInside;
 }
 
-Vec3 projectPolygonBySearch(const PatchShape& shape, const Mat3& M, const Vec3& y, double rho) {
-  const VertexRows vertexRow(shape, M, rho);
+Vec3 projectPolygonBySearch(const PatchShape& shape, const std::vector<Vec2>& vertices,
+                            const Mat3& M, const Vec3& y, double rho) {
+  const VertexRows vertexRow(shape, vertices, M, rho);
   struct Row {
     Vec3 a;
     double norm;
   };
   std::vector<Row> rows;
-  rows.reserve(shape.vertices().size());
-  for (std::size_t k = 0; k < shape.vertices().size(); ++k) {
+  rows.reserve(vertices.size());
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
     const Vec3 a = vertexRow(k);
     rows.push_back({a, a.norm()});
   }
@@ -373,26 +389,95 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
     // errors), then the former search
     if (isAdmissible(shape, loads, 0.0)) return loads;
     const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
-    return loadsOfScaled(projectPolygonBySearch(shape, scaledLoadMatrix(shape, rho), y, rho), rho);
+    return loadsOfScaled(
+        projectPolygonBySearch(shape, shape.vertices(), scaledLoadMatrix(shape, rho), y, rho), rho);
   }
   if (lowest >= -0.0) return loads;  // isAdmissible(shape, loads, 0)
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
   const Mat3 M = scaledLoadMatrix(shape, rho);
   Vec3 out;
-  const KktResult found = projectPolygonByKkt(shape, M, y, rho, worst, out);
+  const KktResult found = projectPolygonByKkt(shape, shape.vertices(), M, y, rho, worst, out);
   // (the former search returned an edge ray or the uniform pressure's ray
   // here, however far: AdmissibleLoads.MatchesSearchAndKkt, idempotence)
   // (only within the result's own check: on a sliver 1e10 m long the rows
   // said inside where the vertex pressure was -2e14 times the mean; found
   // by fuzzing)
   if (found == KktResult::kInside && lowest >= -kVerifyTol * loads.Pz / shape.area()) return loads;
-  if (found != KktResult::kFound) out = projectPolygonBySearch(shape, M, y, rho);
+  if (found != KktResult::kFound) out = projectPolygonBySearch(shape, shape.vertices(), M, y, rho);
   return loadsOfScaled(out, rho);
+}
+
+// ---- arc regions ----------------------------------------------------------------
+
+// Largest angle between neighbouring tangent points of the circumscribed
+// polygon on an arc (file comment): 2 pi / 1024.
+constexpr double kArcTangentStep = 2.0 * 3.14159265358979323846 / 1024.0;
+
+// The circumscribed polygon Q of an arc region: per piece its start point,
+// then for an arc of span s the m = ceil(s / kArcTangentStep) intersections
+// of its tangents at angle0 + i s / m, at radius R / cos(s / (2 m)) and the
+// mid angles (by a rotation recurrence, not a sine per vertex).
+std::vector<Vec2> circumscribedPolygon(const std::vector<BoundaryPiece>& boundary) {
+  std::vector<Vec2> q;
+  for (const BoundaryPiece& p : boundary) {
+    q.push_back(p.start());
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    const double span = p.angle1 - p.angle0;
+    const int m = std::max(1, static_cast<int>(std::ceil(span / kArcTangentStep)));
+    const double h = 0.5 * span / m;
+    const double r = p.radius / std::cos(h);
+    const Vec2 step(std::cos(2.0 * h), std::sin(2.0 * h));
+    Vec2 dir(std::cos(p.angle0 + h), std::sin(p.angle0 + h));
+    for (int i = 0; i < m; ++i) {
+      q.push_back(p.centre + r * dir);
+      dir = Vec2(dir.x() * step.x() - dir.y() * step.y(), dir.x() * step.y() + dir.y() * step.x());
+    }
+  }
+  return q;
+}
+
+PatchLoads arcRegionImpl(const PatchShape& shape, const PatchLoads& loads, double rho) {
+  if (isAdmissible(shape, loads, 0.0)) return loads;
+  const std::vector<Vec2> q = circumscribedPolygon(shape.boundary());
+  const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
+  const Mat3 M = scaledLoadMatrix(shape, rho);
+  // the most negative vertex of Q for the walk's start
+  const LinearPressure p = LinearPressure::fromLoads(shape, loads);
+  std::size_t worst = 0;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const double at = p.at(q[k]);
+    if (at < lowest) lowest = at, worst = k;
+  }
+  Vec3 out;
+  const KktResult found = projectPolygonByKkt(shape, q, M, y, rho, worst, out);
+  if (found == KktResult::kInside) {
+    // p >= 0 on Q to round-off: its boundary is within round-off of K_Q
+    out = y;
+  } else if (found != KktResult::kFound) {
+    out = projectPolygonBySearch(shape, q, M, y, rho);
+  }
+  PatchLoads result = loadsOfScaled(out, rho);
+  // where an active vertex of Q is a piece's end (on the region) its
+  // pressure may round below 0: add the uniform pressure that lifts the
+  // minimum to >= 0 (a change of round-off size), so that the result is
+  // admissible with tolerance 0 and comes back unchanged (idempotence;
+  // AdmissibleLoadsArcRegion.ProjectionIsAdmissibleIdempotentAndOrthogonal)
+  if (result.Pz > 0.0) {
+    for (int attempt = 0; attempt < 4 && !isAdmissible(shape, result, 0.0); ++attempt) {
+      const double lowest = minPressure(shape, LinearPressure::fromLoads(shape, result));
+      const double lift = -lowest * (1.0 + 4.0 * attempt) + std::numeric_limits<double>::min();
+      const PatchLoads add = loadsOf(shape, LinearPressure{lift, 0.0, 0.0});
+      result = PatchLoads{result.Pz + add.Pz, result.Tx + add.Tx, result.Ty + add.Ty};
+    }
+  }
+  return result;
 }
 
 PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads,
                                       double rho) {
   if (!(loads.Pz > 0.0)) return PatchLoads{};  // documented: no normal force, no load
+  if (shape.kind() == PatchShape::Kind::ArcRegion) return arcRegionImpl(shape, loads, rho);
   if (!shape.isDisk()) return polygonImpl(shape, loads, rho);
   if (isAdmissible(shape, loads, 0.0)) return loads;
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
@@ -450,7 +535,8 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   // round-off of the 1e154-sized scaled torque)
   // (for polygons with Pz > 0 isAdmissible's decision, cheaper)
   auto admissible = [&] {
-    return shape.isDisk() || !(out.Pz > 0.0) ? isAdmissible(shape, out, kVerifyTol)
+    return shape.kind() != PatchShape::Kind::Polygon || !(out.Pz > 0.0)
+               ? isAdmissible(shape, out, kVerifyTol)
                                              : polygonAdmissible(shape, out, kVerifyTol);
   };
   if (!out.asVector().isZero(0.0) && !(out.asVector() == loads.asVector()) && !admissible()) {

@@ -102,6 +102,8 @@ void FlatBodyModel::frictionBasis(Model model, const Vec3& w, Mat3& F,
     internal::ExactBasis basis;
     if (shape.isDisk()) {
       internal::exactDiskBasis(shape.centre(), shape.radius(), rho_, w, dF != nullptr, basis);
+    } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+      internal::exactArcRegionBasis(shape.boundary(), rho_, w, dF != nullptr, basis);
     } else {
       internal::exactPolygonBasis(shape.vertices(), rho_, w, dF != nullptr, basis);
     }

@@ -1,9 +1,25 @@
 // Convex regions bounded by segments and circular arcs (patchspin/geometry.hpp):
 // the boundary pieces' end points, the exact boundaries of disk ∩ polygon and
-// disk ∩ disk, and their area moments by Green's theorem.
-#include <patchspin/geometry.hpp>
+// disk ∩ disk, their area moments by Green's theorem and their extents
+// (arc_region_numerics.hpp). Guarded by tests/core/arc_regions_test.cpp.
+//
+// Area moments: the region is its chord polygon (the pieces' start points,
+// signed triangles) plus, per arc, the circular segment between the arc and
+// its chord (Green's theorem on the arc minus the chord). In the arc's frame
+// (u along its mid direction, half-angle a, s = sin a, c = cos a), the
+// segment {u >= R c} of the disk of radius R has
+//   A = R^2 (a - s c),  ∫u = 2/3 R^3 s^3,  ∫v = 0,  ∫uv = 0,
+//   ∫u^2 = R^4 ((a + s c) / 4 - c^3 s / 2)   (sector minus triangle),
+//   ∫v^2 = R^4 ((4a - sin 4a) / 16 - 2/3 c s^3).
+// These cancel to ~eps / a^2 of the segment's moments for a flat arc (a
+// thin lens of half-angle a loses ~a^-2 eps relative; 1e-12 at a = 0.01).
+#include "arc_region_numerics.hpp"
 
+#include <patchspin/types.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace patchspin {
 
@@ -14,4 +30,309 @@ Vec2 BoundaryPiece::end() const {
   return kind == Kind::Segment ? b : centre + radius * Vec2(std::cos(angle1), std::sin(angle1));
 }
 
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+
+double cross(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+double angleOf(const Vec2& v) {
+  return std::atan2(v.y(), v.x());
+}
+
+// ccw span from angle t0 to t1 in (0, 2 pi]
+double ccwSpan(double t0, double t1) {
+  double d = std::fmod(t1 - t0, kTwoPi);
+  if (d <= 0.0) d += kTwoPi;
+  return d;
+}
+
+using Pieces = std::vector<BoundaryPiece>;
+
+}  // namespace
+
+std::vector<BoundaryPiece> diskPolygonIntersection(const Vec2& centre, double radius,
+                                                   const std::vector<Vec2>& poly) {
+  internal::requireFinite(centre, "disk centre");
+  internal::requirePositive(radius, "disk radius");
+  const std::size_t n = poly.size();
+  if (n < 3) throw Error("diskPolygonIntersection: the polygon needs at least 3 vertices");
+  // the inside part [t0, t1] of each edge a + t (b - a), t in [0, 1]
+  struct Part {
+    Vec2 from, to;
+    bool fromOnCircle, toOnCircle;
+  };
+  std::vector<Part> parts;
+  const double kShort = 1e-12 * radius;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 a = poly[i] - centre, b = poly[(i + 1) % n] - centre;
+    const Vec2 e = b - a;
+    const double ee = e.squaredNorm();
+    if (!(ee > 0.0)) continue;
+    // |a + t e|^2 = R^2: t^2 ee + 2 t (a.e) + |a|^2 - R^2 = 0
+    const double half = a.dot(e);
+    // discriminant / ee^2 = (half^2 - ee (|a|^2 - R^2)) / ee^2, with
+    // ee (|a|^2 - R^2) - half^2 = ee * dist^2 - ee R^2 (dist of the line)
+    const double dist2 = cross(a, e) * cross(a, e) / ee;
+    const double disc = (radius - std::sqrt(dist2)) * (radius + std::sqrt(dist2));
+    if (!(disc > 0.0)) continue;  // the line misses (or touches) the circle
+    const double root = std::sqrt(disc * ee);
+    const double t1 = (-half - root) / ee, t2 = (-half + root) / ee;
+    const double lo = std::max(0.0, t1), hi = std::min(1.0, t2);
+    if (!(hi > lo) || (hi - lo) * std::sqrt(ee) <= kShort) continue;
+    Part part;
+    part.fromOnCircle = t1 > 0.0;
+    part.toOnCircle = t2 < 1.0;
+    part.from = centre + (part.fromOnCircle ? Vec2(a + t1 * e) : a);
+    part.to = centre + (part.toOnCircle ? Vec2(a + t2 * e) : b);
+    if (!part.fromOnCircle) part.from = poly[i];
+    if (!part.toOnCircle) part.to = poly[(i + 1) % n];
+    parts.push_back(part);
+  }
+  Pieces out;
+  if (parts.empty()) {
+    // the disk lies in the polygon (its centre at least R inside every
+    // edge) or misses it
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec2 e = poly[(i + 1) % n] - poly[i];
+      if (cross(e, centre - poly[i]) < radius * e.norm()) return out;
+    }
+    out.push_back(BoundaryPiece::arc(centre, radius, 0.0, kTwoPi));
+    return out;
+  }
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const Part& p = parts[k];
+    const Part& q = parts[(k + 1) % parts.size()];
+    out.push_back(BoundaryPiece::segment(p.from, p.to));
+    if (p.toOnCircle || q.fromOnCircle) {
+      // leaves the polygon's inside at p.to: along the circle to q.from
+      const double t0 = angleOf(p.to - centre);
+      const double span = ccwSpan(t0, angleOf(q.from - centre));
+      if (span * radius > kShort && span < kTwoPi) {
+        out.push_back(BoundaryPiece::arc(centre, radius, t0, t0 + span));
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<BoundaryPiece> diskDiskIntersection(const Vec2& c1, double r1, const Vec2& c2,
+                                                double r2) {
+  internal::requireFinite(c1, "first disk centre");
+  internal::requireFinite(c2, "second disk centre");
+  internal::requirePositive(r1, "first disk radius");
+  internal::requirePositive(r2, "second disk radius");
+  Pieces out;
+  const Vec2 dv = c2 - c1;
+  const double d = dv.norm();
+  if (d >= r1 + r2) return out;
+  if (d <= std::abs(r1 - r2)) {
+    out.push_back(r1 <= r2 ? BoundaryPiece::arc(c1, r1, 0.0, kTwoPi)
+                           : BoundaryPiece::arc(c2, r2, 0.0, kTwoPi));
+    return out;
+  }
+  // a: distance of the common chord from c1 along c2 - c1; h its half-length
+  const double a = (d * d + (r1 - r2) * (r1 + r2)) / (2.0 * d);
+  const double h = std::sqrt(std::max(0.0, (r1 - a) * (r1 + a)));
+  const double beta = angleOf(dv);
+  const double a1 = std::atan2(h, a), a2 = std::atan2(h, d - a);
+  out.push_back(BoundaryPiece::arc(c1, r1, beta - a1, beta + a1));
+  out.push_back(BoundaryPiece::arc(c2, r2, beta + kPi - a2, beta + kPi + a2));
+  return out;
+}
+
+AreaMoments areaMomentsOf(const std::vector<BoundaryPiece>& boundary) {
+  const Vec2 g = internal::startPointMean(boundary);
+  const AreaMoments m = internal::areaMomentsAbout(boundary, g);
+  // parallel axes (as PatchShape's polygon rows about the vertex mean)
+  AreaMoments out;
+  const double gx = g.x(), gy = g.y(), A = m.area;
+  out.area = A;
+  out.xx = (A * gx * gx + 2.0 * gx * m.first.x()) + m.xx;
+  out.yy = (A * gy * gy + 2.0 * gy * m.first.y()) + m.yy;
+  out.xy = (A * gx * gy + (gx * m.first.y() + gy * m.first.x())) + m.xy;
+  out.first = Vec2(A * gx + m.first.x(), A * gy + m.first.y());
+  return out;
+}
+
+namespace internal {
+
+bool angleOnArc(double t, const BoundaryPiece& arc) {
+  double d = std::fmod(t - arc.angle0, kTwoPi);
+  if (d < 0.0) d += kTwoPi;
+  return d <= arc.angle1 - arc.angle0;
+}
+
+Vec2 startPointMean(const std::vector<BoundaryPiece>& boundary) {
+  Vec2 g = Vec2::Zero();
+  for (const BoundaryPiece& p : boundary) g += p.start();
+  return g / static_cast<double>(boundary.size());
+}
+
+AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const Vec2& g) {
+  double area = 0.0, sx = 0.0, sy = 0.0, ixx = 0.0, ixy = 0.0, iyy = 0.0;
+  const std::size_t n = boundary.size();
+  std::vector<Vec2> starts(n);
+  for (std::size_t i = 0; i < n; ++i) starts[i] = boundary[i].start() - g;
+  // chord polygon: signed triangles (g, a, b) (PatchShape's polygon rows)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2& a = starts[i];
+    const Vec2& b = starts[(i + 1) % n];
+    const double c = cross(a, b);
+    area += c / 2.0;
+    sx += c / 6.0 * (a.x() + b.x());
+    sy += c / 6.0 * (a.y() + b.y());
+    ixx += c / 12.0 * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x());
+    iyy += c / 12.0 * (a.y() * a.y() + a.y() * b.y() + b.y() * b.y());
+    ixy += c / 24.0 * (2.0 * a.x() * a.y() + a.x() * b.y() + b.x() * a.y() + 2.0 * b.x() * b.y());
+  }
+  // circular segments (file comment)
+  for (const BoundaryPiece& p : boundary) {
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    const double R = p.radius, R2 = R * R, R4 = R2 * R2;
+    const double half = 0.5 * (p.angle1 - p.angle0), mid = 0.5 * (p.angle0 + p.angle1);
+    const double s = std::sin(half), c = std::cos(half);
+    const double A = R2 * (half - s * c);
+    const double su = 2.0 / 3.0 * R * R2 * s * s * s;
+    const double iuu = R4 * ((half + s * c) / 4.0 - c * c * c * s / 2.0);
+    const double ivv = R4 * ((4.0 * half - std::sin(4.0 * half)) / 16.0 - 2.0 / 3.0 * c * s * s * s);
+    const double cm = std::cos(mid), sm = std::sin(mid);
+    // about the arc's centre, in the patch axes
+    const double sxc = su * cm, syc = su * sm;
+    const double ixxc = iuu * cm * cm + ivv * sm * sm;
+    const double iyyc = iuu * sm * sm + ivv * cm * cm;
+    const double ixyc = (iuu - ivv) * sm * cm;
+    // shifted to g: the centre at d = centre - g
+    const Vec2 d = p.centre - g;
+    area += A;
+    sx += sxc + A * d.x();
+    sy += syc + A * d.y();
+    ixx += ixxc + 2.0 * d.x() * sxc + A * d.x() * d.x();
+    iyy += iyyc + 2.0 * d.y() * syc + A * d.y() * d.y();
+    ixy += ixyc + d.x() * syc + d.y() * sxc + A * d.x() * d.y();
+  }
+  AreaMoments m;
+  m.area = area;
+  m.first = Vec2(sx, sy);
+  m.xx = ixx, m.xy = ixy, m.yy = iyy;
+  return m;
+}
+
+double arcRegionMaxDistance(const std::vector<BoundaryPiece>& boundary) {
+  double best = 0.0;
+  for (const BoundaryPiece& p : boundary) {
+    best = std::max(best, p.start().norm());
+    if (p.kind == BoundaryPiece::Kind::Arc) {
+      best = std::max(best, p.end().norm());
+      // the circle's farthest point from O, at the angle of the centre
+      const double cn = p.centre.norm();
+      if (cn == 0.0 || angleOnArc(angleOf(p.centre), p)) best = std::max(best, cn + p.radius);
+    }
+  }
+  return best;
+}
+
+double arcRegionDiameter(const std::vector<BoundaryPiece>& boundary) {
+  std::vector<Vec2> ends;
+  for (const BoundaryPiece& p : boundary) ends.push_back(p.start());
+  double best2 = 0.0;
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    for (std::size_t j = i + 1; j < ends.size(); ++j)
+      best2 = std::max(best2, (ends[j] - ends[i]).squaredNorm());
+  double best = std::sqrt(best2);
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    const BoundaryPiece& p = boundary[i];
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    best = std::max(best, (p.end() - p.start()).norm());
+    // an end point Q and its farthest point on this arc, c + R (c - Q) / |c - Q|
+    for (const Vec2& q : ends) {
+      const Vec2 v = p.centre - q;
+      if (v.norm() > 0.0 && angleOnArc(angleOf(v), p)) best = std::max(best, v.norm() + p.radius);
+    }
+    for (std::size_t j = i; j < boundary.size(); ++j) {
+      const BoundaryPiece& o = boundary[j];
+      if (o.kind != BoundaryPiece::Kind::Arc) continue;
+      // two circles' farthest pair lies on the line of their centres
+      const Vec2 v = p.centre - o.centre;
+      if (v.norm() > 1e-12 * (p.radius + o.radius)) {
+        const double t = angleOf(v);
+        if (angleOnArc(t, p) && angleOnArc(t + kPi, o))
+          best = std::max(best, v.norm() + p.radius + o.radius);
+      } else {
+        // same centre: a diametral pair, some t on p with t + pi on o
+        const double r = std::min(p.radius, o.radius);
+        for (const double t : {p.angle0, p.angle1, o.angle0 + kPi, o.angle1 + kPi})
+          if (angleOnArc(t, p) && angleOnArc(t + kPi, o))
+            best = std::max(best, p.radius + o.radius), (void)r;
+      }
+    }
+  }
+  return best;
+}
+
+double arcRegionMinLinear(const std::vector<BoundaryPiece>& boundary, double p0, double cx,
+                          double cy) {
+  double lowest = std::numeric_limits<double>::infinity();
+  const double gn = std::hypot(cx, cy);
+  for (const BoundaryPiece& p : boundary) {
+    const Vec2 s = p.start();
+    lowest = std::min(lowest, p0 + cx * s.x() + cy * s.y());
+    if (p.kind == BoundaryPiece::Kind::Arc && gn > 0.0 && angleOnArc(std::atan2(-cy, -cx), p)) {
+      lowest = std::min(lowest, p0 + cx * p.centre.x() + cy * p.centre.y() - p.radius * gn);
+    }
+  }
+  return lowest;
+}
+
+bool arcRegionContains(const std::vector<BoundaryPiece>& boundary, const Vec2& q, double tol) {
+  for (const BoundaryPiece& p : boundary) {
+    const Vec2 a = p.start(), b = p.end();
+    const Vec2 e = b - a;
+    const double c = cross(e, q - a);
+    if (c >= 0.0 || c >= -tol * e.norm()) continue;  // inner side of the chord
+    if (p.kind == BoundaryPiece::Kind::Arc && (q - p.centre).norm() <= p.radius + tol) continue;
+    return false;
+  }
+  return true;
+}
+
+Vec2 arcRegionNearestBoundaryPoint(const std::vector<BoundaryPiece>& boundary, const Vec2& q,
+                                   std::size_t& piece, double& t) {
+  double best = std::numeric_limits<double>::infinity();
+  Vec2 out = Vec2::Zero();
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    const BoundaryPiece& p = boundary[i];
+    Vec2 x;
+    double ti;
+    if (p.kind == BoundaryPiece::Kind::Segment) {
+      const Vec2 e = p.b - p.a;
+      const double ee = e.squaredNorm();
+      ti = ee > 0.0 ? std::clamp((q - p.a).dot(e) / ee, 0.0, 1.0) : 0.0;
+      x = p.a + ti * e;
+    } else {
+      // radial where the angle of Q lies on the arc, else the nearer end
+      const Vec2 v = q - p.centre;
+      const double span = p.angle1 - p.angle0;
+      if (v.norm() > 0.0 && angleOnArc(angleOf(v), p)) {
+        double d = std::fmod(angleOf(v) - p.angle0, kTwoPi);
+        if (d < 0.0) d += kTwoPi;
+        ti = d / span;
+        x = p.centre + p.radius * v / v.norm();
+      } else {
+        const Vec2 s = p.start(), e = p.end();
+        const bool atStart = (q - s).squaredNorm() <= (q - e).squaredNorm();
+        ti = atStart ? 0.0 : 1.0;
+        x = atStart ? s : e;
+      }
+    }
+    const double dist = (x - q).norm();
+    if (dist < best) best = dist, out = x, piece = i, t = ti;
+  }
+  return out;
+}
+
+}  // namespace internal
 }  // namespace patchspin

@@ -34,6 +34,8 @@ bool solveExactRecentred(const FrictionPatch& patch, const FrictionBlockInput& i
     Vec2 g = Vec2::Zero();
     if (shape.isDisk()) {
       g = shape.centre();
+    } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+      g = shape.centroid();
     } else {
       for (const Vec2& v : shape.vertices()) g += v;
       g /= static_cast<double>(shape.vertices().size());

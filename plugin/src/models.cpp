@@ -2,6 +2,7 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/models.hpp>
 
+#include "arc_region_numerics.hpp"
 #include "pressure_numerics.hpp"
 
 #include <algorithm>
@@ -56,6 +57,13 @@ Vec3 unitDirection(const Vec3& w, double* invNorm = nullptr) {
 double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
   if (shape.isDisk())
     return std::abs(p.at(shape.centre())) + shape.radius() * internal::planarNorm(p.cx, p.cy);
+  if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    // max |p| = max(-min p, -min(-p)), both at a piece's start or an arc's
+    // point of outward normal along -+grad p
+    const auto& b = shape.boundary();
+    return std::max(-internal::arcRegionMinLinear(b, p.p0, p.cx, p.cy),
+                    -internal::arcRegionMinLinear(b, -p.p0, -p.cx, -p.cy));
+  }
   double m = 0.0;
   for (const Vec2& v : shape.vertices()) m = std::max(m, std::abs(p.at(v)));
   return m;
@@ -195,6 +203,13 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
     internal::ExactBasis basis;
     internal::exactDiskBasis(shape_.centre(), shape_.radius(), rho_, u, jacobian != nullptr, basis,
                              tolerance);
+    if (jacobian) sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
+    integral = basis.F * c;
+  } else if (shape_.kind() == PatchShape::Kind::ArcRegion) {
+    // F (p0, cx, cy) from the basis (no single-pressure pass yet; the arc
+    // law has no tolerance knob: full accuracy)
+    internal::ExactBasis basis;
+    internal::exactArcRegionBasis(shape_.boundary(), rho_, u, jacobian != nullptr, basis);
     if (jacobian) sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];
     integral = basis.F * c;
   } else {

@@ -4,6 +4,7 @@
 #include <patchspin/internal/exact.hpp>
 #include <patchspin/pressure.hpp>
 
+#include "arc_region_numerics.hpp"
 #include "pressure_numerics.hpp"
 
 #include <Eigen/Dense>
@@ -52,6 +53,19 @@ double minPressure(const PatchShape& shape, const LinearPressure& p) {
   if (shape.isDisk()) {
     // min over the disk of an affine function: p(C) - R |grad p|
     lowest = p.at(shape.centre()) - shape.radius() * internal::planarNorm(p.cx, p.cy);
+  } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    // at a piece's start or at an arc's point of outward normal
+    // -grad p / |grad p| (arc_region_numerics.hpp), with the coefficients
+    // scaled by a power of two (as the polygon's overflow path below)
+    if (!p.coefficients().allFinite()) {
+      lowest = std::numeric_limits<double>::quiet_NaN();
+    } else {
+      const double largest = p.coefficients().cwiseAbs().maxCoeff();
+      const int e = largest > 0.0 ? std::ilogb(largest) : 0;
+      lowest = std::ldexp(internal::arcRegionMinLinear(shape.boundary(), std::ldexp(p.p0, -e),
+                                                       std::ldexp(p.cx, -e), std::ldexp(p.cy, -e)),
+                          e);
+    }
   } else {
     for (const Vec2& v : shape.vertices()) {
       double at = p.at(v);

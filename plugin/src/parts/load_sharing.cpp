@@ -1,5 +1,6 @@
 // Load sharing part (load_sharing.hpp).
 #include <patchspin/parts/load_sharing.hpp>
+#include <patchspin/pressure.hpp>
 
 #include <Eigen/Dense>
 
@@ -51,6 +52,8 @@ bool shareLoads(std::vector<SharedPatch>& patches) {
     const PatchShape& shape = *p.shape;
     if (shape.isDisk()) {
       if (q0 + h.dot(shape.centre()) - h.norm() * shape.radius() < 0.0) return false;
+    } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+      if (minPressure(shape, LinearPressure{q0, h.x(), h.y()}) < 0.0) return false;
     } else {
       for (const Vec2& v : shape.vertices())
         if (q0 + h.dot(v) < 0.0) return false;

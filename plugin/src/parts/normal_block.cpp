@@ -1,6 +1,8 @@
 // Normal block part (normal_block.hpp; docs/solver.md (S4)-(S6), (S17)-(S20), (S23)-(S24)).
 #include <patchspin/parts/normal_block.hpp>
 
+#include "../arc_region_numerics.hpp"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -52,11 +54,36 @@ Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
     return n <= shape.radius() ? p : Vec2(shape.centre() + d * (shape.radius() / n));
   }
   if (shape.contains(p)) return p;
+  if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    // (on an arc the nearest point of an outside point is radial)
+    std::size_t piece = 0;
+    double t = 0.0;
+    return internal::arcRegionNearestBoundaryPoint(shape.boundary(), p, piece, t);
+  }
   return nearestOnEdges(shape.vertices(), p).point;
 }
 
 double innerRadiusSquared(const PatchShape& shape) {
   if (shape.isDisk()) return 0.0;
+  if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    // the disk about O inside every segment's half-plane and every arc's
+    // circle lies in the region (which contains that intersection; equal to
+    // it for a disk cut by a polygon, a lens)
+    double best = std::numeric_limits<double>::infinity();
+    for (const BoundaryPiece& piece : shape.boundary()) {
+      if (piece.kind == BoundaryPiece::Kind::Arc) {
+        best = std::min(best, piece.radius - piece.centre.norm());
+        continue;
+      }
+      const Vec2 e = piece.b - piece.a;
+      const double len = e.norm();
+      if (!(len > 0.0)) continue;
+      best = std::min(best, (e.x() * -piece.a.y() - e.y() * -piece.a.x()) / len);
+    }
+    if (!(best > 0.0) || !std::isfinite(best)) return 0.0;
+    const double r = best * (1.0 - 1e-9);
+    return r * r;
+  }
   const auto& v = shape.vertices();
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0, prev = v.size() - 1; i < v.size(); prev = i++) {
@@ -112,8 +139,29 @@ void clampNormalImpulse(const Mat3& Winv, const Vec3& lamN, const Vec3& residual
                         const PatchOutlineSummary& outline, const PatchShape& shape,
                         NormalImpulse& out) {
   // (cop is off the patch: a polygon's nearest point is on its boundary)
-  const BoundaryPoint nearest = shape.isDisk() ? BoundaryPoint{nearestPointOn(shape, cop)}
-                                               : nearestOnEdges(shape.vertices(), cop);
+  // (an arc region: the nearest point on its pieces; inside a segment piece
+  // that segment's two ends as the polygon's corners, on an arc one point)
+  BoundaryPoint nearest;
+  bool inEdge = false;  // nearest inside an edge: its ends
+  Vec2 corners[2];
+  if (shape.isDisk()) {
+    nearest = BoundaryPoint{nearestPointOn(shape, cop)};
+  } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    std::size_t piece = 0;
+    double t = 0.0;
+    nearest.point = internal::arcRegionNearestBoundaryPoint(shape.boundary(), cop, piece, t);
+    const BoundaryPiece& b = shape.boundary()[piece];
+    if (b.kind == BoundaryPiece::Kind::Segment && t > 0.0 && t < 1.0) {
+      corners[0] = b.a, corners[1] = b.b, inEdge = true;
+      nearest.t = t;
+    }
+  } else {
+    nearest = nearestOnEdges(shape.vertices(), cop);
+    if (nearest.t > 0.0 && nearest.t < 1.0) {
+      const std::vector<Vec2>& v = shape.vertices();
+      corners[0] = v[nearest.edge], corners[1] = v[(nearest.edge + 1) % v.size()], inEdge = true;
+    }
+  }
   out.tipping = (cop - nearest.point).norm() > kTipRelTol * outline.diameter;
   const Mat3 W = Winv.inverse();
   // a point p's row: the normal velocity there is row(p) . c_n, and a force
@@ -125,11 +173,10 @@ void clampNormalImpulse(const Mat3& Winv, const Vec3& lamN, const Vec3& residual
     const Vec3 a = row(p);
     out.lamN = std::max(0.0, a.dot(rhs) / a.dot(W * a)) * a;
   };
-  if (!shape.isDisk() && nearest.t > 0.0 && nearest.t < 1.0) {
+  if (inEdge) {
     // inside an edge: its two corners
-    const std::vector<Vec2>& v = shape.vertices();
-    const Vec2& p1 = v[nearest.edge];
-    const Vec2& p2 = v[(nearest.edge + 1) % v.size()];
+    const Vec2& p1 = corners[0];
+    const Vec2& p2 = corners[1];
     const Vec3 a1 = row(p1), a2 = row(p2);
     Eigen::Matrix2d A;
     A << a1.dot(W * a1), a1.dot(W * a2), a2.dot(W * a1), a2.dot(W * a2);

@@ -46,10 +46,13 @@ inline PatchLoads toLoads(const Vec3& lamN) {
   return PatchLoads{lamN[0], -lamN[1], -lamN[2]};
 }
 
-// The point of the patch nearest to p (p itself if inside).
+// The point of the patch nearest to p (p itself if inside; on an arc of an
+// arc region, radial).
 Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p);
 // Squared distance from O to the nearest edge line of a polygon patch, less
-// a relative 1e-9 for round-off (0 if O is not inside; disks: 0).
+// a relative 1e-9 for round-off (0 if O is not inside; disks: 0; arc
+// regions: the radius of the disk about O inside every segment's half-plane
+// and every arc's circle).
 double innerRadiusSquared(const PatchShape& shape);
 
 // Velocity targets from the position error: gap at O (< 0 penetrating) and
@@ -140,8 +143,9 @@ struct NormalImpulse {
 // of the point contacts there that stop their normal velocity (the
 // velocity condition of (S4) on those points alone, W = Winv^-1 the normal
 // DOFs' velocity per impulse, residual = target - c_n before this visit):
-// the two corners of the polygon edge nearest to cop, both pushing; else
-// the one nearest point (a vertex, a disk's rim, or the corner of that edge
+// the two corners of the polygon edge (or arc region's segment) nearest to
+// cop, both pushing; else the one nearest point (a vertex, a disk's rim, an
+// arc's radial point, or the corner of that edge
 // that pushes), pushing or nothing; and whether that is tipping (cop more
 // than kTipRelTol of the diameter off). Keeping y's normal force at the
 // nearest point instead over-pushed a pivoting body's edge: a heavy box
