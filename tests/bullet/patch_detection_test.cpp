@@ -61,9 +61,11 @@ TEST(PatchFrictionSolver, CoinOnTableIsADiskAndOverTheEdgeACutDisk) {
 // the upper coin's whole weight stands on it. Tolerance as above.
 TEST(PatchFrictionSolver, CoinOffCentreOnACoinStandsOnTheLens) {
   Scene scene(kG);
+  scene.addGroundPlane(1.0);
   const double d = 0.6 * kR;
   btRigidBody* lower = scene.addCylinder(kR, kH, 10.0 * kMass, btVector3(0, 0, btScalar(kH / 2)), kMu);
-  btRigidBody* upper = scene.addCylinder(kR, kH, kMass, btVector3(btScalar(d), 0, btScalar(1.5 * kH)), kMu);
+  btRigidBody* upper = scene.addCylinder(
+      kR, kH, kMass, btVector3(btScalar(d), 0, btScalar(1.5 * kH - kSetDownDepth)), kMu);
   scene.solver().enablePatchFriction(lower, {Model::Exact});
   scene.solver().enablePatchFriction(upper, {Model::Exact});
   for (int k = 0; k < 5; ++k) scene.step(kDt);
