@@ -16,10 +16,6 @@
 namespace patchspin::bullet::internal {
 namespace {
 
-// A disk that is cut by the other face's boundary is replaced by this
-// regular polygon: its area is 0.4 % short of the disk's, its mean radius
-// 0.1 % short (1 - cos(pi / n) ~ pi^2 / (2 n^2)).
-constexpr int kDiskSides = 64;
 // Vertices closer than this fraction of the patch size are merged
 // (PatchShape rejects repeated vertices).
 constexpr double kMergeFraction = 1e-9;
@@ -78,24 +74,6 @@ void counterClockwise(std::vector<Vec2>& pts) {
   while (kept > 1 && (pts[0] - pts[kept - 1]).norm() <= merge) --kept;
   pts.resize(kept);
 }
-// Unit circle at kDiskSides points (computed once).
-const std::array<Vec2, kDiskSides>& unitCircle() {
-  static const std::array<Vec2, kDiskSides> table = [] {
-    std::array<Vec2, kDiskSides> t;
-    for (int i = 0; i < kDiskSides; ++i) {
-      const double a = 2.0 * M_PI * i / kDiskSides;
-      t[std::size_t(i)] = Vec2(std::cos(a), std::sin(a));
-    }
-    return t;
-  }();
-  return table;
-}
-
-void diskPolygon(const Vec2& centre, double radius, std::vector<Vec2>& pts) {
-  pts.clear();
-  for (const Vec2& u : unitCircle()) pts.emplace_back(centre + radius * u);
-}
-
 // Buffers of buildPatch, kept per thread: their storage is reused from
 // patch to patch (a clipped overlap was six allocations).
 struct Buffers {
@@ -379,6 +357,59 @@ bool findFaceAlong(const btCollisionShape& leaf, const btTransform& tr, const bt
 
 namespace {
 
+// A clipped polygon about its area centroid (shoelace), returned in
+// `centre`; false if it has no area.
+bool polygonOutline(std::vector<Vec2>& poly, Vec2& centre) {
+  if (poly.size() < 3) return false;
+  double area2 = 0.0;
+  Vec2 c = Vec2::Zero();
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec2& p = poly[i];
+    const Vec2& q = poly[(i + 1) % poly.size()];
+    const double cr = cross2(p, q);
+    area2 += cr;
+    c += cr * (p + q);
+  }
+  if (!(area2 > 0.0)) return false;
+  centre = c / (3.0 * area2);
+  for (Vec2& p : poly) p -= centre;
+  return true;
+}
+
+// An arc region's outline about its area centroid (areaMomentsOf), returned
+// in `centre`; one whole circle becomes a disk, segments alone a polygon.
+// False if it has no area.
+bool arcRegionOutline(PatchOutline& outline, Vec2& centre) {
+  std::vector<BoundaryPiece>& pieces = outline.pieces;
+  if (pieces.empty()) return false;
+  const bool anyArc = std::any_of(pieces.begin(), pieces.end(), [](const BoundaryPiece& p) {
+    return p.kind == BoundaryPiece::Kind::Arc;
+  });
+  if (!anyArc) {
+    outline.kind = PatchOutline::Kind::Polygon;
+    outline.vertices.clear();
+    for (const BoundaryPiece& p : pieces) outline.vertices.push_back(p.a);
+    pieces.clear();
+    counterClockwise(outline.vertices);
+    return polygonOutline(outline.vertices, centre);
+  }
+  if (pieces.size() == 1) {  // a whole disk (the other face's rim just outside it)
+    outline.kind = PatchOutline::Kind::Disk;
+    outline.radius = pieces[0].radius;
+    centre = pieces[0].centre;
+    pieces.clear();
+    return true;
+  }
+  const AreaMoments m = areaMomentsOf(pieces);
+  if (!(m.area > 0.0)) return false;
+  centre = m.first / m.area;
+  for (BoundaryPiece& p : pieces) {
+    p.a -= centre, p.b -= centre;
+    p.centre -= centre;
+  }
+  return true;
+}
+
 // The frame (normal, axes), gap and tilt of the patch between faces a and b;
 // returns the provisional 2D origin (a's centre projected onto b's plane).
 btVector3 setFrame(const Face& a, const Face& b, const btVector3& xHint, DetectedPatch& patch) {
@@ -403,6 +434,22 @@ btVector3 setFrame(const Face& a, const Face& b, const btVector3& xHint, Detecte
   return base;
 }
 
+// The least of s . v over a region bounded by `pieces`: at a piece's end,
+// or inside an arc at its point of outward normal -s / |s|.
+double leastAlong(const std::vector<BoundaryPiece>& pieces, const Vec2& s) {
+  double least = pieces.empty() ? 0.0 : s.dot(pieces[0].start());
+  const double sNorm = s.norm();
+  for (const BoundaryPiece& p : pieces) {
+    least = std::min(least, s.dot(p.end()));
+    if (p.kind != BoundaryPiece::Kind::Arc || !(sNorm > 0.0)) continue;
+    // the angle of -s, taken into [angle0, angle0 + 2 pi)
+    const double t = p.angle0 + std::remainder(std::atan2(-s.y(), -s.x()) - p.angle0 - M_PI,
+                                               2.0 * M_PI) + M_PI;
+    if (t <= p.angle1) least = std::min(least, s.dot(p.centre) - p.radius * sNorm);
+  }
+  return least;
+}
+
 // patch.clearance from its frame, gap, centre and outline: a's face is a
 // plane, so its height above b's plane is linear over the overlap and least
 // at a vertex (polygon) or on the rim (disk).
@@ -418,11 +465,18 @@ void setClearance(const Face& a, DetectedPatch& patch) {
                    -double(a.normal.dot(patch.yAxis)) / an);
   const PatchOutline& outline = patch.outline;
   double least = 0.0;  // the least of slope . v over the outline (about O)
-  if (outline.disk) {
-    least = -outline.radius * slope.norm();
-  } else if (!outline.vertices.empty()) {
-    least = slope.dot(outline.vertices[0]);
-    for (const Vec2& v : outline.vertices) least = std::min(least, slope.dot(v));
+  switch (outline.kind) {
+    case PatchOutline::Kind::Disk:
+      least = -outline.radius * slope.norm();
+      break;
+    case PatchOutline::Kind::Polygon:
+      if (outline.vertices.empty()) break;
+      least = slope.dot(outline.vertices[0]);
+      for (const Vec2& v : outline.vertices) least = std::min(least, slope.dot(v));
+      break;
+    case PatchOutline::Kind::ArcRegion:
+      least = leastAlong(outline.pieces, slope);
+      break;
   }
   patch.clearance = patch.gap + slope.dot(patch.centre) + least;
 }
@@ -451,9 +505,8 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
   }
 
   Buffers& buf = buffers();
+  // a polygon face's vertices in the plane frame (disks are kept as disks)
   auto polygonOf = [&](const Face& f, std::vector<Vec2>& pts) {
-    if (f.kind == Face::Kind::Disk)
-      return diskPolygon(toPlane(f.centre, base, ex, ey), f.radius, pts);
     pts.clear();
     for (const btVector3& p : f.polygonVertices()) pts.push_back(toPlane(p, base, ex, ey));
     counterClockwise(pts);
@@ -469,57 +522,48 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
     return buf.b;
   };
 
-  // the overlap, as a disk (centre, radius) or a counter-clockwise polygon
-  bool disk = false;
-  double radius = 0.0;
+  // the overlap: a disk (centre, radius), a counter-clockwise polygon, or a
+  // region bounded by segments and circular arcs (a disk cut by the other
+  // face's edges, or two disks' lens), each exact
+  PatchOutline& outline = patch.outline;
   Vec2 centre = Vec2::Zero();
-  std::vector<Vec2> poly;
   const Vec2 ca = toPlane(a.centre, base, ex, ey);
+  const bool diskA = a.kind == Face::Kind::Disk, diskB = b.kind == Face::Kind::Disk;
+  const Vec2 cb = diskB ? toPlane(b.centre, base, ex, ey) : Vec2::Zero();
+  auto setDisk = [&](const Vec2& c, double r) {
+    outline.kind = PatchOutline::Kind::Disk, outline.radius = r, centre = c;
+  };
   if (b.kind == Face::Kind::Plane) {
     // an infinite plane: the patch is a's whole face
-    if (a.kind == Face::Kind::Disk) {
-      disk = true, radius = a.radius, centre = ca;
-    } else {
-      poly = polygonA();
-    }
-  } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Polygon &&
-             diskInsidePolygon(ca, a.radius, polygonB())) {
-    disk = true, radius = a.radius, centre = ca;
-  } else if (a.kind == Face::Kind::Disk && b.kind == Face::Kind::Disk &&
-             (ca - toPlane(b.centre, base, ex, ey)).norm() + a.radius <= b.radius) {
-    disk = true, radius = a.radius, centre = ca;
-  } else if (b.kind == Face::Kind::Disk && a.kind == Face::Kind::Disk &&
-             (ca - toPlane(b.centre, base, ex, ey)).norm() + b.radius <= a.radius) {
-    disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
-  } else if (a.kind == Face::Kind::Polygon && b.kind == Face::Kind::Disk &&
-             diskInsidePolygon(toPlane(b.centre, base, ex, ey), b.radius, polygonA())) {
-    disk = true, radius = b.radius, centre = toPlane(b.centre, base, ex, ey);
+    if (diskA)
+      setDisk(ca, a.radius);
+    else
+      outline.kind = PatchOutline::Kind::Polygon, outline.vertices = polygonA();
+  } else if (diskA && !diskB && diskInsidePolygon(ca, a.radius, polygonB())) {
+    setDisk(ca, a.radius);
+  } else if (diskA && diskB && (ca - cb).norm() + a.radius <= b.radius) {
+    setDisk(ca, a.radius);
+  } else if (diskA && diskB && (ca - cb).norm() + b.radius <= a.radius) {
+    setDisk(cb, b.radius);
+  } else if (!diskA && diskB && diskInsidePolygon(cb, b.radius, polygonA())) {
+    setDisk(cb, b.radius);
+  } else if (diskA || diskB) {
+    outline.kind = PatchOutline::Kind::ArcRegion;
+    outline.pieces = diskA && diskB ? diskDiskIntersection(ca, a.radius, cb, b.radius)
+                     : diskA        ? diskPolygonIntersection(ca, a.radius, polygonB())
+                                    : diskPolygonIntersection(cb, b.radius, polygonA());
   } else {
     buf.subject = polygonA();
     clipConvex(buf.subject, polygonB(), buf.out);
     counterClockwise(buf.subject);
-    poly = buf.subject;
+    outline.kind = PatchOutline::Kind::Polygon;
+    outline.vertices = buf.subject;
   }
-  if (!disk) {
-    // area centroid of the polygon (shoelace)
-    if (poly.size() < 3) return std::nullopt;
-    double area2 = 0.0;
-    Vec2 c = Vec2::Zero();
-    for (size_t i = 0; i < poly.size(); ++i) {
-      const Vec2& p = poly[i];
-      const Vec2& q = poly[(i + 1) % poly.size()];
-      const double cr = cross2(p, q);
-      area2 += cr;
-      c += cr * (p + q);
-    }
-    if (!(area2 > 0.0)) return std::nullopt;
-    centre = c / (3.0 * area2);
-    for (Vec2& p : poly) p -= centre;
-  }
+  if (outline.kind == PatchOutline::Kind::ArcRegion && !arcRegionOutline(outline, centre))
+    return std::nullopt;
+  if (outline.kind == PatchOutline::Kind::Polygon && !polygonOutline(outline.vertices, centre))
+    return std::nullopt;
   // O at the centroid of the overlap
-  patch.outline.disk = disk;
-  patch.outline.radius = radius;
-  patch.outline.vertices = std::move(poly);
   patch.centre = centre;
   patch.origin = base + ex * btScalar(centre.x()) + ey * btScalar(centre.y());
   setClearance(a, patch);
@@ -527,16 +571,56 @@ std::optional<DetectedPatch> buildPatch(const Face& a, const Face& b, const btVe
 }
 
 bool PatchOutline::matches(const PatchOutline& other, double tol) const {
-  if (disk != other.disk) return false;
-  if (disk) return std::abs(radius - other.radius) <= tol;
-  if (vertices.size() != other.vertices.size()) return false;
-  for (size_t i = 0; i < vertices.size(); ++i)
-    if ((vertices[i] - other.vertices[i]).cwiseAbs().maxCoeff() > tol) return false;
-  return true;
+  if (kind != other.kind) return false;
+  switch (kind) {
+    case Kind::Disk:
+      return std::abs(radius - other.radius) <= tol;
+    case Kind::Polygon:
+      if (vertices.size() != other.vertices.size()) return false;
+      for (size_t i = 0; i < vertices.size(); ++i)
+        if ((vertices[i] - other.vertices[i]).cwiseAbs().maxCoeff() > tol) return false;
+      return true;
+    case Kind::ArcRegion:
+      if (pieces.size() != other.pieces.size()) return false;
+      for (size_t i = 0; i < pieces.size(); ++i) {
+        const BoundaryPiece &p = pieces[i], &q = other.pieces[i];
+        if (p.kind != q.kind) return false;
+        const bool same =
+            p.kind == BoundaryPiece::Kind::Segment
+                ? (p.a - q.a).cwiseAbs().maxCoeff() <= tol && (p.b - q.b).cwiseAbs().maxCoeff() <= tol
+                : (p.centre - q.centre).cwiseAbs().maxCoeff() <= tol &&
+                      std::abs(p.radius - q.radius) <= tol &&
+                      std::abs(p.angle0 - q.angle0) * p.radius <= tol &&
+                      std::abs(p.angle1 - q.angle1) * p.radius <= tol;
+        if (!same) return false;
+      }
+      return true;
+  }
+  return false;
+}
+
+double PatchOutline::size() const {
+  switch (kind) {
+    case Kind::Disk:
+      return radius;
+    case Kind::Polygon:
+      return vertices.empty() ? 0.0 : vertices[0].norm();
+    case Kind::ArcRegion:
+      return pieces.empty() ? 0.0 : pieces[0].start().norm();
+  }
+  return 0.0;
 }
 
 PatchShape PatchOutline::toShape() const {
-  return disk ? PatchShape::disk(radius) : PatchShape::polygon(vertices);
+  switch (kind) {
+    case Kind::Disk:
+      return PatchShape::disk(radius);
+    case Kind::Polygon:
+      return PatchShape::polygon(vertices);
+    case Kind::ArcRegion:
+      break;
+  }
+  return PatchShape::arcRegion(pieces);
 }
 
 }  // namespace patchspin::bullet::internal

@@ -68,15 +68,20 @@ void clipConvex(std::vector<Vec2>& subject, const std::vector<Vec2>& clip, std::
 // Outline of a patch in its frame (about O), cheap to build and compare;
 // the PatchShape (moment tables) is built from it only when it changes.
 struct PatchOutline {
-  bool disk = true;
+  enum class Kind { Disk, Polygon, ArcRegion };
+  Kind kind = Kind::Disk;
   double radius = 0.0;         // disk, centred at O [m]
   std::vector<Vec2> vertices;  // polygon, counter-clockwise, centroid at O [m]
+  // a disk cut by the other face's edges, or two disks' lens: its boundary,
+  // counter-clockwise, area centroid at O [m]
+  std::vector<BoundaryPiece> pieces;
+  bool isDisk() const { return kind == Kind::Disk; }
   // Same outline up to `tol` [m] in every coordinate.
   bool matches(const PatchOutline& other, double tol) const;
   // Its size for relative tolerances [m]: the radius, or the distance of the
-  // first vertex from O (0 for an empty outline).
-  double size() const { return disk ? radius : (vertices.empty() ? 0.0 : vertices[0].norm()); }
-  // Throws Error for a degenerate polygon.
+  // first vertex (piece's start) from O (0 for an empty outline).
+  double size() const;
+  // Throws Error for a degenerate polygon or region.
   PatchShape toShape() const;
 };
 
@@ -96,8 +101,9 @@ struct DetectedPatch {
   btVector3 tilt{0, 0, 0};  // small rotation of a that makes it flat on b [rad]
 };
 
-// Builds the overlap of the two faces (a disk stays a disk while it lies
-// fully inside the other face; otherwise a polygon). `xHint` is an in-plane
+// Builds the overlap of the two faces: a disk while a disk face lies fully
+// inside the other face, a region bounded by segments and arcs where a disk
+// face is cut (PatchShape::Kind::ArcRegion), otherwise a polygon. `xHint` is an in-plane
 // direction for the x axis. nullopt if the overlap is empty or degenerate.
 // With `overlap`, its outline and centre are taken instead of clipping the
 // faces again (the caller's judgement: the two bodies have not moved

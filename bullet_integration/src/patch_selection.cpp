@@ -99,7 +99,7 @@ const PatchOptions* PatchSelection::dynamicOptions(const btCollisionObject* o) {
 // PatchShape::disk is a function of the radius: a copy is the shape it would
 // build; at most kDiskShapeCache are kept, the oldest replaced.
 PatchShape PatchSelection::shapeOf(const internal::PatchOutline& outline) {
-  if (!outline.disk) return outline.toShape();
+  if (!outline.isDisk()) return outline.toShape();
   for (const auto& entry : diskShapes_)
     if (entry.first == outline.radius) return entry.second;
   PatchShape shape = outline.toShape();

@@ -21,11 +21,12 @@ namespace {
 // ---- patches from shapes: overlap geometry ---------------------------------------
 // A coin on a static box (a table) lies fully inside the top face: an exact
 // disk. Moved so that its centre is d inside the table's edge, the patch is
-// the disk minus a circular segment:
+// the disk minus a circular segment, an arc region (PatchShape::Kind::ArcRegion):
 //   A = pi R^2 - (R^2 acos(d/R) - d sqrt(R^2 - d^2)).
-// The cut disk is a 64-gon in the patch (kDiskSides): area short by
-// 1 - sin(2 pi/64) 64/(2 pi) = 1.6e-3, hence kCutDiskAreaTol.
-constexpr double kCutDiskAreaTol = 2e-3;
+// Tolerance: float Bullet's positions (the coin's centre and the box's edge
+// to ~1e-8 m) and one step's motion move the cut by ~1e-7 R; dA/dd =
+// 2 sqrt(R^2 - d^2) < 0.1 m, so 1e-8 m^2 of area (2e-6 of it).
+constexpr double kCutDiskAreaTol = 1e-8;  // [m^2]
 
 TEST(PatchFrictionSolver, CoinOnTableIsADiskAndOverTheEdgeACutDisk) {
   for (double d : {1.0, 0.4}) {  // in units of R: fully inside, then cut
@@ -43,14 +44,38 @@ TEST(PatchFrictionSolver, CoinOnTableIsADiskAndOverTheEdgeACutDisk) {
       ASSERT_TRUE(rep->shape->isDisk());
       EXPECT_NEAR(rep->shape->radius(), kR, 1e-6);
     } else {
-      ASSERT_FALSE(rep->shape->isDisk());
+      ASSERT_EQ(rep->shape->kind(), PatchShape::Kind::ArcRegion);
       const double dd = d * kR;
       const double expected =
           M_PI * kR * kR - (kR * kR * std::acos(dd / kR) - dd * std::sqrt(kR * kR - dd * dd));
-      EXPECT_NEAR(rep->shape->area(), expected, kCutDiskAreaTol * expected);
+      EXPECT_NEAR(rep->shape->area(), expected, kCutDiskAreaTol);
+      // O at the region's centroid (the solver's frame): its first moment vanishes
+      EXPECT_LT(rep->shape->areaMoments().first.norm(), 1e-12 * kR * expected);
     }
     EXPECT_NEAR(rep->loads.Pz, kMass * kG, 1e-3 * kMass * kG) << "d = " << d;
   }
+}
+
+// A coin resting on another coin, off-centre by d: their overlap is a lens
+// (two arcs) of area 2 R^2 acos(d / 2R) - (d / 2) sqrt(4 R^2 - d^2), and
+// the upper coin's whole weight stands on it. Tolerance as above.
+TEST(PatchFrictionSolver, CoinOffCentreOnACoinStandsOnTheLens) {
+  Scene scene(kG);
+  scene.addGroundPlane(1.0);
+  const double d = 0.6 * kR;
+  btRigidBody* lower = scene.addCylinder(kR, kH, 10.0 * kMass, btVector3(0, 0, btScalar(kH / 2)), kMu);
+  btRigidBody* upper = scene.addCylinder(
+      kR, kH, kMass, btVector3(btScalar(d), 0, btScalar(1.5 * kH - kSetDownDepth)), kMu);
+  scene.solver().enablePatchFriction(lower, {Model::Exact});
+  scene.solver().enablePatchFriction(upper, {Model::Exact});
+  for (int k = 0; k < 5; ++k) scene.step(kDt);
+  const PatchReport* rep = scene.solver().findPatchReport(upper);
+  ASSERT_NE(rep, nullptr);
+  ASSERT_EQ(rep->other, lower);
+  ASSERT_EQ(rep->shape->kind(), PatchShape::Kind::ArcRegion);
+  const double expected = 2.0 * kR * kR * std::acos(d / (2.0 * kR)) - 0.5 * d * std::sqrt(4.0 * kR * kR - d * d);
+  EXPECT_NEAR(rep->shape->area(), expected, kCutDiskAreaTol);
+  EXPECT_NEAR(rep->loads.Pz, kMass * kG, 1e-3 * kMass * kG);
 }
 
 // A coin tilted on a table by less than the flatness tolerance is a patch,

@@ -106,8 +106,10 @@ struct PatchReport {
   btVector3 normal{0, 0, 1};        // z axis, world
   btVector3 xAxis{1, 0, 0};         // x axis, world
   btVector3 yAxis{0, 1, 0};         // y axis, world
-  std::optional<PatchShape> shape;  // overlap of the two faces, patch frame [m]
-                                    // (always set in a report)
+  // overlap of the two faces, patch frame [m] (always set in a report): a
+  // disk, a polygon, or a region bounded by segments and arcs
+  // (PatchShape::Kind::ArcRegion: a coin over an edge, two coins' lens)
+  std::optional<PatchShape> shape;
   Model model = Model::Ellipsoidal;
   double mu = 0.0;           // [-]
   double rho = 0.0;          // [m]
