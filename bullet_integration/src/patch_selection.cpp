@@ -354,8 +354,13 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   bool kept = false;  // st.geometry is this step's patch (geo unset)
   if (haveFaces && isDynamicObject(A)) {
     const double c = std::clamp(-double(faceA_.normal.dot(faceB_.normal)), -1.0, 1.0);
-    // (a patch pivoting on its edge stays one up to the facing limit)
-    const bool pivoting = wasFlat && st.pivoting;
+    // (a patch pivoting on a polygon's edge stays one up to the facing
+    // limit; a disk's or a cut disk's pivot is a point of its rim, where the
+    // face's law would resist the spin and the rolling of a coin on its rim
+    // that a point contact does not: those go back to Bullet's points past
+    // the flatness tolerance, as before)
+    const bool pivoting = wasFlat && st.pivoting && st.friction &&
+                          st.friction->shape().kind() == PatchShape::Kind::Polygon;
     const double tol = pivoting  ? kFacingAngle
                        : wasFlat ? 2.0 * opt.flatnessTolerance
                                  : opt.flatnessTolerance;
