@@ -112,7 +112,8 @@ bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
   }
   // position error: gap at O (< 0 penetrating) and tilt of the face
   const Vec3 tilt = toEigen(st.geometry.tilt);
-  const Vec3 tiltRate(0.0, tilt.dot(ex), tilt.dot(ey));
+  // (none on a patch pivoting on its edge: the tilt is its motion)
+  const Vec3 tiltRate = st.pivoting ? Vec3::Zero() : Vec3(0.0, tilt.dot(ex), tilt.dot(ey));
   const parts::NormalTargets targets =
       pc.compliance > 0.0
           ? parts::softNormalTargets(st.geometry.gap, st.geometry.clearance, tiltRate,
@@ -122,6 +123,19 @@ bool makePatchConstraint(const Candidate& cand, const btPersistentManifold& m,
                                  st.geometry.outline.size(), dt, info.m_splitImpulse != 0,
                                  double(info.m_erp), double(info.m_erp2), bounce);
   pc.targetN = targets.velocity;
+  // a pivoting patch starts the step clamped (the stack hold through its
+  // pivots from the first visit); past the flatness limit its pivot edge
+  // is the one beyond the last step's centre of pressure
+  pc.interior = !st.pivoting;
+  pc.pivotOnly = false;
+  if (st.pivotOnly && st.normal > 0.0) {
+    const Vec2 cop(-st.couple.dot(ey) / st.normal, st.couple.dot(ex) / st.normal);
+    const double n = cop.norm();
+    if (n > 0.0) {
+      pc.pivotOnly = true;
+      pc.pivotCop = cop * (10.0 * st.geometry.outline.size() / n);
+    }
+  }
   pc.targetPush = targets.push;
   return true;
 }
@@ -159,7 +173,8 @@ void storePatchState(const PatchConstraint& pc, const Vec6& c, long step) {
   st.law.pressureCop = pc.fb.law.pressureCop;
   st.law.piInvValid = pc.fb.law.piInvValid;
   if (pc.fb.law.piInvValid) st.law.piInv = pc.fb.law.piInv;
-  if (pc.tipping || pc.fb.failed) {
+  st.pivoting = pc.tipping;
+  if (pc.fb.failed) {
     st.tipStep = step;
     st.flat = false;
   }

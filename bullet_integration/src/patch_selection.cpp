@@ -286,6 +286,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     st.otherChild = childB;
   }
   const bool wasFlat = st.flat && st.lastSeen >= step_ - 1;
+  if (!wasFlat) st.pivoting = st.pivotOnly = false;
   st.lastSeen = step_;
   // A patch of the last step keeps its normal: Bullet's contact normal may
   // be spurious for a step (double hull on hull: one point with a sideways
@@ -353,7 +354,17 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
   bool kept = false;  // st.geometry is this step's patch (geo unset)
   if (haveFaces && isDynamicObject(A)) {
     const double c = std::clamp(-double(faceA_.normal.dot(faceB_.normal)), -1.0, 1.0);
-    const double tol = wasFlat ? 2.0 * opt.flatnessTolerance : opt.flatnessTolerance;
+    // (a patch pivoting on a polygon's edge stays one up to the facing
+    // limit; a disk's or a cut disk's pivot is a point of its rim, where the
+    // face's law would resist the spin and the rolling of a coin on its rim
+    // that a point contact does not: those go back to Bullet's points past
+    // the flatness tolerance, as before)
+    const bool pivoting = wasFlat && st.pivoting && st.friction &&
+                          st.friction->shape().kind() == PatchShape::Kind::Polygon;
+    const double tol = pivoting  ? kFacingAngle
+                       : wasFlat ? 2.0 * opt.flatnessTolerance
+                                 : opt.flatnessTolerance;
+    st.pivotOnly = pivoting && !(std::acos(c) < 2.0 * opt.flatnessTolerance);
     // the faces must face the contact, and the contact must be on them (two
     // coins side by side touch rim to rim); the angle between the faces
     // last of the cheap tests: acos
@@ -402,6 +413,7 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
     reason = &NotPatchedCounts::offFaces;
   }
   if (!st.flat) {
+    st.pivoting = st.pivotOnly = false;
     if (!empty && reason)
       countNotPatched(A, B, reason, stats, haveLeaves ? leafA.shape : nullptr,
                       haveLeaves ? leafB.shape : nullptr);

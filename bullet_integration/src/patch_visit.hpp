@@ -15,6 +15,7 @@
 #include "solver_data.hpp"
 
 #include <patchspin/parts/load_sharing.hpp>
+#include <patchspin/parts/pivot_rows.hpp>
 
 #include <algorithm>
 #include <vector>
@@ -93,40 +94,74 @@ struct VisitContext {
 // support's normal block, 2 all six DOFs; sup: the held patch). False: the
 // held support cannot take its share, and the visit is to be redone with
 // less held (nothing was applied). `worst` gets the largest squared change.
+// pivots: the held support's pivot rows (a support clamped at its edge,
+// holdThroughPivots), which must keep pushing: false (nothing applied) if
+// the support's share would make one pull.
 template <class Bodies>
 bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* sup,
-                const parts::HeldBlocks* hold, int held, double& worst) {
+                const parts::HeldBlocks* hold, int held, double& worst,
+                const parts::PivotRows* pivots = nullptr) {
   const parts::PatchBlocks& k = hold ? static_cast<const parts::PatchBlocks&>(*hold) : pc.k;
   FrictionPatch& friction = *pc.state->friction;
   // normal block (S4)-(S6)
   const Vec6 c = cx.bodies.velocity(pc);
   // (soft: the compliant row c_n = t_n - C lamN, with (W + C)^-1 in k.Winv (S23))
-  const parts::NormalImpulse normal = parts::solveNormalVelocity(
-      k.Winv, pc.lamN, c.head<3>(), softTarget(pc.targetN, pc.compliance, pc.lamN), pc.shape,
-      friction.shape());
+  const Vec3 targetN = softTarget(pc.targetN, pc.compliance, pc.lamN);
+  const Vec3 residualN = targetN - c.head<3>();
+  parts::NormalImpulse normal;
+  if (pc.pivotOnly) {
+    // past the flatness limit: only the pivot edge's rows, never interior
+    parts::clampNormalImpulse(k.Winv, pc.lamN, residualN, pc.pivotCop, pc.shape, friction.shape(),
+                              normal);
+    normal.tipping = normal.lamN[0] > 0.0;
+  } else {
+    normal = parts::solveNormalVelocity(k.Winv, pc.lamN, c.head<3>(), targetN, pc.shape,
+                                        friction.shape());
+  }
   pc.interior = normal.interior;
   pc.tipping = normal.tipping;
   Vec6 d = Vec6::Zero();
-  d.head<3>() = normal.lamN - pc.lamN;
-  pc.lamN = normal.lamN;
-  // friction block on the slip x_o, with the normal block held (Schur
-  // complement Ks) while it is inside the admissible set (S7)-(S14)
-  const Vec3 s = c.tail<3>() + k.Knf.transpose() * d.head<3>();
   bool refreshed = false;
-  const Vec3 lamF =
-      parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
-                                   pc.lamF, pc.lamN, held, cx.friction, cx.stats, refreshed);
-  d.tail<3>() = lamF - pc.lamF;
-  pc.lamF = lamF;
-  if (pc.interior) {
-    // the normal block follows the friction impulse: W dN = -Knf dF
-    const Vec3 dn = -k.G * d.tail<3>();
-    d.head<3>() += dn;
-    pc.lamN += dn;
+  // a clamped patch that sticks: its pivot rows and friction DOFs together
+  // (S26), kept while the pivots push and the friction can take it
+  bool pivotSolved = false;
+  if (!normal.interior && pc.fb.sticking) {
+    const parts::PivotRows rows = parts::pivotRowsOf(friction.shape(), normal.lamN);
+    Mat6 K6;
+    K6 << k.Winv.inverse(), k.Knf, k.Knf.transpose(), k.Kff;
+    Vec6 r;
+    r << residualN, -c.tail<3>();
+    Vec6 dj;
+    if (parts::solvePivotsWithFriction(K6, rows, pc.lamN, r, dj) &&
+        parts::frictionCanTake(pc.fb, friction, pc.lamN, pc.lamF, dj)) {
+      d = dj;
+      pc.lamN += dj.head<3>();
+      pc.lamF += dj.tail<3>();
+      pivotSolved = true;
+    }
+  }
+  if (!pivotSolved) {
+    d.head<3>() = normal.lamN - pc.lamN;
+    pc.lamN = normal.lamN;
+    // friction block on the slip x_o, with the normal block held (Schur
+    // complement Ks) while it is inside the admissible set (S7)-(S14)
+    const Vec3 s = c.tail<3>() + k.Knf.transpose() * d.head<3>();
+    const Vec3 lamF =
+        parts::solveFrictionVelocity(pc.fb, friction, pc.state->certs, pc.shape, k, pc.interior, s,
+                                     pc.lamF, pc.lamN, held, cx.friction, cx.stats, refreshed);
+    d.tail<3>() = lamF - pc.lamF;
+    pc.lamF = lamF;
+    if (pc.interior) {
+      // the normal block follows the friction impulse: W dN = -Knf dF
+      const Vec3 dn = -k.G * d.tail<3>();
+      d.head<3>() += dn;
+      pc.lamN += dn;
+    }
   }
   if (held == 2 &&
       !parts::frictionCanTake(sup->fb, *sup->state->friction, sup->lamN, sup->lamF, hold->gain * d))
     return false;
+  if (pivots && !parts::pivotsPush(*pivots, sup->lamN + (hold->gain * d).head<3>())) return false;
   cx.bodies.apply(pc, d);
   worst = std::max(worst, d.squaredNorm());
   if (hold && !d.isZero(0.0)) {
@@ -144,6 +179,44 @@ bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* 
     cx.bodies.snapshot(pc, pc.snapshot);
   }
   return true;
+}
+
+// A stacked patch visited with its support clamped at its edge (S27): the
+// support's pivot rows held, and its friction DOFs while it sticks, the
+// pivots kept pushing; tried in turn with both pivots, then each alone (a
+// sticking support: always with its friction held, as the load's share
+// at 1000:1 is far beyond what its friction solve alone carries in the
+// iterations). False if none took (nothing applied). Guarded by HandBack.*.
+template <class Bodies>
+bool holdThroughPivots(VisitContext<Bodies>& cx, PatchConstraint& retry, PatchConstraint& pc,
+                       PatchConstraint& sup, const parts::StackHold& sh, double& worst) {
+  const parts::PivotRows both = parts::pivotRowsOf(sup.state->friction->shape(), sup.lamN);
+  if (both.n == 0) return false;
+  parts::PivotRows tries[3] = {both};
+  int nt = 1;
+  for (int k = 0; k < both.n && both.n == 2; ++k) {
+    tries[nt].n = 1;
+    tries[nt++].a[0] = both.a[k];
+  }
+  Mat6 K6;
+  K6 << pc.k.Winv.inverse(), pc.k.Knf, pc.k.Knf.transpose(), pc.k.Kff;
+  const bool friction = sup.fb.sticking;
+  for (int t = 0; t < nt; ++t) {
+    const parts::PivotRows& rows = tries[t];
+    Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 6, 6> H =
+        Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 6, 6>::Zero(rows.n + (friction ? 3 : 0), 6);
+    for (int k = 0; k < rows.n; ++k) H.block<1, 3>(k, 0) = rows.a[k].transpose();
+    if (friction) H.block<3, 3>(rows.n, 3).setIdentity();
+    parts::HeldBlocks h;
+    parts::foldHeldRows(K6, sh.heldK, sh.coupling, H, h);
+    if (!h.valid) continue;
+    retry = pc;
+    if (visitPatch(cx, pc, &sup, &h, friction ? 2 : 1, worst, &rows)) return true;
+    const parts::PressureRecord law = pc.fb.law;  // (as iteratePatches' retry)
+    pc = retry;
+    pc.fb.law = law;
+  }
+  return false;
 }
 
 // The groups of (S25): per dynamic body, its hard patches on static or
@@ -190,7 +263,8 @@ double iteratePatches(VisitContext<Bodies>& cx, PatchIteration& it) {
     }
     // a stacked patch: its support held while the support is on its patch
     // (all six DOFs while it sticks and can take its share, else its
-    // normal block); a support on a static body: its load held alike
+    // normal block), through its pivot rows while it is clamped at its
+    // edge; a support on a static body: its load held alike
     PatchConstraint* sup = nullptr;
     const parts::StackHold* stackHold = nullptr;
     if (pc.stack.hold >= 0) {
@@ -202,6 +276,9 @@ double iteratePatches(VisitContext<Bodies>& cx, PatchIteration& it) {
     }
     const parts::HeldBlocks* normalHold =
         stackHold && stackHold->normal.valid ? &stackHold->normal : nullptr;
+    if (stackHold && pc.stack.hold >= 0 && !sup->interior &&
+        holdThroughPivots(cx, it.retry, pc, *sup, *stackHold, worst))
+      continue;
     if (!stackHold || !sup->interior) {
       visitPatch(cx, pc, nullptr, nullptr, 0, worst);
     } else if (sup->fb.sticking && stackHold->all.valid) {

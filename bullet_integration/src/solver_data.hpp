@@ -44,7 +44,8 @@ inline btVector3 toBt(const Vec3& v) {
   return btVector3(flushed(v.x()), flushed(v.y()), flushed(v.z()));
 }
 
-// Steps a tipped contact stays with Bullet before it may become a patch again.
+// Steps a contact whose friction block failed stays with Bullet before it
+// may become a patch again (a tipping patch stays a patch: pivoting).
 constexpr long kTipCooldownSteps = 10;
 // Steps between sweeps of the stale states.
 constexpr long kSweepSteps = 16;
@@ -74,6 +75,11 @@ struct PatchState {
   long lastSeen = std::numeric_limits<long>::min() / 2;
   long tipStep = std::numeric_limits<long>::min() / 2;
   bool flat = false;
+  // the last step ended clamped at the patch's edge (tipping): the patch is
+  // kept up to the facing limit, with no tilt correction, and starts the
+  // step clamped (HandBack.*)
+  bool pivoting = false;
+  bool pivotOnly = false;     // this step: pivoting past twice the flatness tolerance
   bool sticking = false;      // the friction block stuck at the end of the last step
   bool overlapValid = false;  // see overlapPose
   // the faces' kinds when geometry's overlap was last clipped (see overlapPose)
@@ -115,6 +121,11 @@ struct PatchConstraint {
       false;  // the last visit changed nothing, and no body velocity changed since (snapshot)
   bool interior = true;  // centre of pressure on the patch: normal block bilateral
   bool tipping = false;
+  // past twice the flatness tolerance while pivoting the normal block is its
+  // pivot edge's rows only (never interior): the edge nearest pivotCop, a
+  // point far beyond the edge of the last step's centre of pressure
+  bool pivotOnly = false;
+  Vec2 pivotCop = Vec2::Zero();
   PatchState* state = nullptr;
   parts::StackLinks stack;  // indices in the island's patches and Impl::holds
   int ids[2] = {-1, -1};    // a.id, b.id

@@ -63,6 +63,22 @@ Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p) {
   return nearestOnEdges(shape.vertices(), p).point;
 }
 
+int pivotPoints(const PatchShape& shape, const Vec2& cop, Vec2 (&out)[2]) {
+  if (shape.isDisk()) {
+    out[0] = nearestPointOn(shape, cop);
+    return 1;
+  }
+  const std::vector<Vec2>& v = shape.vertices();
+  const BoundaryPoint nearest = nearestOnEdges(v, cop);
+  if (nearest.t > 0.0 && nearest.t < 1.0) {
+    out[0] = v[nearest.edge];
+    out[1] = v[(nearest.edge + 1) % v.size()];
+    return 2;
+  }
+  out[0] = nearest.point;
+  return 1;
+}
+
 double innerRadiusSquared(const PatchShape& shape) {
   if (shape.isDisk()) return 0.0;
   if (shape.kind() == PatchShape::Kind::ArcRegion) {

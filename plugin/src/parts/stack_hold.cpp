@@ -39,6 +39,8 @@ void linkStackedPatches(const std::vector<StackPatchView>& patches, int numBodie
     StackHold sh;
     foldHeldDofs<6>(K6p, K6s, Kps.leftCols<6>(), sh.all);
     foldHeldDofs<3>(K6p, K6s, Kps.leftCols<3>(), sh.normal);
+    sh.coupling = Kps;
+    sh.heldK = K6s;
     if (!sh.all.valid && !sh.normal.valid) continue;
     links[p].support = support;
     links[p].hold = int(holds.size());
@@ -51,6 +53,8 @@ void linkStackedPatches(const std::vector<StackPatchView>& patches, int numBodie
     StackHold lh;
     foldHeldDofs<6>(K6s, K6p, Kps.topRows<6>().transpose(), lh.all);
     foldHeldDofs<3>(K6s, K6p, Kps.topRows<3>().transpose(), lh.normal);
+    lh.coupling = Kps.transpose();
+    lh.heldK = K6p;
     if (!lh.all.valid && !lh.normal.valid) continue;
     links[std::size_t(support)].load = int(p);
     links[std::size_t(support)].loadHold = int(holds.size());

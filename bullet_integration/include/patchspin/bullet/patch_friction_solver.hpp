@@ -179,7 +179,7 @@ struct NotPatchedCounts {
                               // (a rim, an edge, a side)
   long notFlat = 0;           // faces further apart than the flatness tolerance
   long offFaces = 0;          // contact points off the faces' planes (rim to rim)
-  long tipCooldown = 0;       // within kTipCooldownSteps of the patch's tip
+  long tipCooldown = 0;       // within 10 steps of its friction block failing
   long noOverlap = 0;         // the faces' overlap is empty or degenerate
   long lawRefused = 0;        // the friction law refused the overlap or mu
   long sliver = 0;            // the overlap is a sliver (an edge on a face:

@@ -49,6 +49,11 @@ inline PatchLoads toLoads(const Vec3& lamN) {
 // The point of the patch nearest to p (p itself if inside; on an arc of an
 // arc region, radial).
 Vec2 nearestPointOn(const PatchShape& shape, const Vec2& p);
+// The pivot points of a centre of pressure cop off the patch, as the clamp
+// takes them: the two corners of the polygon edge nearest to cop when its
+// nearest point is inside that edge, else the nearest point (a vertex or a
+// disk's rim). Returns how many (1 or 2) were written to out.
+int pivotPoints(const PatchShape& shape, const Vec2& cop, Vec2 (&out)[2]);
 // Squared distance from O to the nearest edge line of a polygon patch, less
 // a relative 1e-9 for round-off (0 if O is not inside; disks: 0; arc
 // regions: the radius of the disk about O inside every segment's half-plane

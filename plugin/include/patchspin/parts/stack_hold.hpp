@@ -26,6 +26,10 @@ struct StackPatchView {
 
 struct StackHold {
   HeldBlocks all, normal;  // support sticking: all six DOFs held; slipping: its normal block
+  // the velocity of this patch's DOFs per impulse on the held patch's DOFs
+  // (K_PS), and the held patch's K6: a support clamped at its edge is held
+  // by its pivot rows instead (foldHeldRows, pivot_rows.hpp)
+  Mat6 coupling = Mat6::Zero(), heldK = Mat6::Zero();
 };
 
 // Per patch: its support (index of the patch under its lower body, or -1)

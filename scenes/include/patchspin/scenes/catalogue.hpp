@@ -242,7 +242,7 @@ std::vector<btRigidBody*> addPile(Scene& scene, const std::vector<BodyState>& st
 // The hand-back scene (issue 31): a tall light box (0.04 x 0.1 x 0.2 m,
 // 1 kg, friction 1 with the ground plane) under a 10 cm cube of `ratio` kg
 // (friction 0.5), both under f; a caller pushes the cube along x until the
-// light box tips over its edge, and its ground patch goes back to Bullet.
+// light box tips over its edge (its ground patch pivoting on that edge).
 struct HeavyOnLight {
   std::unique_ptr<Scene> scene;
   btRigidBody* light = nullptr;
