@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <random>
 
 namespace patchspin::parts {
@@ -47,6 +48,32 @@ TEST(PivotRows, TakesTheCornersOfTheEdgeBeyondWhichTheCentreOfPressureLies) {
   // a normal impulse that does not push has no pivots
   EXPECT_EQ(pivotRowsOf(box(), Vec3(0.0, 0.0, 0.0)).n, 0);
   EXPECT_EQ(pivotRowsOf(box(), Vec3(-1.0, 0.0, 0.03)).n, 0);
+}
+
+// A disk of radius 1 cut by the line x = 0.5 (an arc region): a centre of
+// pressure beyond the chord, inside its extent, pivots on the chord's ends
+// (0.5, +-sqrt(3)/2); beyond the arc, on the circle's point radially out
+// (as clampNormalImpulse takes them). Closed forms: the chord's ends and
+// the radial point, to 1e-12.
+TEST(PivotRows, ACutDiskPivotsOnItsChordsEndsOrARimPoint) {
+  const PatchShape cut =
+      PatchShape::arcRegion(diskPolygonIntersection(Vec2::Zero(), 1.0, {{-2.0, -2.0}, {0.5, -2.0},
+                                                                        {0.5, 2.0}, {-2.0, 2.0}}));
+  ASSERT_EQ(cut.kind(), PatchShape::Kind::ArcRegion);
+  const double h = std::sqrt(3.0) / 2.0;
+  PivotRows r = pivotRowsOf(cut, Vec3(1.0, 0.1, -0.7));  // cop (0.7, 0.1)
+  ASSERT_EQ(r.n, 2);
+  for (const Vec3& a : {r.a[0], r.a[1]}) {
+    EXPECT_NEAR(a[2], -0.5, 1e-12);            // x = 0.5
+    EXPECT_NEAR(std::abs(a[1]), h, 1e-12);     // y = +-sqrt(3)/2
+  }
+  EXPECT_NEAR(r.a[0][1] + r.a[1][1], 0.0, 1e-12);
+  const Vec2 out(-1.2, 0.9);  // beyond the arc: the rim point along it
+  r = pivotRowsOf(cut, Vec3(1.0, out.y(), -out.x()));
+  ASSERT_EQ(r.n, 1);
+  const Vec2 rim = out.normalized();
+  EXPECT_NEAR(r.a[0][1], rim.y(), 1e-12);
+  EXPECT_NEAR(-r.a[0][2], rim.x(), 1e-12);
 }
 
 TEST(PivotRows, PushWhenEveryPivotImpulseIsNonNegative) {

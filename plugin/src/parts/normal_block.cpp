@@ -68,6 +68,19 @@ int pivotPoints(const PatchShape& shape, const Vec2& cop, Vec2 (&out)[2]) {
     out[0] = nearestPointOn(shape, cop);
     return 1;
   }
+  if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    // as clampNormalImpulse: inside a segment piece its two ends, else the
+    // nearest boundary point (on an arc, radial)
+    std::size_t piece = 0;
+    double t = 0.0;
+    out[0] = internal::arcRegionNearestBoundaryPoint(shape.boundary(), cop, piece, t);
+    const BoundaryPiece& b = shape.boundary()[piece];
+    if (b.kind == BoundaryPiece::Kind::Segment && t > 0.0 && t < 1.0) {
+      out[0] = b.a, out[1] = b.b;
+      return 2;
+    }
+    return 1;
+  }
   const std::vector<Vec2>& v = shape.vertices();
   const BoundaryPoint nearest = nearestOnEdges(v, cop);
   if (nearest.t > 0.0 && nearest.t < 1.0) {
