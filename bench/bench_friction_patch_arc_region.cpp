@@ -74,7 +74,8 @@ struct Shapes {
 };
 
 Shapes shapes(int which) {
-  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
+  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
+                                 Vec2(-0.1, 0.1)};
   const Vec2 c1(0.1 - 0.5 * kR, 0.03), c2 = c1 + Vec2(1.2 * kR, 0.0);
   Shapes s;
   if (which == 0) {

@@ -443,8 +443,8 @@ double leastAlong(const std::vector<BoundaryPiece>& pieces, const Vec2& s) {
     least = std::min(least, s.dot(p.end()));
     if (p.kind != BoundaryPiece::Kind::Arc || !(sNorm > 0.0)) continue;
     // the angle of -s, taken into [angle0, angle0 + 2 pi)
-    const double t = p.angle0 + std::remainder(std::atan2(-s.y(), -s.x()) - p.angle0 - M_PI,
-                                               2.0 * M_PI) + M_PI;
+    const double t =
+        p.angle0 + std::remainder(std::atan2(-s.y(), -s.x()) - p.angle0 - M_PI, 2.0 * M_PI) + M_PI;
     if (t <= p.angle1) least = std::min(least, s.dot(p.centre) - p.radius * sNorm);
   }
   return least;
@@ -585,13 +585,13 @@ bool PatchOutline::matches(const PatchOutline& other, double tol) const {
       for (size_t i = 0; i < pieces.size(); ++i) {
         const BoundaryPiece &p = pieces[i], &q = other.pieces[i];
         if (p.kind != q.kind) return false;
-        const bool same =
-            p.kind == BoundaryPiece::Kind::Segment
-                ? (p.a - q.a).cwiseAbs().maxCoeff() <= tol && (p.b - q.b).cwiseAbs().maxCoeff() <= tol
-                : (p.centre - q.centre).cwiseAbs().maxCoeff() <= tol &&
-                      std::abs(p.radius - q.radius) <= tol &&
-                      std::abs(p.angle0 - q.angle0) * p.radius <= tol &&
-                      std::abs(p.angle1 - q.angle1) * p.radius <= tol;
+        const bool same = p.kind == BoundaryPiece::Kind::Segment
+                              ? (p.a - q.a).cwiseAbs().maxCoeff() <= tol &&
+                                    (p.b - q.b).cwiseAbs().maxCoeff() <= tol
+                              : (p.centre - q.centre).cwiseAbs().maxCoeff() <= tol &&
+                                    std::abs(p.radius - q.radius) <= tol &&
+                                    std::abs(p.angle0 - q.angle0) * p.radius <= tol &&
+                                    std::abs(p.angle1 - q.angle1) * p.radius <= tol;
         if (!same) return false;
       }
       return true;

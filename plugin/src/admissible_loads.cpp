@@ -416,8 +416,7 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
 // touch angle of level l - 1's projection (where its zero line touches the
 // arc: the outward normal -grad p).
 constexpr double kTwoPiArc = 2.0 * 3.14159265358979323846;
-constexpr double kArcTangentSteps[3] = {kTwoPiArc / 64.0, kTwoPiArc / 1024.0,
-                                        kTwoPiArc / 16384.0};
+constexpr double kArcTangentSteps[3] = {kTwoPiArc / 64.0, kTwoPiArc / 1024.0, kTwoPiArc / 16384.0};
 constexpr double kArcWindowSteps = 2.0;
 
 struct TangentWindow {
@@ -718,7 +717,7 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   auto admissible = [&] {
     return shape.kind() != PatchShape::Kind::Polygon || !(out.Pz > 0.0)
                ? isAdmissible(shape, out, kVerifyTol)
-                                             : polygonAdmissible(shape, out, kVerifyTol);
+               : polygonAdmissible(shape, out, kVerifyTol);
   };
   if (!out.asVector().isZero(0.0) && !(out.asVector() == loads.asVector()) && !admissible()) {
     throw Error(

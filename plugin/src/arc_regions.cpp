@@ -200,7 +200,8 @@ AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const V
     const double A = R2 * (half - s * c);
     const double su = 2.0 / 3.0 * R * R2 * s * s * s;
     const double iuu = R4 * ((half + s * c) / 4.0 - c * c * c * s / 2.0);
-    const double ivv = R4 * ((4.0 * half - std::sin(4.0 * half)) / 16.0 - 2.0 / 3.0 * c * s * s * s);
+    const double ivv =
+        R4 * ((4.0 * half - std::sin(4.0 * half)) / 16.0 - 2.0 / 3.0 * c * s * s * s);
     const double cm = std::cos(mid), sm = std::sin(mid);
     // about the arc's centre, in the patch axes
     const double sxc = su * cm, syc = su * sm;

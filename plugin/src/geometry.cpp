@@ -525,7 +525,8 @@ PatchShape PatchShape::arcRegion(std::vector<BoundaryPiece> boundary) {
   double size = 0.0;
   for (const Piece& p : boundary) {
     size = std::max(size, (p.start() - s0).norm());
-    if (p.kind == Piece::Kind::Arc) size = std::max(size, std::min(2.0, p.angle1 - p.angle0) * p.radius);
+    if (p.kind == Piece::Kind::Arc)
+      size = std::max(size, std::min(2.0, p.angle1 - p.angle0) * p.radius);
   }
   // pieces shorter than 1e-12 of it (rounding) are dropped
   const double kShortPiece = 1e-12 * size;

@@ -63,7 +63,8 @@ TEST(PatchFrictionSolver, CoinOffCentreOnACoinStandsOnTheLens) {
   Scene scene(kG);
   scene.addGroundPlane(1.0);
   const double d = 0.6 * kR;
-  btRigidBody* lower = scene.addCylinder(kR, kH, 10.0 * kMass, btVector3(0, 0, btScalar(kH / 2)), kMu);
+  btRigidBody* lower =
+      scene.addCylinder(kR, kH, 10.0 * kMass, btVector3(0, 0, btScalar(kH / 2)), kMu);
   btRigidBody* upper = scene.addCylinder(
       kR, kH, kMass, btVector3(btScalar(d), 0, btScalar(1.5 * kH - kSetDownDepth)), kMu);
   scene.solver().enablePatchFriction(lower, {Model::Exact});
@@ -73,7 +74,8 @@ TEST(PatchFrictionSolver, CoinOffCentreOnACoinStandsOnTheLens) {
   ASSERT_NE(rep, nullptr);
   ASSERT_EQ(rep->other, lower);
   ASSERT_EQ(rep->shape->kind(), PatchShape::Kind::ArcRegion);
-  const double expected = 2.0 * kR * kR * std::acos(d / (2.0 * kR)) - 0.5 * d * std::sqrt(4.0 * kR * kR - d * d);
+  const double expected =
+      2.0 * kR * kR * std::acos(d / (2.0 * kR)) - 0.5 * d * std::sqrt(4.0 * kR * kR - d * d);
   EXPECT_NEAR(rep->shape->area(), expected, kCutDiskAreaTol);
   EXPECT_NEAR(rep->loads.Pz, kMass * kG, 1e-3 * kMass * kG);
 }

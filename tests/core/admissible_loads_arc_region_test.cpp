@@ -20,7 +20,8 @@ namespace {
 using testing::exact_arc::Region;
 
 std::vector<Region> regions() {
-  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
+  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
+                                 Vec2(-0.1, 0.1)};
   auto centred = [](Region r) {
     const AreaMoments m = areaMomentsOf(r);
     const Vec2 g = m.first / m.area;
@@ -92,8 +93,9 @@ TEST(AdmissibleLoadsArcRegion, ProjectionIsAdmissibleIdempotentAndOrthogonal) {
 // (measured 5.7e-16).
 TEST(AdmissibleLoadsArcRegion, ExactProjectionOnADisk) {
   const double R = 0.02;
-  const PatchShape arcs = PatchShape::arcRegion(
-      {BoundaryPiece::arc(Vec2::Zero(), R, 0.1, 0.1 + M_PI), BoundaryPiece::arc(Vec2::Zero(), R, 0.1 + M_PI, 0.1 + 2 * M_PI)});
+  const PatchShape arcs =
+      PatchShape::arcRegion({BoundaryPiece::arc(Vec2::Zero(), R, 0.1, 0.1 + M_PI),
+                             BoundaryPiece::arc(Vec2::Zero(), R, 0.1 + M_PI, 0.1 + 2 * M_PI)});
   const PatchShape disk = PatchShape::disk(R);
   const double rho = disk.defaultRho();
   std::mt19937 rng(9);

@@ -41,9 +41,13 @@ std::vector<DiskPolygonCase> diskPolygonCases() {
       {"coin over an edge at 0.5 R", Vec2(0.1 - 0.5 * R, 0.03), R, square(Vec2::Zero(), 0.1)},
       {"coin over a corner", Vec2(0.095, 0.092), R, square(Vec2::Zero(), 0.1)},
       {"coin inside", Vec2(0.01, 0.02), R, square(Vec2::Zero(), 0.1)},
-      {"triangle inside the coin", Vec2(0.001, 0.0), R,
+      {"triangle inside the coin",
+       Vec2(0.001, 0.0),
+       R,
        {Vec2(-0.01, -0.01), Vec2(0.012, -0.008), Vec2(0.0, 0.011)}},
-      {"triangle crossing the rim", Vec2(0.0, 0.0), R,
+      {"triangle crossing the rim",
+       Vec2(0.0, 0.0),
+       R,
        {Vec2(-0.01, -0.01), Vec2(0.03, -0.005), Vec2(0.0, 0.025)}},
       {"thin cut, 0.05 R deep", Vec2(0.1 + 0.95 * R, 0.0), R, square(Vec2::Zero(), 0.1)},
   };
@@ -133,7 +137,8 @@ std::vector<std::pair<std::string, Region>> testRegions() {
   // half-angle 0.14: its segments' closed forms cancel by ~a^-2 = 50
   out.push_back({"thin lens", diskDiskIntersection(Vec2(0, 0), 0.02, Vec2(0.0396, 0.0), 0.02)});
   // about their centroid (the Bullet layer's frame) and 3 diameters away
-  const Region lensAtO = diskDiskIntersection(Vec2(-0.0125, -0.005), 0.02, Vec2(0.0125, 0.005), 0.02);
+  const Region lensAtO =
+      diskDiskIntersection(Vec2(-0.0125, -0.005), 0.02, Vec2(0.0125, 0.005), 0.02);
   out.push_back({"lens about its centroid", lensAtO});
   Region far = lensAtO;
   for (BoundaryPiece& p : far) p.centre += Vec2(0.06, 0.03), p.a += Vec2(0.06, 0.03);
@@ -150,7 +155,8 @@ TEST(ArcRegions, AreaMomentsMatchQuadrature) {
     const Eigen::Matrix<double, 6, 3> ref = aq::momentTable(region);
     const AreaMoments m = areaMomentsOf(region);
     double rmax = 0.0;
-    for (const Vec2& p : testing::exact_arc::boundarySamples(region)) rmax = std::max(rmax, p.norm());
+    for (const Vec2& p : testing::exact_arc::boundarySamples(region))
+      rmax = std::max(rmax, p.norm());
     const double A = ref(0, 0);
     EXPECT_NEAR(m.area, A, kTol * A) << name;
     EXPECT_NEAR(m.first.x(), ref(0, 1), kTol * A * rmax) << name;
@@ -242,7 +248,8 @@ TEST(ArcRegions, ExtentsAndContains) {
     double rmax = 0.0, diam = 0.0;
     for (const Vec2& p : pts) rmax = std::max(rmax, p.norm());
     for (std::size_t i = 0; i < pts.size(); ++i)
-      for (std::size_t j = i + 1; j < pts.size(); ++j) diam = std::max(diam, (pts[i] - pts[j]).norm());
+      for (std::size_t j = i + 1; j < pts.size(); ++j)
+        diam = std::max(diam, (pts[i] - pts[j]).norm());
     // (1000 samples per piece, its ends included: a maximum between two
     // samples is missed by at most R (span / 1000)^2 / 8 < 1e-5 R)
     EXPECT_GE(shape.maxDistanceFromOrigin(), rmax * (1.0 - 1e-12)) << name;
@@ -265,7 +272,8 @@ TEST(ArcRegions, ExtentsAndContains) {
 
 TEST(ArcRegions, NormalisesAndValidates) {
   // a full arc is a disk; segments only a polygon
-  const PatchShape d = PatchShape::arcRegion({BoundaryPiece::arc(Vec2(1, 2), 0.5, 0.3, 0.3 + 2 * M_PI)});
+  const PatchShape d =
+      PatchShape::arcRegion({BoundaryPiece::arc(Vec2(1, 2), 0.5, 0.3, 0.3 + 2 * M_PI)});
   EXPECT_EQ(d.kind(), PatchShape::Kind::Disk);
   EXPECT_EQ(d.radius(), 0.5);
   const PatchShape p =
@@ -287,9 +295,8 @@ TEST(ArcRegions, NormalisesAndValidates) {
   EXPECT_TRUE(throwsNaming([&] { PatchShape::arcRegion(nan); }, {"finite"}));
   // two overlapping disks' outer boundary (a peanut): right turns where the
   // arcs meet
-  const Region peanut = {
-      BoundaryPiece::arc(Vec2(-0.5, 0), 1.0, M_PI / 3, 5 * M_PI / 3),
-      BoundaryPiece::arc(Vec2(0.5, 0), 1.0, -2 * M_PI / 3, 2 * M_PI / 3)};
+  const Region peanut = {BoundaryPiece::arc(Vec2(-0.5, 0), 1.0, M_PI / 3, 5 * M_PI / 3),
+                         BoundaryPiece::arc(Vec2(0.5, 0), 1.0, -2 * M_PI / 3, 2 * M_PI / 3)};
   EXPECT_TRUE(throwsNaming([&] { PatchShape::arcRegion(peanut); }, {"not convex"}));
   Region clockwise = {BoundaryPiece::segment(Vec2(0, 0), Vec2(0, 1)),
                       BoundaryPiece::segment(Vec2(0, 1), Vec2(1, 0)),

@@ -36,11 +36,15 @@ std::vector<std::pair<std::string, Region>> regions() {
     for (BoundaryPiece& p : r) p.a -= g, p.b -= g, p.centre -= g;
     return r;
   };
-  const Region edge = diskPolygonIntersection(Vec2(0.1 - 0.5 * kR, 0.03), kR, square(Vec2::Zero(), 0.1));
+  const Region edge =
+      diskPolygonIntersection(Vec2(0.1 - 0.5 * kR, 0.03), kR, square(Vec2::Zero(), 0.1));
   const Region lens = diskDiskIntersection(Vec2::Zero(), kR, Vec2(0.025, 0.01), kR);
   Region edgeOff = centred(edge);
-  for (BoundaryPiece& p : edgeOff) p.a += Vec2(0.004, -0.003), p.b += Vec2(0.004, -0.003), p.centre += Vec2(0.004, -0.003);
-  return {{"coin over an edge", centred(edge)}, {"lens", centred(lens)}, {"coin over an edge, O off the centroid", edgeOff}};
+  for (BoundaryPiece& p : edgeOff)
+    p.a += Vec2(0.004, -0.003), p.b += Vec2(0.004, -0.003), p.centre += Vec2(0.004, -0.003);
+  return {{"coin over an edge", centred(edge)},
+          {"lens", centred(lens)},
+          {"coin over an edge, O off the centroid", edgeOff}};
 }
 
 const LinearPressure kPressure{2000.0, 3.0e4, -2.0e4};  // > 0 on these regions
@@ -96,7 +100,8 @@ TEST(ModelsArcRegion, EllipsoidalPiMatchesItsDefinition) {
     Mat3 Pi;
     Pi << 1.0, 0.0, -v[MomentTable::kYOverR] / Pz,  //
         0.0, 1.0, v[MomentTable::kXOverR] / Pz,     //
-        -v[MomentTable::kY] / Pz / rho, v[MomentTable::kX] / Pz / rho, v[MomentTable::kR] / Pz / rho;
+        -v[MomentTable::kY] / Pz / rho, v[MomentTable::kX] / Pz / rho,
+        v[MomentTable::kR] / Pz / rho;
     const double scale = 1.0 + shape.maxDistanceFromOrigin() / rho;
     EXPECT_LT((patch.Pi() - Pi).cwiseAbs().maxCoeff(), 1e-10 * scale) << name;
     EXPECT_NEAR(patch.Pz(), Pz, 1e-12 * Pz) << name;
@@ -107,13 +112,15 @@ TEST(ModelsArcRegion, EllipsoidalPiMatchesItsDefinition) {
 // the table, Pi and the exact law with its Jacobian to 1e-12 of their scale.
 TEST(ModelsArcRegion, UncutDiskAsArcRegionIsTheDisk) {
   const Vec2 c(0.003, -0.002);
-  const PatchShape arcs = PatchShape::arcRegion(
-      {BoundaryPiece::arc(c, kR, 0.2, 0.2 + M_PI), BoundaryPiece::arc(c, kR, 0.2 + M_PI, 0.2 + 2 * M_PI)});
+  const PatchShape arcs =
+      PatchShape::arcRegion({BoundaryPiece::arc(c, kR, 0.2, 0.2 + M_PI),
+                             BoundaryPiece::arc(c, kR, 0.2 + M_PI, 0.2 + 2 * M_PI)});
   ASSERT_EQ(arcs.kind(), PatchShape::Kind::ArcRegion);
   const PatchShape disk = PatchShape::disk(kR, c);
   for (int f = 0; f < 6; ++f)
     for (int k = 0; k < 3; ++k) {
-      const double scale = disk.area() * std::pow(disk.maxDistanceFromOrigin(), (f >= 1 && f <= 3) + (k > 0));
+      const double scale =
+          disk.area() * std::pow(disk.maxDistanceFromOrigin(), (f >= 1 && f <= 3) + (k > 0));
       EXPECT_NEAR(arcs.momentTable().m(f, k), disk.momentTable().m(f, k), 1e-12 * scale) << f << k;
     }
   EXPECT_NEAR(arcs.diameter(), 2 * kR, 1e-15);
@@ -161,8 +168,7 @@ TEST(ModelsArcRegion, CutDiskPolygonsConvergeToTheArcRegion) {
   const Vec2 g = exact.centroid();
   const PatchShape arcShape = exact.inFrame(g, 0.0);
   const PatchLoads loads{10.0, 0.01, -0.02};
-  const FrictionPatch arcPatch(arcShape, LinearPressure::fromLoads(arcShape, loads), 0.5,
-                               0.01);
+  const FrictionPatch arcPatch(arcShape, LinearPressure::fromLoads(arcShape, loads), 0.5, 0.01);
   for (const Vec3& w : {Vec3(0.3, -0.2, 0.5), Vec3(1, 0, 0.02), Vec3(0, 0, 1)}) {
     const Vec3 ref = arcPatch.exactQ(w);
     double previous = 0.0;
@@ -178,7 +184,8 @@ TEST(ModelsArcRegion, CutDiskPolygonsConvergeToTheArcRegion) {
       const FrictionPatch p(poly, LinearPressure::fromLoads(poly, loads), 0.5, 0.01);
       const double err = (p.exactQ(w) - ref).norm() / ref.norm();
       if (n == 64) EXPECT_LT(err, 2e-3) << w.transpose();
-      if (previous > 0.0) EXPECT_NEAR(previous / err, 4.0, 0.6) << "n = " << n << " w " << w.transpose();
+      if (previous > 0.0)
+        EXPECT_NEAR(previous / err, 4.0, 0.6) << "n = " << n << " w " << w.transpose();
       previous = err;
     }
   }

@@ -20,7 +20,8 @@ using patchspin::testing::exact_arc::Region;
 
 Region coinOverEdge() {
   // a coin of radius 2 cm over a box edge at 0.5 R, about its centroid
-  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
+  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
+                                 Vec2(-0.1, 0.1)};
   Region r = diskPolygonIntersection(Vec2(0.09, 0.03), 0.02, box);
   const AreaMoments m = areaMomentsOf(r);
   const Vec2 g = m.first / m.area;
@@ -32,8 +33,8 @@ Region coinOverEdge() {
 // nearer than the true nearest point (to 1e-12 m) and one is within h / 2
 // of it (triangle inequality)
 TEST(NormalBlockArcRegion, NearestPointAndInnerRadius) {
-  for (const Region& region :
-       {coinOverEdge(), diskDiskIntersection(Vec2(-0.0125, -0.005), 0.02, Vec2(0.0125, 0.005), 0.02)}) {
+  for (const Region& region : {coinOverEdge(), diskDiskIntersection(Vec2(-0.0125, -0.005), 0.02,
+                                                                    Vec2(0.0125, 0.005), 0.02)}) {
     const PatchShape shape = PatchShape::arcRegion(region);
     const std::vector<Vec2> pts = patchspin::testing::exact_arc::boundarySamples(region, 20000);
     std::mt19937 rng(11);

@@ -56,16 +56,15 @@ TEST(PivotRows, TakesTheCornersOfTheEdgeBeyondWhichTheCentreOfPressureLies) {
 // (as clampNormalImpulse takes them). Closed forms: the chord's ends and
 // the radial point, to 1e-12.
 TEST(PivotRows, ACutDiskPivotsOnItsChordsEndsOrARimPoint) {
-  const PatchShape cut =
-      PatchShape::arcRegion(diskPolygonIntersection(Vec2::Zero(), 1.0, {{-2.0, -2.0}, {0.5, -2.0},
-                                                                        {0.5, 2.0}, {-2.0, 2.0}}));
+  const PatchShape cut = PatchShape::arcRegion(diskPolygonIntersection(
+      Vec2::Zero(), 1.0, {{-2.0, -2.0}, {0.5, -2.0}, {0.5, 2.0}, {-2.0, 2.0}}));
   ASSERT_EQ(cut.kind(), PatchShape::Kind::ArcRegion);
   const double h = std::sqrt(3.0) / 2.0;
   PivotRows r = pivotRowsOf(cut, Vec3(1.0, 0.1, -0.7));  // cop (0.7, 0.1)
   ASSERT_EQ(r.n, 2);
   for (const Vec3& a : {r.a[0], r.a[1]}) {
-    EXPECT_NEAR(a[2], -0.5, 1e-12);            // x = 0.5
-    EXPECT_NEAR(std::abs(a[1]), h, 1e-12);     // y = +-sqrt(3)/2
+    EXPECT_NEAR(a[2], -0.5, 1e-12);         // x = 0.5
+    EXPECT_NEAR(std::abs(a[1]), h, 1e-12);  // y = +-sqrt(3)/2
   }
   EXPECT_NEAR(r.a[0][1] + r.a[1][1], 0.0, 1e-12);
   const Vec2 out(-1.2, 0.9);  // beyond the arc: the rim point along it

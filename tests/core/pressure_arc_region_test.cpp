@@ -17,7 +17,8 @@ namespace {
 using testing::exact_arc::Region;
 
 std::vector<Region> regions() {
-  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
+  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
+                                 Vec2(-0.1, 0.1)};
   return {diskPolygonIntersection(Vec2(0.09, 0.03), 0.02, box),
           diskPolygonIntersection(Vec2(0.095, 0.092), 0.02, box),
           diskDiskIntersection(Vec2(0.0, 0.0), 0.02, Vec2(0.025, 0.01), 0.02),

@@ -102,10 +102,10 @@ struct PatchReport {
   // on (-1: the shape is not a compound); a body standing on several faces
   // has one report per face
   int bodyChild = -1, otherChild = -1;
-  btVector3 origin{0, 0, 0};        // O, world [m]
-  btVector3 normal{0, 0, 1};        // z axis, world
-  btVector3 xAxis{1, 0, 0};         // x axis, world
-  btVector3 yAxis{0, 1, 0};         // y axis, world
+  btVector3 origin{0, 0, 0};  // O, world [m]
+  btVector3 normal{0, 0, 1};  // z axis, world
+  btVector3 xAxis{1, 0, 0};   // x axis, world
+  btVector3 yAxis{0, 1, 0};   // y axis, world
   // overlap of the two faces, patch frame [m] (always set in a report): a
   // disk, a polygon, or a region bounded by segments and arcs
   // (PatchShape::Kind::ArcRegion: a coin over an edge, two coins' lens)
