@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "arc_region_quadrature.hpp"
+#include "clip_polygon.hpp"
 #include "error_matchers.hpp"
 
 #include <cmath>
@@ -167,22 +168,7 @@ TEST(ArcRegions, AreaMomentsMatchQuadrature) {
   }
 }
 
-// Sutherland-Hodgman: convex polygon `subject` clipped by convex `clip`
-std::vector<Vec2> clipPolygon(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
-  for (std::size_t i = 0; i < clip.size(); ++i) {
-    const Vec2 a = clip[i], e = clip[(i + 1) % clip.size()] - a;
-    auto side = [&](const Vec2& p) { return e.x() * (p - a).y() - e.y() * (p - a).x(); };
-    std::vector<Vec2> out;
-    for (std::size_t k = 0; k < subject.size(); ++k) {
-      const Vec2 p = subject[k], q = subject[(k + 1) % subject.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0) out.push_back(p);
-      if ((sp >= 0) != (sq >= 0)) out.push_back(p + sp / (sp - sq) * (q - p));
-    }
-    subject = out;
-  }
-  return subject;
-}
+using testing::clipPolygon;
 
 // The n-gon limit: the disk as a regular n-gon clipped by the polygon. The
 // n-gon misses a circular segment of area R^2 (h - sin(h) cos(h)) ~ 2/3 R^2
@@ -211,7 +197,9 @@ TEST(ArcRegions, AreaMomentsAreThePolygonLimit) {
       const double predicted = c.radius * c.radius * arcSpan * h * h / 12.0 / m.area;
       const double err = std::abs(p.area() - m.area) / m.area;
       EXPECT_LT(err, 1.2 * predicted) << c.name << " n = " << n;
-      if (previous > 0.0) EXPECT_NEAR(previous / err, 4.0, 0.4) << c.name;
+      if (previous > 0.0) {
+        EXPECT_NEAR(previous / err, 4.0, 0.4) << c.name;
+      }
       previous = err;
       const double s = m.area * (c.radius + c.centre.norm()) * (c.radius + c.centre.norm());
       EXPECT_NEAR(p.areaMoments().xx, m.xx, 1.2 * predicted * s) << c.name;

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "clip_polygon.hpp"
+
 #include <cmath>
 #include <random>
 #include <vector>
@@ -14,23 +16,9 @@
 namespace patchspin {
 namespace {
 
-std::vector<Vec2> clipToBox(const std::vector<Vec2>& subject0, double half) {
-  std::vector<Vec2> subject = subject0;
-  const std::vector<Vec2> clip = {Vec2(-half, -half), Vec2(half, -half), Vec2(half, half),
-                                  Vec2(-half, half)};
-  for (std::size_t i = 0; i < clip.size(); ++i) {
-    const Vec2 a = clip[i], e = clip[(i + 1) % clip.size()] - a;
-    auto side = [&](const Vec2& p) { return e.x() * (p - a).y() - e.y() * (p - a).x(); };
-    std::vector<Vec2> out;
-    for (std::size_t k = 0; k < subject.size(); ++k) {
-      const Vec2 p = subject[k], q = subject[(k + 1) % subject.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0) out.push_back(p);
-      if ((sp >= 0) != (sq >= 0)) out.push_back(p + sp / (sp - sq) * (q - p));
-    }
-    subject = out;
-  }
-  return subject;
+std::vector<Vec2> clipToBox(const std::vector<Vec2>& subject, double half) {
+  return testing::clipPolygon(
+      subject, {Vec2(-half, -half), Vec2(half, -half), Vec2(half, half), Vec2(-half, half)});
 }
 
 // slip: lambda = L q(s) to 1e-8 of L (the block's documented 1e-6 of the set
