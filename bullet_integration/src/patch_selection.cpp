@@ -389,6 +389,14 @@ bool PatchSelection::selectCandidate(btPersistentManifold* m, int index, double 
       for (int row = 0; keep && row < 3; ++row)
         keep = double((rel.getBasis()[row] - st.overlapPose.getBasis()[row]).length()) <=
                kOverlapRelTol;
+      // a disk on an infinite plane is its whole face wherever it stands:
+      // the same outline (the radius, centred on O) at any relative pose
+      // (DiskOnAPlaneKeepsItsOverlapWhileItSlides)
+      keep = keep || (wasFlat && st.overlapValid && faceA_.kind == internal::Face::Kind::Disk &&
+                      faceB_.kind == internal::Face::Kind::Plane &&
+                      st.overlapKinds[0] == internal::Face::Kind::Disk &&
+                      st.overlapKinds[1] == internal::Face::Kind::Plane &&
+                      st.geometry.outline.isDisk() && st.geometry.outline.radius == faceA_.radius);
       // a kept overlap is updated in place (no copy of its outline)
       const btVector3 xHint = A->getWorldTransform().getBasis().getColumn(0);
       if (keep) {

@@ -285,6 +285,45 @@ TEST(PatchFrictionSolver, PatchShapeIsRebuiltOnlyWhenTheOutlineChanges) {
   }
 }
 
+// A coin sliding and spinning on a plane keeps its overlap from step to step
+// (the whole cap, a disk of its radius, at any relative pose): its patch is
+// that disk, O is the cap's centre projected onto the plane at every step,
+// where the step finds the faces, not where the overlap was first clipped
+// (the coin moves 1.25 mm a step, so a stale O would be off by that much
+// and more), and the shape is never
+// rebuilt. Tolerance: float Bullet's positions, ~1e-7 m at 1 m; 1e-6 m.
+constexpr double kKeptOriginTol = 1e-6;  // [m]
+
+TEST(PatchFrictionSolver, DiskOnAPlaneKeepsItsOverlapWhileItSlides) {
+  Scene scene(kG);
+  scene.addGroundPlane(1.0);
+  btRigidBody* coin =
+      scene.addCylinder(kR, kH, kMass, btVector3(0.3f, -0.2f, btScalar(kH / 2)), kMu);
+  scene.solver().enablePatchFriction(coin, {Model::Exact});
+  scene.step(kDt);
+  long rebuilds = 0;
+  for (int k = 0; k < 40; ++k) {
+    // friction would stop the slide: keep it (a pushed, spinning coin)
+    coin->setLinearVelocity(btVector3(0.3f, 0.1f, coin->getLinearVelocity().z()));
+    coin->setAngularVelocity(btVector3(0, 0, 8));
+    // the lower cap's centre (the coin's axis is its local z) where the step
+    // finds the faces, before it moves the coin; onto z = 0
+    const btTransform t = coin->getWorldTransform();
+    const btVector3 cap = t.getOrigin() - t.getBasis().getColumn(2) * btScalar(kH / 2);
+    scene.step(kDt);
+    rebuilds += scene.solver().stats().shapeRebuilds;
+    const PatchReport* rep = scene.solver().findPatchReport(coin);
+    ASSERT_NE(rep, nullptr) << "step " << k;
+    ASSERT_TRUE(rep->shape->isDisk());
+    EXPECT_NEAR(rep->shape->radius(), kR, 1e-6);
+    EXPECT_NEAR(rep->origin.x(), cap.x(), kKeptOriginTol) << "step " << k;
+    EXPECT_NEAR(rep->origin.y(), cap.y(), kKeptOriginTol) << "step " << k;
+    EXPECT_NEAR(rep->origin.z(), 0.0, kKeptOriginTol) << "step " << k;
+  }
+  EXPECT_EQ(rebuilds, 0);
+  EXPECT_GT(coin->getWorldTransform().getOrigin().x(), 0.3f + 0.04f);  // it did slide
+}
+
 // ---- other shapes: convex hull faces, cylinders with another up axis ---------------
 // A hexagonal prism built as a btConvexHullShape (circumradius a = 5 cm,
 // 2 cm high) stands on its hexagon: the patch is the hexagon, area
