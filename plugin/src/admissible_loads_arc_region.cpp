@@ -22,8 +22,10 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace patchspin::internal {
@@ -56,7 +58,46 @@ struct TangentPoint {
   double angle;
   Vec2 dir;
 };
-void addGrid(double lo, double hi, int k, std::vector<TangentPoint>& out) {
+// The tangent points of one arc, in a fixed buffer (no allocation per
+// call). Their number is bounded whatever the region: the coarse grid has
+// ceil(span / kArcTangentSteps[0]) + 1 <= 66 (span <= 2 pi (1 + 1e-12),
+// PatchShape::arcRegion); a window of level l spans 2 kArcWindowSteps = 4
+// steps of level l, 64 of level l + 1, so its grid has <= 65 + 1 points (one
+// step for rounding) per centre, and an arc of nearly 2 pi meets it at two
+// centres; two windows (levels 0 and 1); plus the arc's end: 66 + 2 * 2 *
+// 66 + 1 = 331 <= kMaxTangentPoints. Beyond it: Error (a broken bound, not
+// an input).
+constexpr std::size_t kMaxTangentPoints = 384;
+class TangentPoints {
+ public:
+  TangentPoint* begin() { return p_.data(); }
+  TangentPoint* end() { return p_.data() + n_; }
+  std::size_t size() const { return n_; }
+  TangentPoint& operator[](std::size_t i) { return p_[i]; }
+  TangentPoint& front() { return p_[0]; }
+  TangentPoint& back() { return p_[n_ - 1]; }
+  void clear() { n_ = 0; }
+  void shrink(std::size_t n) { n_ = std::min(n_, n); }
+  void push_back(const TangentPoint& t) {
+    if (n_ == p_.size())
+      throw Error("nearest admissible loads: more than " + std::to_string(p_.size()) +
+                  " tangent points on one arc (internal bound broken)");
+    p_[n_++] = t;
+  }
+  // the sorted ranges [0, middle) and [middle, size) merged, stable (as
+  // std::inplace_merge, without its temporary buffer)
+  void mergeFrom(std::size_t middle) {
+    auto byAngle = [](const TangentPoint& a, const TangentPoint& b) { return a.angle < b.angle; };
+    std::merge(p_.begin(), p_.begin() + middle, p_.begin() + middle, p_.begin() + n_,
+               scratch_.begin(), byAngle);
+    std::copy(scratch_.begin(), scratch_.begin() + n_, p_.begin());
+  }
+
+ private:
+  std::array<TangentPoint, kMaxTangentPoints> p_, scratch_;
+  std::size_t n_ = 0;
+};
+void addGrid(double lo, double hi, int k, TangentPoints& out) {
   const double step = (hi - lo) / k;
   const Vec2 rot(std::cos(step), std::sin(step));
   Vec2 d(std::cos(lo), std::sin(lo));
@@ -65,9 +106,9 @@ void addGrid(double lo, double hi, int k, std::vector<TangentPoint>& out) {
     d = Vec2(d.x() * rot.x() - d.y() * rot.y(), d.x() * rot.y() + d.y() * rot.x());
   }
 }
-void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary,
-                          const std::vector<TangentWindow>& windows, std::vector<Vec2>& q,
-                          std::vector<TangentPoint>& points, std::size_t& near) {
+void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary, const TangentWindow* windows,
+                          int numWindows, std::vector<Vec2>& q, TangentPoints& points,
+                          std::size_t& near) {
   q.clear();
   near = static_cast<std::size_t>(-1);
   double nearGap = std::numeric_limits<double>::infinity();
@@ -76,10 +117,10 @@ void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary,
     if (p.kind != BoundaryPiece::Kind::Arc) continue;
     const double t0 = p.angle0, t1 = p.angle1, span = t1 - t0;
     points.clear();
-    auto byAngle = [](const TangentPoint& a, const TangentPoint& b) { return a.angle < b.angle; };
     addGrid(t0, t1, std::max(1, static_cast<int>(std::ceil(span / kArcTangentSteps[0]))), points);
     double lastCentre = std::numeric_limits<double>::quiet_NaN();
-    for (const TangentWindow& w : windows) {
+    for (int iw = 0; iw < numWindows; ++iw) {
+      const TangentWindow& w = windows[iw];
       // the window's centre in [t0, t0 + 2 pi), and one turn lower
       double c = std::fmod(w.centre - t0, kTwoPiArc);
       if (c < 0.0) c += kTwoPiArc;
@@ -90,7 +131,7 @@ void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary,
         // (each grid is sorted: merged in, not sorted again)
         const std::size_t middle = points.size();
         addGrid(lo, hi, static_cast<int>(std::ceil((hi - lo) / w.step)), points);
-        std::inplace_merge(points.begin(), points.begin() + middle, points.end(), byAngle);
+        points.mergeFrom(middle);
         lastCentre = centre;
       }
     }
@@ -101,7 +142,7 @@ void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary,
     std::size_t kept = 1;
     for (std::size_t i = 1; i < points.size(); ++i)
       if (points[i].angle - points[kept - 1].angle > kMerge) points[kept++] = points[i];
-    points.resize(kept);
+    points.shrink(kept);
     const TangentPoint end{t1, Vec2(std::cos(t1), std::sin(t1))};
     if (points.size() > 1 && t1 - points.back().angle <= kMerge) {
       points.back() = end;
@@ -223,15 +264,19 @@ PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads&
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
   const Mat3 M = scaledLoadMatrix(shape, rho);
   const LinearPressure p = LinearPressure::fromLoads(shape, loads);
-  std::vector<TangentWindow> windows;
+  // (the fallback's scratch: the windows, at most one per refined level;
+  // Q, whose size grows with the number of pieces, which PatchShape does not
+  // bound, allocated only here, off the exact path)
+  TangentWindow windows[2];
+  int numWindows = 0;
   std::vector<Vec2> q;
-  std::vector<TangentPoint> points;
-  q.reserve(256), points.reserve(256);
+  TangentPoints points;
   Vec3 out = Vec3::Zero();
   const bool exact = projectArcRegionExact(shape, M, y, rho, out);
   for (int level = 0; level < 3 && !exact; ++level) {
     std::size_t near = 0;
-    circumscribedPolygon(shape.boundary(), windows, q, points, near);
+    if (level == 0) q.reserve(256);
+    circumscribedPolygon(shape.boundary(), windows, numWindows, q, points, near);
     // the walk's start: the vertex nearest to the last touch angle where y
     // violates it, else the most negative vertex of Q
     std::size_t worst = 0;
@@ -254,9 +299,9 @@ PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads&
     // refine about the touch angle of this level's pressure
     const LinearPressure po = LinearPressure::fromLoads(shape, loadsOfScaled(out, rho));
     if (!(out[0] > 0.0) || !(std::abs(po.cx) + std::abs(po.cy) > 0.0)) break;
-    windows.push_back(TangentWindow{std::atan2(-po.cy, -po.cx),
-                                    kArcWindowSteps * kArcTangentSteps[level],
-                                    kArcTangentSteps[level + 1]});
+    windows[numWindows++] =
+        TangentWindow{std::atan2(-po.cy, -po.cx), kArcWindowSteps * kArcTangentSteps[level],
+                      kArcTangentSteps[level + 1]};
   }
   PatchLoads result = loadsOfScaled(out, rho);
   // where an active vertex of Q is a piece's end (on the region) its
