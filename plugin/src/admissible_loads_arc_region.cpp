@@ -202,14 +202,21 @@ bool projectArcRegionExact(const PatchShape& shape, const Mat3& M, const Vec3& y
     return true;
   };
   const std::vector<BoundaryPiece>& b = shape.boundary();
+  Vec3 z;
   for (const BoundaryPiece& piece : b) {
     const Vec3 nStart = row(piece.start());
-    Vec3 z;
     if (face(nStart, z)) consider(z);
-    if (piece.kind == BoundaryPiece::Kind::Segment) {
-      if (edgeProjection(nStart, row(piece.b), y, z)) consider(z);
-      continue;
-    }
+    if (piece.kind == BoundaryPiece::Kind::Segment && edgeProjection(nStart, row(piece.b), y, z))
+      consider(z);
+  }
+  // the KKT point is unique (the projection onto a closed convex cone): a
+  // feasible piece end or segment is it, and the arcs (kArcSamples + 1
+  // samples and the root search's steps, a sine, cosine and pressure each)
+  // are searched only where none is (AdmissibleLoadsArcRegion.*: KKT
+  // optimality against brute force)
+  if (std::isfinite(best)) return true;
+  for (const BoundaryPiece& piece : b) {
+    if (piece.kind != BoundaryPiece::Kind::Arc) continue;
     // r(t) and the face projection at P(t)
     auto residual = [&](double t, Vec3& zt) {
       const Vec2 u(std::cos(t), std::sin(t));
