@@ -395,11 +395,13 @@ PatchLoads polygonImpl(const PatchShape& shape, const PatchLoads& loads, double 
   return loadsOfScaled(out, rho);
 }
 
-PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads,
-                                      double rho) {
+// `known`: the result is known admissible with tolerance 0 (arc regions)
+PatchLoads nearestAdmissibleLoadsImpl(const PatchShape& shape, const PatchLoads& loads, double rho,
+                                      bool& known) {
+  known = false;
   if (!(loads.Pz > 0.0)) return PatchLoads{};  // documented: no normal force, no load
   if (shape.kind() == PatchShape::Kind::ArcRegion)
-    return internal::nearestAdmissibleArcRegion(shape, loads, rho);
+    return internal::nearestAdmissibleArcRegion(shape, loads, rho, known);
   if (!shape.isDisk()) return polygonImpl(shape, loads, rho);
   if (isAdmissible(shape, loads, 0.0)) return loads;
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
@@ -445,7 +447,8 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
                 " m is out of range for this patch: Eq. (11) gives " +
                 internal::formatDouble(natural) + " m; allowed 1e-12 to 1e12 times that");
   }
-  const PatchLoads out = nearestAdmissibleLoadsImpl(shape, loads, rho);
+  bool known = false;
+  const PatchLoads out = nearestAdmissibleLoadsImpl(shape, loads, rho, known);
   // found by fuzzing: a denormal rho made the scaled torques overflow (NaN)
   if (!out.asVector().allFinite()) {
     throw Error("nearest admissible loads out of range: torques / rho overflow double (rho = " +
@@ -455,8 +458,10 @@ PatchLoads nearestAdmissibleLoads(const PatchShape& shape, const PatchLoads& loa
   // round-off test and it returned inadmissible loads; say so instead (also
   // for a result with Pz < 0: torques 1e154 times Pz rho gave Pz = -4.9e138,
   // round-off of the 1e154-sized scaled torque)
-  // (for polygons with Pz > 0 isAdmissible's decision, cheaper)
+  // (for polygons with Pz > 0 isAdmissible's decision, cheaper; none where
+  // the projection took isAdmissible's decision with tolerance 0 itself)
   auto admissible = [&] {
+    if (known) return true;
     return shape.kind() != PatchShape::Kind::Polygon || !(out.Pz > 0.0)
                ? isAdmissible(shape, out, kVerifyTol)
                : polygonAdmissible(shape, out, kVerifyTol);

@@ -265,8 +265,9 @@ bool projectArcRegionExact(const PatchShape& shape, const Mat3& M, const Vec3& y
 
 }  // namespace
 
-PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads& loads,
-                                      double rho) {
+PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads& loads, double rho,
+                                      bool& admissible) {
+  admissible = true;
   if (isAdmissible(shape, loads, 0.0)) return loads;
   const Vec3 y(loads.Pz, loads.Tx / rho, loads.Ty / rho);
   const Mat3 M = scaledLoadMatrix(shape, rho);
@@ -316,9 +317,16 @@ PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads&
   // minimum to >= 0 (a change of round-off size), so that the result is
   // admissible with tolerance 0 and comes back unchanged (idempotence;
   // AdmissibleLoadsArcRegion.ProjectionIsAdmissibleIdempotentAndOrthogonal)
+  // (lowest >= 0 with Pz > 0 is isAdmissible(shape, result, 0), its minimum
+  // taken once per attempt)
+  admissible = false;
   if (result.Pz > 0.0) {
-    for (int attempt = 0; attempt < 4 && !isAdmissible(shape, result, 0.0); ++attempt) {
+    for (int attempt = 0; attempt < 4; ++attempt) {
       const double lowest = minPressure(shape, LinearPressure::fromLoads(shape, result));
+      if (lowest >= 0.0) {
+        admissible = true;
+        break;
+      }
       // (-lowest alone may round away in Pz: plus a few ulps of the mean)
       const double lift = -lowest + (attempt + 1) * 4.0 * std::numeric_limits<double>::epsilon() *
                                         (result.Pz / shape.area());

@@ -47,7 +47,10 @@ KktResult projectPolygonByKkt(const PatchShape& shape, const std::vector<Vec2>& 
 Vec3 projectPolygonBySearch(const PatchShape& shape, const std::vector<Vec2>& vertices,
                             const Mat3& M, const Vec3& y, double rho);
 
-// nearestAdmissibleLoads for an arc region and Pz > 0.
-PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads& loads, double rho);
+// nearestAdmissibleLoads for an arc region and Pz > 0; `admissible`: the
+// result is known admissible with tolerance 0 (isAdmissible's decision,
+// taken on the way), so the caller's own check would only repeat it.
+PatchLoads nearestAdmissibleArcRegion(const PatchShape& shape, const PatchLoads& loads, double rho,
+                                      bool& admissible);
 
 }  // namespace patchspin::internal
