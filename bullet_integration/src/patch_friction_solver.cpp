@@ -77,7 +77,6 @@ struct PatchFrictionSolver::Impl {
   std::vector<std::vector<int>> shareGroups;
   std::vector<parts::SharedPatch> shareBuf;  // scratch
   std::vector<int> shareGroupOf;             // scratch: a body's group (solver body id)
-  PatchConstraint retry;                     // a stacked patch's state before its visit
   std::vector<btRigidBody*> flushBodies;     // bodies of the island's patches
 };
 
@@ -261,7 +260,7 @@ btScalar PatchFrictionSolver::solveSingleIteration(
   // (stats held across the visits, not reloaded)
   internal::VisitContext<internal::SolverBodies> cx{bodiesOf, im.shared->settings,
                                                     im.shared->friction, *im.stats};
-  internal::PatchIteration it{im.patches, im.holds, im.shareGroups, im.shareBuf, im.retry};
+  internal::PatchIteration it{im.patches, im.holds, im.shareGroups, im.shareBuf};
   const double worst = internal::iteratePatches(cx, it);
   return std::max(residual, btScalar(worst));
 }

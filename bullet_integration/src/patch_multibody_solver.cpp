@@ -52,7 +52,6 @@ struct PatchMultiBodySolver::Impl {
   std::vector<std::vector<int>> shareGroups;
   std::vector<parts::SharedPatch> shareBuf;
   std::vector<int> shareGroupOf;
-  PatchConstraint retry;
   std::vector<btRigidBody*> flushBodies;
   // stands for a link side in makePatchConstraint: no m_originalBody, so
   // its BodyTerms are those of a body that adds nothing
@@ -261,7 +260,7 @@ btScalar PatchMultiBodySolver::solveSingleIteration(
       {m_tmpSolverBodyPool}, im.terms, im.jac, im.resp, m_data.m_deltaVelocities};
   internal::VisitContext<MultiBodyBodies> cx{bodiesOf, im.shared->settings, im.shared->friction,
                                              im.shared->stats};
-  internal::PatchIteration it{im.patches, im.holds, im.shareGroups, im.shareBuf, im.retry};
+  internal::PatchIteration it{im.patches, im.holds, im.shareGroups, im.shareBuf};
   const double worst = internal::iteratePatches(cx, it);
   for (const LinkTerms& t : im.terms)
     for (const LinkSide& s : t.side)

@@ -181,6 +181,26 @@ bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* 
   return true;
 }
 
+// What a visit changes in its patch before it can refuse (visitPatch's
+// false, nothing applied): the normal block's outcome, the impulses and the
+// friction block's state. A refused try is undone from it, the law's record
+// aside (the law itself is not rolled back: nor is its record). The rest of
+// the patch (bodies, blocks, links) a visit only reads.
+struct VisitUndo {
+  bool interior = true, tipping = false;
+  Vec3 lamN = Vec3::Zero(), lamF = Vec3::Zero();
+  parts::FrictionBlockState fb;
+
+  explicit VisitUndo(const PatchConstraint& pc)
+      : interior(pc.interior), tipping(pc.tipping), lamN(pc.lamN), lamF(pc.lamF), fb(pc.fb) {}
+  void restore(PatchConstraint& pc) const {
+    const parts::PressureRecord law = pc.fb.law;
+    pc.interior = interior, pc.tipping = tipping, pc.lamN = lamN, pc.lamF = lamF;
+    pc.fb = fb;
+    pc.fb.law = law;
+  }
+};
+
 // A stacked patch visited with its support clamped at its edge (S27): the
 // support's pivot rows held, and its friction DOFs while it sticks, the
 // pivots kept pushing; tried in turn with both pivots, then each alone (a
@@ -188,8 +208,8 @@ bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* 
 // at 1000:1 is far beyond what its friction solve alone carries in the
 // iterations). False if none took (nothing applied). Guarded by HandBack.*.
 template <class Bodies>
-bool holdThroughPivots(VisitContext<Bodies>& cx, PatchConstraint& retry, PatchConstraint& pc,
-                       PatchConstraint& sup, const parts::StackHold& sh, double& worst) {
+bool holdThroughPivots(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint& sup,
+                       const parts::StackHold& sh, double& worst) {
   const parts::PivotRows both = parts::pivotRowsOf(sup.state->friction->shape(), sup.lamN);
   if (both.n == 0) return false;
   parts::PivotRows tries[3] = {both};
@@ -210,11 +230,9 @@ bool holdThroughPivots(VisitContext<Bodies>& cx, PatchConstraint& retry, PatchCo
     parts::HeldBlocks h;
     parts::foldHeldRows(K6, sh.heldK, sh.coupling, H, h);
     if (!h.valid) continue;
-    retry = pc;
+    const VisitUndo undo(pc);
     if (visitPatch(cx, pc, &sup, &h, friction ? 2 : 1, worst, &rows)) return true;
-    const parts::PressureRecord law = pc.fb.law;  // (as iteratePatches' retry)
-    pc = retry;
-    pc.fb.law = law;
+    undo.restore(pc);
   }
   return false;
 }
@@ -239,7 +257,6 @@ struct PatchIteration {
   const std::vector<parts::StackHold>& holds;
   const std::vector<std::vector<int>>& shareGroups;
   std::vector<parts::SharedPatch>& shareBuf;
-  PatchConstraint& retry;  // a stacked patch's state before its visit
 };
 
 // Stage 5, one iteration: every patch visited (a settled one skipped while
@@ -277,17 +294,14 @@ double iteratePatches(VisitContext<Bodies>& cx, PatchIteration& it) {
     const parts::HeldBlocks* normalHold =
         stackHold && stackHold->normal.valid ? &stackHold->normal : nullptr;
     if (stackHold && pc.stack.hold >= 0 && !sup->interior &&
-        holdThroughPivots(cx, it.retry, pc, *sup, *stackHold, worst))
+        holdThroughPivots(cx, pc, *sup, *stackHold, worst))
       continue;
     if (!stackHold || !sup->interior) {
       visitPatch(cx, pc, nullptr, nullptr, 0, worst);
     } else if (sup->fb.sticking && stackHold->all.valid) {
-      it.retry = pc;
+      const VisitUndo undo(pc);
       if (!visitPatch(cx, pc, sup, &stackHold->all, 2, worst)) {
-        const parts::PressureRecord law =
-            pc.fb.law;  // the law is not rolled back: nor is its record
-        pc = it.retry;
-        pc.fb.law = law;
+        undo.restore(pc);
         visitPatch(cx, pc, sup, normalHold, normalHold ? 1 : 0, worst);
       }
     } else {
