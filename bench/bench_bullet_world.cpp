@@ -200,7 +200,7 @@ BENCHMARK(BM_CoinsOnTriangles)
 // patches, 2 Pi refreshed on every change of the centre of pressure, 3 both,
 // 4 one refresh tolerance for every visit (no larger tolerance for a
 // second refresh in the same step), 5 no quick stick test, 6 no deferred
-// refreshes while sticking.
+// refreshes while sticking, 7 no settling on round-off.
 void BM_SkipRules(benchmark::State& state) {
   SceneOptions opt;
   const int rules = int(state.range(0));
@@ -211,6 +211,7 @@ void BM_SkipRules(benchmark::State& state) {
   if (rules == 4) opt.settings.pressureLagTolerance = opt.settings.pressureRefreshTolerance;
   if (rules == 5) opt.settings.quickStick = false;
   if (rules == 6) opt.settings.deferStickingRefresh = false;
+  if (rules == 7) opt.settings.settleOnRoundOff = false;
   World w(1000, kEllipsoidal, opt);
   long k = 0;
   for (auto _ : state) {
@@ -224,9 +225,10 @@ void BM_SkipRules(benchmark::State& state) {
                  : rules == 3 ? "neither"
                  : rules == 4 ? "no second tolerance per step"
                  : rules == 5 ? "no quick stick test"
-                              : "no deferred refreshes while sticking");
+                 : rules == 6 ? "no deferred refreshes while sticking"
+                              : "no settling on round-off");
 }
-BENCHMARK(BM_SkipRules)->DenseRange(0, 6)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SkipRules)->DenseRange(0, 7)->Unit(benchmark::kMicrosecond);
 
 // 1000 coins at rest on the plane (uniform pressure: Pi = I, never
 // refreshed), awake: patch ellipsoidal / exact against stock; and the same

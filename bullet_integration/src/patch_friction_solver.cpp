@@ -21,8 +21,9 @@
 //                   the crumb flush
 //
 // Work-saving rules (settings().skipSettledPatches, quickStick, ...) change
-// how often a part runs, never what it computes: Determinism.* pins the
-// trajectories bit for bit.
+// how often a part runs, never what it computes, except settleOnRoundOff,
+// which drops a visit's change below the blocks' own precision:
+// Determinism.* pins the trajectories bit for bit.
 #include <patchspin/bullet/patch_friction_solver.hpp>
 
 #include "patch_constraint.hpp"

@@ -31,6 +31,22 @@ constexpr double kReuseRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-
 constexpr double kBlockRelTol = sizeof(btScalar) == sizeof(double) ? 1e-12 : 1e-9;
 // Pseudo-velocity iterations of the patch position correction per step.
 constexpr int kPushIterations = 4;
+// A visit's impulse change below the blocks' own relative precision
+// (kBlockRelTol) of the patch's normal impulse (couples: times the patch's
+// diameter) is their round-off, not a change (a slipping coin's second
+// visit: ~1e-12 of it): it is not applied, and the patch settles
+// (PatchSolverSettings::settleOnRoundOff;
+// PatchFrictionSolver.SettlingOnRoundOffSavesAVisitAndKeepsTheMotion).
+constexpr double kNegligibleChange = kBlockRelTol;
+
+// True if every component of the impulse change d (S1 order: Lambda_z, the
+// two couples, the friction DOFs) lies within kNegligibleChange of the
+// normal impulse lamZ (couples: of lamZ times `size` [m]).
+inline bool negligibleChange(const Vec6& d, double lamZ, double size) {
+  const double f = kNegligibleChange * lamZ, m = f * size;
+  return std::abs(d[0]) <= f && std::abs(d[1]) <= m && std::abs(d[2]) <= m && std::abs(d[3]) <= f &&
+         std::abs(d[4]) <= f && std::abs(d[5]) <= f;
+}
 
 parts::FrictionPartSettings frictionSettings(const PatchSolverSettings& s);
 
@@ -103,6 +119,7 @@ bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* 
                 const parts::PivotRows* pivots = nullptr) {
   const parts::PatchBlocks& k = hold ? static_cast<const parts::PatchBlocks&>(*hold) : pc.k;
   FrictionPatch& friction = *pc.state->friction;
+  const Vec3 lamNBefore = pc.lamN, lamFBefore = pc.lamF;
   // normal block (S4)-(S6)
   const Vec6 c = cx.bodies.velocity(pc);
   // (soft: the compliant row c_n = t_n - C lamN, with (W + C)^-1 in k.Winv (S23))
@@ -157,6 +174,11 @@ bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* 
       d.head<3>() += dn;
       pc.lamN += dn;
     }
+  }
+  if (cx.settings.settleOnRoundOff &&
+      negligibleChange(d, std::max(lamNBefore[0], pc.lamN[0]), pc.shape.diameter)) {
+    pc.lamN = lamNBefore, pc.lamF = lamFBefore;
+    d.setZero();
   }
   if (held == 2 &&
       !parts::frictionCanTake(sup->fb, *sup->state->friction, sup->lamN, sup->lamF, hold->gain * d))

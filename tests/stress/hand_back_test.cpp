@@ -53,7 +53,10 @@ double tiltOf(const btRigidBody* b) {
 struct HandBackRun {
   double worst = 0.0;  // the largest energy gain in one step [J]
   int worstStep = -1;
-  double roundOff = 0.0;                    // of the energy balance at the start [J]
+  double roundOff = 0.0;  // of the energy balance at the start [J]
+  // the balance's own arithmetic: three energies of up to |E| summed in
+  // double, within 8 eps |E| (1000:1: ~2e-12 J)
+  double arithmetic = 0.0;
   int tipStep = -1;                         // first step the light box turns faster than 1e-3 rad/s
   bool toppled = false;                     // the light box reached 0.6 rad
   double tiltLight = 0.0, tiltHeavy = 0.0;  // at the end [rad]
@@ -62,6 +65,7 @@ HandBackRun run(double ratio, Friction f, double push = 0.5) {
   scenes::HeavyOnLight h = scenes::makeHeavyOnLight(ratio, f);
   HandBackRun r;
   r.roundOff = roundOff(h);
+  r.arithmetic = 8.0 * std::numeric_limits<double>::epsilon() * std::abs(energy(h));
   for (int k = 0; k < 480; ++k) {
     const double force = push * ratio * kG * k / 480.0;
     const double e0 = energy(h);
@@ -105,7 +109,10 @@ TEST(HandBack, TenToOneGainsNoMoreThanStock) {
 // At 1000:1 the bar is also the stack at rest (no push): in float it
 // regains 1.3 mJ per step for its first 80 steps (the 1000 kg cube rises
 // 9 ulps of its height a step, the same without the push and as it was
-// before; none in double), and the round-off of the balance (roundOff). In
+// before; none in double), and the round-off of the balance (roundOff).
+// The pushed stack's creep step is compared with the resting one's to the
+// balance's own arithmetic (the two differed by 6e-13 J, 3 eps of the
+// stack's energy). In
 // double the worst steps are 2.4e-18 J and 2.4e-17 J, stock's 0.38 J and 0;
 // a hand-back under the cube gained 158 J in one step.
 // And the physics: the stack tips as one body over the light box's far
@@ -122,7 +129,7 @@ TEST(HandBack, HeavierRatiosGainNoMoreThanStock) {
           "step %d, end tilts %.3f / %.3f rad\n",
           ratio, scenes::toString(f), r.worst, r.worstStep, resting, stock, r.tipStep, r.tiltLight,
           r.tiltHeavy);
-      EXPECT_LE(r.worst, std::max({stock, resting, r.roundOff}))
+      EXPECT_LE(r.worst, std::max({stock, resting + r.arithmetic, r.roundOff}))
           << ratio << " " << scenes::toString(f);
       EXPECT_TRUE(r.toppled) << ratio << " " << scenes::toString(f);
       if (ratio == 1000.0) {
