@@ -12,6 +12,7 @@
 #include <patchspin/geometry.hpp>
 
 #include "arc_region_numerics.hpp"
+#include "polygon_edge_moments.hpp"
 #include "quadrature.hpp"
 
 #include <patchspin/internal/exact.hpp>
@@ -123,18 +124,9 @@ void addPolygonPolynomialRows(const std::vector<Vec2>& v, bool aboutVertexMean, 
     for (const Vec2& p : v) g += p;
     g /= static_cast<double>(n);
   }
-  double area = 0.0, sx = 0.0, sy = 0.0, ixx = 0.0, ixy = 0.0, iyy = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 a = v[i] - g;
-    const Vec2 b = v[(i + 1) % n] - g;
-    const double c = cross(a, b);
-    area += c / 2.0;
-    sx += c / 6.0 * (a.x() + b.x());
-    sy += c / 6.0 * (a.y() + b.y());
-    ixx += c / 12.0 * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x());
-    iyy += c / 12.0 * (a.y() * a.y() + a.y() * b.y() + b.y() * b.y());
-    ixy += c / 24.0 * (2.0 * a.x() * a.y() + a.x() * b.y() + b.x() * a.y() + 2.0 * b.x() * b.y());
-  }
+  internal::PolygonMomentSums sum;
+  for (std::size_t i = 0; i < n; ++i) sum.addEdge(v[i] - g, v[(i + 1) % n] - g);
+  double area = sum.area, sx = sum.sx, sy = sum.sy, ixx = sum.ixx, ixy = sum.ixy, iyy = sum.iyy;
   if (aboutVertexMean) {
     const double gx = g.x(), gy = g.y();
     Mat3 local;
