@@ -1,6 +1,6 @@
 // The polynomial area moments (1, x, y times 1, x, y) of a polygon, summed
 // edge by edge over the signed triangles (0, a, b) about the coordinates'
-// origin (the polygon's rows in geometry.cpp, the chord polygon of an arc
+// origin (the polygon's rows in moment_tables.cpp, the chord polygon of an arc
 // region in arc_regions.cpp). With c = cross(a, b):
 //   A   += c / 2
 //   Sx  += c / 6 (ax + bx)                 Sy += c / 6 (ay + by)
