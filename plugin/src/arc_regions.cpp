@@ -14,6 +14,7 @@
 // These cancel to ~eps / a^2 of the segment's moments for a flat arc (a
 // thin lens of half-angle a loses ~a^-2 eps relative; 1e-12 at a = 0.01).
 #include "arc_region_numerics.hpp"
+#include "planar.hpp"
 #include "polygon_edge_moments.hpp"
 
 #include <patchspin/types.hpp>
@@ -33,12 +34,9 @@ Vec2 BoundaryPiece::end() const {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using internal::cross;
+using internal::kPi;
 constexpr double kTwoPi = 2.0 * kPi;
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 double angleOf(const Vec2& v) {
   return std::atan2(v.y(), v.x());

@@ -5,6 +5,7 @@
 
 #include "arc_region_numerics.hpp"
 #include "moment_tables.hpp"
+#include "planar.hpp"
 
 #include <Eigen/Dense>
 
@@ -16,13 +17,10 @@ namespace patchspin {
 
 using internal::formatDouble;
 
+using internal::cross;
+using internal::kPi;
+
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 // Largest distance between two of the points: over the pairs i < j, as
 // squared norms with one square root at the end (the same value as the

@@ -8,6 +8,7 @@
 // code; the tests compare the two (pure spin about O, Eq. (39)).
 #include "moment_tables.hpp"
 
+#include "planar.hpp"
 #include "polygon_edge_moments.hpp"
 #include "quadrature.hpp"
 
@@ -19,12 +20,6 @@
 namespace patchspin::internal {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 // The rows with r of a table from the eight integrals
 // (r, r x, r y, x/r, x^2/r, xy/r, y/r, y^2/r); xy/r fills two entries.

@@ -8,6 +8,7 @@
 
 #include "arc_region_numerics.hpp"
 #include "moment_tables.hpp"
+#include "planar.hpp"
 
 #include <patchspin/internal/exact.hpp>
 
@@ -17,17 +18,9 @@
 
 namespace patchspin {
 
+using internal::cross;
 using internal::formatDouble;
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-}  // namespace
+using internal::kPi;
 
 PatchShape PatchShape::arcRegion(std::vector<BoundaryPiece> boundary) {
   using Piece = BoundaryPiece;

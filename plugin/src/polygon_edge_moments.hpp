@@ -11,6 +11,8 @@
 // arc_regions_test.cpp guard them).
 #pragma once
 
+#include "planar.hpp"
+
 #include <patchspin/types.hpp>
 
 namespace patchspin::internal {
@@ -20,7 +22,7 @@ struct PolygonMomentSums {
 
   // Adds the signed triangle (0, a, b): a and b consecutive vertices.
   void addEdge(const Vec2& a, const Vec2& b) {
-    const double c = a.x() * b.y() - a.y() * b.x();
+    const double c = cross(a, b);
     area += c / 2.0;
     sx += c / 6.0 * (a.x() + b.x());
     sy += c / 6.0 * (a.y() + b.y());
