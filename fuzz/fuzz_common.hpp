@@ -146,6 +146,17 @@ using patchspin::testing::convexHull;
 // Largest number of polygon vertices read from one input.
 constexpr int kMaxVertices = 12;
 
+// 3 to kMaxVertices points from the input; `finite` false if one is not.
+inline std::vector<Vec2> takePoints(ByteReader& in, bool& finite) {
+  const int n = 3 + in.byte() % (kMaxVertices - 2);
+  std::vector<Vec2> v;
+  for (int i = 0; i < n; ++i) {
+    v.push_back(in.vec2());
+    finite = finite && v.back().allFinite();
+  }
+  return v;
+}
+
 // An arc region (PatchShape::arcRegion) from the input: `pick` 0 a disk cut
 // by the convex hull of given points (diskPolygonIntersection; points that
 // are not finite go to PatchShape::polygon, which refuses them), 1 a lens
@@ -155,13 +166,8 @@ inline PatchShape takeArcRegion(ByteReader& in, int pick) {
   if (pick == 0) {
     const double R = in.number();
     const Vec2 c = in.vec2();
-    const int n = 3 + in.byte() % (kMaxVertices - 2);
-    std::vector<Vec2> v;
     bool finite = true;
-    for (int i = 0; i < n; ++i) {
-      v.push_back(in.vec2());
-      finite = finite && v.back().allFinite();
-    }
+    const std::vector<Vec2> v = takePoints(in, finite);
     if (!finite) return PatchShape::polygon(v);
     return PatchShape::arcRegion(diskPolygonIntersection(c, R, convexHull(v)));
   }
@@ -229,13 +235,8 @@ inline PatchShape takeShape(ByteReader& in) {
     }
     case 2:
     case 3: {
-      const int n = 3 + in.byte() % (kMaxVertices - 2);
-      std::vector<Vec2> v;
       bool finite = true;
-      for (int i = 0; i < n; ++i) {
-        v.push_back(in.vec2());
-        finite = finite && v.back().allFinite();
-      }
+      std::vector<Vec2> v = takePoints(in, finite);
       if (kind % 5 == 3 && finite) {
         const std::vector<Vec2> hull = convexHull(v);
         if (hull.size() >= 3) v = hull;
