@@ -16,18 +16,12 @@
 #include <patchspin/friction_block.hpp>
 #include <patchspin/pressure.hpp>
 
-#include <benchmark/benchmark.h>
+#include "counted_runs.hpp"
 
-#if __has_include(<valgrind/callgrind.h>)
-#include <valgrind/callgrind.h>
-#define PATCHSPIN_HAVE_CALLGRIND 1
-#else
-#define PATCHSPIN_HAVE_CALLGRIND 0
-#endif
+#include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -123,16 +117,14 @@ BENCHMARK(BM_EllipsoidalBlock)->DenseRange(0, 4);
 
 // --count=SHAPE:REGIME: 1024 calls under callgrind's toggles
 int countOne(const char* text) {
-  int shapeIndex = -1, regime = -1;
-  if (std::sscanf(text, "%d:%d", &shapeIndex, &regime) != 2 || shapeIndex < 0 ||
-      shapeIndex >= kShapes || regime < 0 || regime > 3) {
+  const int max[2] = {kShapes - 1, 3};
+  int spec[2];
+  if (!bench::parseCountSpec(text, 2, max, spec)) {
     std::fprintf(stderr, "bench_admissible: --count=SHAPE:REGIME, SHAPE 0-4, REGIME 0-3\n");
     return 2;
   }
-#if !PATCHSPIN_HAVE_CALLGRIND
-  std::fprintf(stderr, "bench_admissible: built without valgrind/callgrind.h\n");
-  return 2;
-#else
+  if (!bench::countedRunPossible("bench_admissible")) return 2;
+  const int shapeIndex = spec[0], regime = spec[1];
   double sink = 0.0;
   if (regime == 3) {
     const BlockCase c = blockCase(shapeIndex);
@@ -150,16 +142,10 @@ int countOne(const char* text) {
   }
   std::printf("%.17g\n", sink);
   return 0;
-#endif
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strncmp(argv[i], "--count=", 8) == 0) return countOne(argv[i] + 8);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return patchspin::bench::runCountedOrBenchmarks(argc, argv, countOne);
 }

@@ -18,19 +18,13 @@
 //     count per evaluation, the same on every run.
 #include <patchspin/internal/exact.hpp>
 
-#include <benchmark/benchmark.h>
+#include "counted_runs.hpp"
 
-#if __has_include(<valgrind/callgrind.h>)
-#include <valgrind/callgrind.h>
-#define PATCHSPIN_HAVE_CALLGRIND 1
-#else
-#define PATCHSPIN_HAVE_CALLGRIND 0
-#endif
+#include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -164,16 +158,14 @@ BENCHMARK(BM_DiskLawUncut)->Arg(0)->Arg(1)->ArgName("jacobian");
 
 // --count=SHAPE:JACOBIAN:SAMPLE: 1024 evaluations under callgrind's toggles
 int countOne(const char* text) {
-  int which = -1, jacobian = -1, sample = -1;
-  if (std::sscanf(text, "%d:%d:%d", &which, &jacobian, &sample) != 3 || which < 0 || which > 1 ||
-      jacobian < 0 || jacobian > 1 || sample < 0 || sample > 2) {
+  const int max[3] = {1, 1, 2};
+  int spec[3];
+  if (!patchspin::bench::parseCountSpec(text, 3, max, spec)) {
     std::fprintf(stderr, "bench_exact_arc_region: --count=SHAPE:JACOBIAN:SAMPLE (0-1, 0-1, 0-2)\n");
     return 2;
   }
-#if !PATCHSPIN_HAVE_CALLGRIND
-  std::fprintf(stderr, "bench_exact_arc_region: built without valgrind/callgrind.h\n");
-  return 2;
-#else
+  if (!patchspin::bench::countedRunPossible("bench_exact_arc_region")) return 2;
+  const int which = spec[0], jacobian = spec[1], sample = spec[2];
   const auto& region = shape(which);
   const std::vector<Vec3> ws = directions(sample);
   ExactBasis out;
@@ -190,16 +182,10 @@ int countOne(const char* text) {
   CALLGRIND_STOP_INSTRUMENTATION;
   std::printf("%.17g\n", sink);
   return 0;
-#endif
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strncmp(argv[i], "--count=", 8) == 0) return countOne(argv[i] + 8);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return patchspin::bench::runCountedOrBenchmarks(argc, argv, countOne);
 }

@@ -20,43 +20,23 @@
 #include <patchspin/models.hpp>
 #include <patchspin/pressure.hpp>
 
-#include <benchmark/benchmark.h>
+#include "clip_polygon.hpp"
+#include "counted_runs.hpp"
 
-#if __has_include(<valgrind/callgrind.h>)
-#include <valgrind/callgrind.h>
-#define PATCHSPIN_HAVE_CALLGRIND 1
-#else
-#define PATCHSPIN_HAVE_CALLGRIND 0
-#endif
+#include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <random>
 #include <vector>
 
 namespace {
 
 using namespace patchspin;
+using patchspin::testing::clipPolygon;
 
 constexpr double kR = 0.02;
 constexpr int kDirections = 1024;
-
-std::vector<Vec2> clipPolygon(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
-  for (std::size_t i = 0; i < clip.size(); ++i) {
-    const Vec2 a = clip[i], e = clip[(i + 1) % clip.size()] - a;
-    auto side = [&](const Vec2& p) { return e.x() * (p - a).y() - e.y() * (p - a).x(); };
-    std::vector<Vec2> out;
-    for (std::size_t k = 0; k < subject.size(); ++k) {
-      const Vec2 p = subject[k], q = subject[(k + 1) % subject.size()];
-      const double sp = side(p), sq = side(q);
-      if (sp >= 0) out.push_back(p);
-      if ((sp >= 0) != (sq >= 0)) out.push_back(p + sp / (sp - sq) * (q - p));
-    }
-    subject = out;
-  }
-  return subject;
-}
 
 std::vector<Vec2> ngon(const Vec2& c, double r, int n) {
   std::vector<Vec2> v;
@@ -67,6 +47,19 @@ std::vector<Vec2> ngon(const Vec2& c, double r, int n) {
   return v;
 }
 
+// the box's top face and the coins' centres, in the box frame
+struct Scene {
+  std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
+  Vec2 c1 = Vec2(0.1 - 0.5 * kR, 0.03);
+  Vec2 c2 = c1 + Vec2(1.2 * kR, 0.0);
+};
+
+// the clip: the coin over the edge (which 0) or the lens (1), exactly
+std::vector<BoundaryPiece> clipped(const Scene& sc, int which) {
+  return which == 0 ? diskPolygonIntersection(sc.c1, kR, sc.box)
+                    : diskDiskIntersection(sc.c1, kR, sc.c2, kR);
+}
+
 // the region's boundary pieces and the 64-gon's vertices, about the region's centroid
 struct Shapes {
   std::vector<BoundaryPiece> pieces;
@@ -74,17 +67,10 @@ struct Shapes {
 };
 
 Shapes shapes(int which) {
-  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
-                                 Vec2(-0.1, 0.1)};
-  const Vec2 c1(0.1 - 0.5 * kR, 0.03), c2 = c1 + Vec2(1.2 * kR, 0.0);
+  const Scene sc;
   Shapes s;
-  if (which == 0) {
-    s.pieces = diskPolygonIntersection(c1, kR, box);
-    s.polygon = clipPolygon(ngon(c1, kR, 64), box);
-  } else {
-    s.pieces = diskDiskIntersection(c1, kR, c2, kR);
-    s.polygon = clipPolygon(ngon(c1, kR, 64), ngon(c2, kR, 64));
-  }
+  s.pieces = clipped(sc, which);
+  s.polygon = clipPolygon(ngon(sc.c1, kR, 64), which == 0 ? sc.box : ngon(sc.c2, kR, 64));
   const AreaMoments m = areaMomentsOf(s.pieces);
   const Vec2 g = m.first / m.area;
   for (BoundaryPiece& p : s.pieces) p.a -= g, p.b -= g, p.centre -= g;
@@ -124,27 +110,23 @@ BENCHMARK(BM_ExactQ)
     ->ArgNames({"jacobian", "lens", "polygon64"});
 
 int countOne(const char* text) {
-  int which = -1, kind = -1, what = -1;
-  if (std::sscanf(text, "%d:%d:%d", &which, &kind, &what) != 3 || which < 0 || which > 1 ||
-      kind < 0 || kind > 1 || what < 0 || what > 4 || (what == 3 && kind != 0)) {
+  const int max[3] = {1, 1, 4};
+  int spec[3];
+  if (!bench::parseCountSpec(text, 3, max, spec) || (spec[2] == 3 && spec[1] != 0)) {
     std::fprintf(stderr,
                  "bench_friction_patch_arc_region: --count=SHAPE:KIND:WHAT (0-1, 0-1, 0-4; 3 only "
                  "with KIND 0)\n");
     return 2;
   }
-#if !PATCHSPIN_HAVE_CALLGRIND
-  std::fprintf(stderr, "bench_friction_patch_arc_region: built without valgrind/callgrind.h\n");
-  return 2;
-#else
+  if (!bench::countedRunPossible("bench_friction_patch_arc_region")) return 2;
+  const int which = spec[0], kind = spec[1], what = spec[2];
   const Shapes s = shapes(which);
   const PatchShape shape = makeShape(s, kind);
   const FrictionPatch patch = patchOf(shape);
   const std::vector<Vec3> ws = directions();
   double sink = 0.0;
   Mat3 J = Mat3::Zero();
-  const std::vector<Vec2> box = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1),
-                                 Vec2(-0.1, 0.1)};
-  const Vec2 c1(0.1 - 0.5 * kR, 0.03), c2 = c1 + Vec2(1.2 * kR, 0.0);
+  const Scene sc;
   std::vector<PatchLoads> inadmissible;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -159,11 +141,7 @@ int countOne(const char* text) {
       return;
     }
     if (what == 3) {
-      for (int i = 0; i < kDirections; ++i) {
-        const std::vector<BoundaryPiece> b = which == 0 ? diskPolygonIntersection(c1, kR, box)
-                                                        : diskDiskIntersection(c1, kR, c2, kR);
-        sink += areaMomentsOf(b).area;
-      }
+      for (int i = 0; i < kDirections; ++i) sink += areaMomentsOf(clipped(sc, which)).area;
       return;
     }
     if (what == 2) {
@@ -178,16 +156,10 @@ int countOne(const char* text) {
   CALLGRIND_STOP_INSTRUMENTATION;
   std::printf("%.17g\n", sink);
   return 0;
-#endif
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strncmp(argv[i], "--count=", 8) == 0) return countOne(argv[i] + 8);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return patchspin::bench::runCountedOrBenchmarks(argc, argv, countOne);
 }

@@ -146,10 +146,78 @@ using patchspin::testing::convexHull;
 // Largest number of polygon vertices read from one input.
 constexpr int kMaxVertices = 12;
 
+// 3 to kMaxVertices points from the input; `finite` false if one is not.
+inline std::vector<Vec2> takePoints(ByteReader& in, bool& finite) {
+  const int n = 3 + in.byte() % (kMaxVertices - 2);
+  std::vector<Vec2> v;
+  for (int i = 0; i < n; ++i) {
+    v.push_back(in.vec2());
+    finite = finite && v.back().allFinite();
+  }
+  return v;
+}
+
+// An arc region (PatchShape::arcRegion) from the input: `pick` 0 a disk cut
+// by the convex hull of given points (diskPolygonIntersection; points that
+// are not finite go to PatchShape::polygon, which refuses them), 1 a lens
+// (diskDiskIntersection), 2 boundary pieces as given (often invalid: the
+// constructor must say why).
+inline PatchShape takeArcRegion(ByteReader& in, int pick) {
+  if (pick == 0) {
+    const double R = in.number();
+    const Vec2 c = in.vec2();
+    bool finite = true;
+    const std::vector<Vec2> v = takePoints(in, finite);
+    if (!finite) return PatchShape::polygon(v);
+    return PatchShape::arcRegion(diskPolygonIntersection(c, R, convexHull(v)));
+  }
+  if (pick == 1) {
+    const double r1 = in.number();
+    const Vec2 c1 = in.vec2();
+    const double r2 = in.number();
+    return PatchShape::arcRegion(diskDiskIntersection(c1, r1, in.vec2(), r2));
+  }
+  const int n = 1 + in.byte() % 6;
+  std::vector<BoundaryPiece> pieces;
+  for (int i = 0; i < n; ++i) {
+    if (in.byte() & 1) {
+      const Vec2 c = in.vec2();
+      const double r = in.number(), t0 = in.number();
+      pieces.push_back(BoundaryPiece::arc(c, r, t0, in.number()));
+    } else {
+      const Vec2 a = in.vec2();
+      pieces.push_back(BoundaryPiece::segment(a, in.vec2()));
+    }
+  }
+  return PatchShape::arcRegion(pieces);
+}
+
+// The points of an arc region where a linear function with gradient
+// (gx, gy) takes its extremes: the pieces' start points and, on each arc,
+// its points of outward normal +-(gx, gy) / |(gx, gy)| where the arc reaches
+// them (the harness's own computation, not the core's).
+inline std::vector<Vec2> arcRegionExtremePoints(const PatchShape& shape, double gx, double gy) {
+  constexpr double kTwoPi = 6.283185307179586476925286766559;
+  std::vector<Vec2> points;
+  for (const BoundaryPiece& p : shape.boundary()) {
+    points.push_back(p.start());
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    for (const double t : {std::atan2(gy, gx), std::atan2(-gy, -gx)}) {
+      double d = std::fmod(t - p.angle0, kTwoPi);
+      if (d < 0.0) d += kTwoPi;
+      if (d <= p.angle1 - p.angle0)
+        points.push_back(p.centre + p.radius * Vec2(std::cos(t), std::sin(t)));
+    }
+  }
+  return points;
+}
+
 // A patch shape from the input: a disk, a rectangle, a polygon with the
 // vertices as given (often invalid: the constructor must say why), the convex
-// hull of given points (valid unless degenerate), or a regular polygon;
-// optionally moved to another frame. Throws Error for invalid shapes.
+// hull of given points (valid unless degenerate), a regular polygon, or an
+// arc region (where the regular polygon's count byte says n <= 0, which the
+// counts 1 and 2 still show refused); optionally moved to another frame.
+// Throws Error for invalid shapes.
 inline PatchShape takeShape(ByteReader& in) {
   const uint8_t kind = in.byte();
   PatchShape shape = PatchShape::disk(1.0);
@@ -167,13 +235,8 @@ inline PatchShape takeShape(ByteReader& in) {
     }
     case 2:
     case 3: {
-      const int n = 3 + in.byte() % (kMaxVertices - 2);
-      std::vector<Vec2> v;
       bool finite = true;
-      for (int i = 0; i < n; ++i) {
-        v.push_back(in.vec2());
-        finite = finite && v.back().allFinite();
-      }
+      std::vector<Vec2> v = takePoints(in, finite);
       if (kind % 5 == 3 && finite) {
         const std::vector<Vec2> hull = convexHull(v);
         if (hull.size() >= 3) v = hull;
@@ -183,6 +246,10 @@ inline PatchShape takeShape(ByteReader& in) {
     }
     default: {
       const int n = static_cast<int>(in.byte() % 40) - 2;
+      if (n <= 0) {
+        shape = takeArcRegion(in, n + 2);
+        break;
+      }
       const double radius = in.number();
       const Vec2 c = in.vec2();
       shape = PatchShape::regularPolygon(n, radius, c, in.number());
@@ -196,6 +263,16 @@ inline PatchShape takeShape(ByteReader& in) {
   if (shape.isDisk()) {
     note("disk R = %.17g, centre (%.17g, %.17g)", shape.radius(), shape.centre().x(),
          shape.centre().y());
+  } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    note("arc region of %zu pieces:", shape.boundary().size());
+    for (const BoundaryPiece& p : shape.boundary()) {
+      if (p.kind == BoundaryPiece::Kind::Arc) {
+        note("  arc centre (%.17g, %.17g) R %.17g angles %.17g to %.17g", p.centre.x(),
+             p.centre.y(), p.radius, p.angle0, p.angle1);
+      } else {
+        note("  segment (%.17g, %.17g) to (%.17g, %.17g)", p.a.x(), p.a.y(), p.b.x(), p.b.y());
+      }
+    }
   } else {
     note("polygon with %zu vertices:", shape.vertices().size());
     for (const Vec2& v : shape.vertices()) note("  (%.17g, %.17g)", v.x(), v.y());
@@ -220,13 +297,18 @@ inline long double pressureTerms(const LinearPressure& p, const Vec2& point) {
          std::abs(static_cast<long double>(p.cy) * point.y());
 }
 
-// Largest |p| of a linear pressure over the closed patch (at a vertex, or at
-// p(C) +- R |grad p| on a disk).
+// Largest |p| of a linear pressure over the closed patch (at a vertex, at
+// p(C) +- R |grad p| on a disk, at an arc region's extreme points).
 inline double maxAbsPressure(const PatchShape& shape, const LinearPressure& p) {
   if (shape.isDisk()) {
     return std::abs(p.at(shape.centre())) + shape.radius() * std::hypot(p.cx, p.cy);
   }
   double m = 0.0;
+  if (shape.kind() == PatchShape::Kind::ArcRegion) {
+    for (const Vec2& v : arcRegionExtremePoints(shape, p.cx, p.cy))
+      m = std::max(m, std::abs(p.at(v)));
+    return m;
+  }
   for (const Vec2& v : shape.vertices()) m = std::max(m, std::abs(p.at(v)));
   return m;
 }

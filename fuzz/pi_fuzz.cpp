@@ -31,7 +31,7 @@ constexpr double kSlack = 1e-10;
 double offsetSlack = 0.0;
 
 // The polygon table's rows with r near O: within kFarRowsOffset = 4
-// diameters (max|r| <= 4 diameter, geometry.cpp) they are the closed-form
+// diameters (max|r| <= 4 diameter, moment_tables.hpp) they are the closed-form
 // edge integrals about O, whose second-order rows (x^2/r, xy/r, y^2/r) lose
 // ~offset^3 digits, not offset^2 (the second round's open item: on a 1 m
 // heptagon, ∫xy/r in units of A max|y| was 2.6e-8 off at 1000 diameters,

@@ -99,6 +99,25 @@ void run(ByteReader& in) {
                pressureAt(p, rim), slack);
         }
       }
+    } else if (shape.kind() == PatchShape::Kind::ArcRegion) {
+      // (the mean is an average of the region's values: the extremes imply it)
+      // A point of an arc is known to ~eps (|C| + R) only (the core takes
+      // p(C) - R |grad p|, the harness C + R (cos t, sin t)), so p there to
+      // ~eps (|p(C)| terms + R |grad p|) (found: a 1e-8 m high segment of a
+      // unit circle with |grad p| = 8e125 Pa/m, p ~ -2e117 Pa, the two
+      // differed by 6.5e109 = 0.3 eps R |grad p|).
+      long double arcTerms = 0.0L;
+      for (const BoundaryPiece& piece : shape.boundary()) {
+        if (piece.kind != BoundaryPiece::Kind::Arc) continue;
+        arcTerms = std::max(arcTerms, pressureTerms(p, piece.centre) +
+                                          piece.radius * std::hypot((long double)p.cx, p.cy));
+      }
+      for (const Vec2& v : arcRegionExtremePoints(shape, p.cx, p.cy)) {
+        if (pmin > pressureAt(p, v) + slack + kEvalUlps * (pressureTerms(p, v) + arcTerms)) {
+          fail("minPressure %.17g above the pressure at a boundary point %.17Lg (slack %.3g)", pmin,
+               pressureAt(p, v), slack);
+        }
+      }
     } else {
       for (const Vec2& v : shape.vertices()) {
         if (above(v)) {

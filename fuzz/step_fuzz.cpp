@@ -157,8 +157,9 @@ void run(ByteReader& in) {
   // the mean, lever max|r| / rho in [1e-5, 1e5]. Outside it (beyond
   // kDomainMargin, room for the round-off of min p and of the lever) the
   // block must refuse; inside it (by the margin) it must not refuse for it.
-  // min p is recomputed here in long double at the vertices, or as
-  // p(C) - R |grad p| on a disk, not taken from the core.
+  // min p is recomputed here in long double at the vertices, as
+  // p(C) - R |grad p| on a disk, or at an arc region's extreme points, not
+  // taken from the core.
   constexpr double kDomainMargin = 1.01;
   constexpr double kNegativePressureTol = 1e-6, kMinLever = 1e-5, kMaxLever = 1e5;
   const double lever = shape.maxDistanceFromOrigin() / patch.rho();
@@ -170,6 +171,10 @@ void run(ByteReader& in) {
     };
     if (shape.isDisk()) return at(shape.centre()) - shape.radius() * std::hypot(p.cx, p.cy);
     double m = std::numeric_limits<double>::infinity();
+    if (shape.kind() == PatchShape::Kind::ArcRegion) {
+      for (const Vec2& v : arcRegionExtremePoints(shape, p.cx, p.cy)) m = std::min(m, at(v));
+      return m;
+    }
     for (const Vec2& v : shape.vertices()) m = std::min(m, at(v));
     return m;
   }();

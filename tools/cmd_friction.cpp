@@ -102,8 +102,9 @@ const RegisterCommand registration([](CLI::App& app) {
   auto args = std::make_shared<FrictionArgs>();
   CLI::App* cmd = app.add_subcommand(
       "friction", "Friction wrench Q = (Px, Py, Tz/rho) of a patch for a slip direction w");
-  cmd->add_option("--patch", args->patch,
-                  "disk:R | rect:LX,LY | poly:x1,y1,x2,y2,...  [m], patch frame")
+  cmd->add_option(
+         "--patch", args->patch,
+         "disk:R | rect:LX,LY | poly:x1,y1,x2,y2,... | cut:R,D | lens:R1,R2,D  [m], patch frame")
       ->required();
   cmd->add_option("--model", args->model, "ellipsoidal (Eq. 41) | exact (Eq. 16)")
       ->check(CLI::IsMember({"ellipsoidal", "exact"}));

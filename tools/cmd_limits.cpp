@@ -56,8 +56,9 @@ nlohmann::json vec(const Vec3& v) {
 // once the command line is parsed. withLoads: also --force and --torque.
 std::function<FlatBody()> addBodyOptions(CLI::App* cmd, bool withLoads) {
   auto a = std::make_shared<BodyArgs>();
-  cmd->add_option("--patch", a->patch,
-                  "disk:R | rect:LX,LY | poly:x1,y1,x2,y2,...  [m], patch frame")
+  cmd->add_option(
+         "--patch", a->patch,
+         "disk:R | rect:LX,LY | poly:x1,y1,x2,y2,... | cut:R,D | lens:R1,R2,D  [m], patch frame")
       ->required();
   cmd->add_option("--mass", a->mass, "mass m [kg]")->required();
   cmd->add_option("--inertia", a->inertia,

@@ -33,8 +33,9 @@ std::vector<double> parseNumbers(const std::string& text, const char* what, std:
 PatchShape parsePatch(const std::string& text) {
   const auto colon = text.find(':');
   if (colon == std::string::npos) {
-    throw UsageError("--patch must be disk:R, rect:LX,LY or poly:x1,y1,x2,y2,...: got '" + text +
-                     "'");
+    throw UsageError(
+        "--patch must be disk:R, rect:LX,LY, poly:x1,y1,x2,y2,..., cut:R,D or lens:R1,R2,D: got '" +
+        text + "'");
   }
   const std::string kind = text.substr(0, colon), args = text.substr(colon + 1);
   if (kind == "disk") {
@@ -52,7 +53,26 @@ PatchShape parsePatch(const std::string& text) {
     for (std::size_t i = 0; i < v.size(); i += 2) vertices.emplace_back(v[i], v[i + 1]);
     return PatchShape::polygon(std::move(vertices));
   }
-  throw UsageError("--patch kind must be disk, rect or poly: got '" + kind + "'");
+  if (kind == "cut") {
+    // the disk (O, R) over the edge x = D of a box that holds x <= D
+    const auto v = parseNumbers(args, "--patch cut:R,D", 2);
+    const double R = v[0], D = v[1];
+    internal::requirePositive(R, "--patch cut:R,D radius R");
+    if (!(D > -R)) throw UsageError("--patch cut:R,D: nothing of the disk is left at x <= D");
+    const double h = 2.0 * R;  // the box reaches beyond the disk but at x = D
+    const std::vector<Vec2> box = {Vec2(-h, -h), Vec2(D, -h), Vec2(D, h), Vec2(-h, h)};
+    return PatchShape::arcRegion(diskPolygonIntersection(Vec2::Zero(), R, box));
+  }
+  if (kind == "lens") {
+    const auto v = parseNumbers(args, "--patch lens:R1,R2,D", 3);
+    internal::requirePositive(v[0], "--patch lens:R1,R2,D radius R1");
+    internal::requirePositive(v[1], "--patch lens:R1,R2,D radius R2");
+    const std::vector<BoundaryPiece> lens =
+        diskDiskIntersection(Vec2::Zero(), v[0], Vec2(v[2], 0.0), v[1]);
+    if (lens.empty()) throw UsageError("--patch lens:R1,R2,D: the disks do not overlap");
+    return PatchShape::arcRegion(lens);
+  }
+  throw UsageError("--patch kind must be disk, rect, poly, cut or lens: got '" + kind + "'");
 }
 
 }  // namespace patchspin::tool

@@ -14,6 +14,8 @@
 // These cancel to ~eps / a^2 of the segment's moments for a flat arc (a
 // thin lens of half-angle a loses ~a^-2 eps relative; 1e-12 at a = 0.01).
 #include "arc_region_numerics.hpp"
+#include "planar.hpp"
+#include "polygon_edge_moments.hpp"
 
 #include <patchspin/types.hpp>
 
@@ -32,12 +34,9 @@ Vec2 BoundaryPiece::end() const {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using internal::cross;
+using internal::kPi;
 constexpr double kTwoPi = 2.0 * kPi;
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 double angleOf(const Vec2& v) {
   return std::atan2(v.y(), v.x());
@@ -173,7 +172,7 @@ Vec2 startPointMean(const std::vector<BoundaryPiece>& boundary) {
 }
 
 AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const Vec2& g) {
-  double area = 0.0, sx = 0.0, sy = 0.0, ixx = 0.0, ixy = 0.0, iyy = 0.0;
+  PolygonMomentSums sum;
   const std::size_t n = boundary.size();
   // chord polygon: signed triangles (g, a, b) (PatchShape's polygon rows),
   // a and b consecutive start points (no allocation: the adapter calls this
@@ -183,13 +182,7 @@ AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const V
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 a = b;
     b = i + 1 < n ? Vec2(boundary[i + 1].start() - g) : first;
-    const double c = cross(a, b);
-    area += c / 2.0;
-    sx += c / 6.0 * (a.x() + b.x());
-    sy += c / 6.0 * (a.y() + b.y());
-    ixx += c / 12.0 * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x());
-    iyy += c / 12.0 * (a.y() * a.y() + a.y() * b.y() + b.y() * b.y());
-    ixy += c / 24.0 * (2.0 * a.x() * a.y() + a.x() * b.y() + b.x() * a.y() + 2.0 * b.x() * b.y());
+    sum.addEdge(a, b);
   }
   // circular segments (file comment)
   for (const BoundaryPiece& p : boundary) {
@@ -210,17 +203,17 @@ AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const V
     const double ixyc = (iuu - ivv) * sm * cm;
     // shifted to g: the centre at d = centre - g
     const Vec2 d = p.centre - g;
-    area += A;
-    sx += sxc + A * d.x();
-    sy += syc + A * d.y();
-    ixx += ixxc + 2.0 * d.x() * sxc + A * d.x() * d.x();
-    iyy += iyyc + 2.0 * d.y() * syc + A * d.y() * d.y();
-    ixy += ixyc + d.x() * syc + d.y() * sxc + A * d.x() * d.y();
+    sum.area += A;
+    sum.sx += sxc + A * d.x();
+    sum.sy += syc + A * d.y();
+    sum.ixx += ixxc + 2.0 * d.x() * sxc + A * d.x() * d.x();
+    sum.iyy += iyyc + 2.0 * d.y() * syc + A * d.y() * d.y();
+    sum.ixy += ixyc + d.x() * syc + d.y() * sxc + A * d.x() * d.y();
   }
   AreaMoments m;
-  m.area = area;
-  m.first = Vec2(sx, sy);
-  m.xx = ixx, m.xy = ixy, m.yy = iyy;
+  m.area = sum.area;
+  m.first = Vec2(sum.sx, sum.sy);
+  m.xx = sum.ixx, m.xy = sum.ixy, m.yy = sum.iyy;
   return m;
 }
 

@@ -139,10 +139,17 @@ int arcSpanOrder(double H, double cm, double sm, const Cx& zetaO, bool finite, d
   int n = 2;
   while (n <= kGaussMaxOrder && logAmp + logC[n] + 2.0 * n * logX > logTol) ++n;
   if (!finite) return n;
+  // the ICR at the circle's centre (|zetaO / r|^2 zero, or out of range):
+  // the singular factor is constant on the arc, the integrand a
+  // trigonometric polynomial (IcrAtAnArcsCentreMatchesOracle; the log below
+  // was -inf and the order NaN converted to int, found by the pi and step
+  // fuzz targets under UBSan)
+  const double zeta2 = (zetaO.re * zetaO.re + zetaO.im * zetaO.im) / (r * r);
+  if (!(zeta2 > 0.0) || !std::isfinite(zeta2)) return n;
   // K = (t* - tm) / H; t*'s 2 pi images have the same imaginary part and a
   // larger real one, so a larger ellipse; rhoB = |K + sqrt(K^2 - 1)| on the
   // branch with |.| >= 1
-  const double im = -0.5 * std::log((zetaO.re * zetaO.re + zetaO.im * zetaO.im) / (r * r)) / H;
+  const double im = -0.5 * std::log(zeta2) / H;
   const double re = std::atan2(cm * zetaO.im - sm * zetaO.re, cm * zetaO.re + sm * zetaO.im) / H;
   // sqrt(K^2 - 1) = sqrt(a + i b), principal
   const double a = re * re - im * im - 1.0, b = 2.0 * re * im;
@@ -152,6 +159,7 @@ int arcSpanOrder(double H, double cm, double sm, const Cx& zetaO, bool finite, d
   const double q2 = (re - sr) * (re - sr) + (im - si) * (im - si);
   const double rhoB = std::sqrt(std::max(p2, q2));
   const double nSingular = kSingularExtra - 0.5 * logTol / std::log(rhoB);
+  if (std::isnan(nSingular)) return n;  // (an ellipse out of double's range)
   return std::max(n, static_cast<int>(std::min(std::ceil(nSingular), kGaussMaxOrder + 1.0)));
 }
 

@@ -207,7 +207,14 @@ Vec3 FrictionPatch::exactScaled(double scale, const Vec3& w, Mat3* jacobian,
     integral = basis.F * c;
   } else if (shape_.kind() == PatchShape::Kind::ArcRegion) {
     // F (p0, cx, cy) from the basis (no single-pressure pass yet; the arc
-    // law has no tolerance knob: full accuracy)
+    // law has no tolerance knob: full accuracy). A tolerance the other laws
+    // refuse is refused here too (ExactQRefusesAToleranceNoLawAccepts;
+    // found by the friction_q fuzz target)
+    internal::requireFinite(tolerance, "exact arc region: tolerance");
+    if (tolerance < 0.0) {
+      throw Error("exact arc region: tolerance must be >= 0: got " +
+                  internal::formatDouble(tolerance));
+    }
     internal::ExactBasis basis;
     internal::exactArcRegionBasis(shape_.boundary(), rho_, u, jacobian != nullptr, basis);
     if (jacobian) sum = c[0] * basis.dF[0] + c[1] * basis.dF[1] + c[2] * basis.dF[2];

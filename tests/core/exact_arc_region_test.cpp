@@ -352,6 +352,31 @@ void lawFrame(const Region& region, Vec2& g, double& radius) {
 //    kappa starts at 8.1 so that the steps, which change kappa by < 0.5 %,
 //    stay in the far branch (the near branch's rounding / h would dominate);
 //  * dF[k] w = 0 to kEulerTol (degree-0 homogeneity).
+// The ICR at an arc's centre: pure spin about O, the centre of a unit coin
+// cut to a thin cap ~30 cap radii from it (the far branch), rho its chord
+// (PatchShape's table rows with r). There the arc's singular factor is
+// constant; the far rule's order took log(0) (NaN converted to int: the pi
+// fuzz target's cap, under UBSan, which the sanitizer presets run this test
+// under). Tolerance as FarBranchMatchesOracleAcrossKappa's.
+TEST(ExactArcRegionBasis, IcrAtAnArcsCentreMatchesOracle) {
+  constexpr double kFarOracleTol = 2e-12;
+  const double span = 0.061337777932991562;
+  const Region cap = {BoundaryPiece::arc(Vec2::Zero(), 1.0, 0.0, span),
+                      BoundaryPiece::segment(Vec2(std::cos(span), std::sin(span)), Vec2(1.0, 0.0))};
+  const double rho = 2.0 * std::sin(span / 2.0);
+  const Vec3 scale = columnScales(cap, rho);
+  for (double spin : {1.0, -1.0}) {
+    const Vec3 w(0.0, 0.0, spin);
+    const Mat3 ref = oracleF(cap, rho, w);
+    for (bool jacobian : {false, true}) {
+      ExactBasis out;
+      exactArcRegionBasis(cap, rho, w, jacobian, out);
+      EXPECT_LE(relativeError(out.F, ref, scale), kFarOracleTol)
+          << "spin " << spin << ", jacobian " << jacobian;
+    }
+  }
+}
+
 TEST(ExactArcRegionBasis, FarBranchMatchesOracleAcrossKappa) {
   constexpr double kFarOracleTol = 2e-12;
   constexpr double kFarFdTol = 1e-9;

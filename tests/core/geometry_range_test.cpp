@@ -1,4 +1,4 @@
-// The moment tables of geometry.cpp at the ends of their range: patches
+// The moment tables of moment_tables.cpp at the ends of their range: patches
 // far from O, O near a disk's rim, slivers, moments outside double's range.
 // Oracles: a hypergeometric series, Taylor expansions, brute-force
 // quadrature, and the rows' closed form evaluated in 50 digits.
@@ -301,7 +301,7 @@ TEST(MomentTable, PolygonRowsWithRFarFromOMatch50Digits) {
         continue;  // vertices too close (a random draw): not this test's subject
       }
       const double far = shape.maxDistanceFromOrigin() / shape.diameter();
-      ASSERT_GT(far, 4.0);  // the quadrature's regime (geometry.cpp, kFarRowsOffset)
+      ASSERT_GT(far, 4.0);  // the quadrature's regime (moment_tables.hpp, kFarRowsOffset)
       const double worst = worstRowError(shape);
       EXPECT_LE(worst, kRowTolerance)
           << "offset " << far << ", " << n << " vertices, aspect " << aspect;

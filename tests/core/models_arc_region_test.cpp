@@ -12,6 +12,7 @@
 #include "clip_polygon.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,22 @@ TEST(ModelsArcRegion, ExactLawMatchesTheOracle) {
 
 // Pi (40) from Eq. (36)'s integrals by brute-force quadrature (1e-10 of
 // its entries' scale 1 + max|r| / rho: the moment table's own 1e-10)
+// The arc law has no tolerance knob, but a tolerance the disk and polygon
+// laws refuse (negative, not finite) is refused on arc regions too (found by
+// the friction_q fuzz target: -706.875 was accepted).
+TEST(ModelsArcRegion, ExactQRefusesAToleranceNoLawAccepts) {
+  const PatchShape shape = PatchShape::arcRegion(regions()[0].second);
+  const FrictionPatch patch(shape, kPressure, 0.5);
+  for (double tolerance : {-1e-3, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    ExactAccuracy accuracy;
+    accuracy.tolerance = tolerance;
+    EXPECT_THROW(patch.exactQ(Vec3(0.3, 0.4, 0.5), nullptr, accuracy), Error) << tolerance;
+  }
+  ExactAccuracy zero;
+  zero.tolerance = 0.0;
+  EXPECT_NO_THROW(patch.exactQ(Vec3(0.3, 0.4, 0.5), nullptr, zero));
+}
+
 TEST(ModelsArcRegion, EllipsoidalPiMatchesItsDefinition) {
   for (const auto& [name, region] : regions()) {
     const PatchShape shape = PatchShape::arcRegion(region);

@@ -52,6 +52,42 @@ TEST(FrictionToolTest, ExactJsonAgreesWithLibrary) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(j["Q"][i].get<double>(), Q[i], kPrintTol * 10.0);
 }
 
+TEST(FrictionToolTest, CutDiskIsTheExactHalfDisk) {
+  // cut:R,0 keeps the half disk x <= 0 of the disk (O, R). Uniform pressure
+  // (Pz = 1 N, mu = 1) at pure spin about O, Eq. (16) with w = (0, 0, 1):
+  //   Q = -(1/A) ∫ (-y/r, x/r, r/rho) dA,  A = pi R^2 / 2,
+  //   ∫ y/r dA = 0,  ∫ x/r dA = ∫cos(t) dt [pi/2, 3pi/2] R^2 / 2 = -R^2,
+  //   rho (11) = ∫ r dA / A = 2R/3 (as on the whole disk),
+  // so Q = (0, 2/pi, -1).
+  const double R = 0.05, pi = 3.14159265358979323846;
+  const auto run =
+      runTool(PATCHSPIN_TOOL, "friction --patch cut:0.05,0 --model exact --w 0,0,1 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  // the arc-region law and table are closed forms: round-off only (17
+  // printed digits, a few hundred operations)
+  constexpr double kClosedFormTol = 1e-13;
+  EXPECT_NEAR(j["rho"].get<double>(), 2.0 * R / 3.0, kClosedFormTol * R);
+  EXPECT_NEAR(j["Q"][0].get<double>(), 0.0, kClosedFormTol);
+  EXPECT_NEAR(j["Q"][1].get<double>(), 2.0 / pi, kClosedFormTol);
+  EXPECT_NEAR(j["Q"][2].get<double>(), -1.0, kClosedFormTol);
+}
+
+TEST(FrictionToolTest, LensJsonAgreesWithLibrary) {
+  // the lens spans 0.02 <= x <= 0.05: its centre of pressure at x = 0.035
+  // (Ty = Pz x) is inside it
+  const auto run = runTool(PATCHSPIN_TOOL,
+                           "friction --patch lens:0.05,0.04,0.06 --model exact --loads 10,0,0.35 "
+                           "--mu 0.5 --w 0.3,-0.4,0.5 --json");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  const PatchShape lens =
+      PatchShape::arcRegion(diskDiskIntersection(Vec2::Zero(), 0.05, Vec2(0.06, 0.0), 0.04));
+  const FrictionPatch patch(lens, LinearPressure::fromLoads(lens, {10.0, 0.0, 0.35}), 0.5);
+  const Vec3 Q = patch.exactQ(Vec3(0.3, -0.4, 0.5));
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(j["Q"][i].get<double>(), Q[i], kPrintTol * 10.0);
+}
+
 TEST(FrictionToolTest, TableIsReadable) {
   const auto run =
       runTool(PATCHSPIN_TOOL, "friction --patch poly:0,0,0.1,0,0.05,0.08 --model exact --w 0,0,1");
@@ -72,6 +108,9 @@ TEST(FrictionToolTest, BadArgumentsGiveOneLineErrorAndNonZeroExit) {
       "friction --patch rect:0.1,0.1 --hertz 3 --w 1,0,0",    // Hertz needs a disk
       "friction --patch disk:0.05 --mu -1 --w 1,0,0",         // negative mu
       "friction --patch blob:1 --w 1,0,0",                    // unknown shape
+      "friction --patch cut:0.05,-0.05 --w 1,0,0",            // nothing left of the disk
+      "friction --patch cut:-1,0 --w 1,0,0",                  // negative radius
+      "friction --patch lens:0.05,0.05,0.2 --w 1,0,0",        // disks apart
   };
   for (const char* args : bad) {
     const auto run = runTool(PATCHSPIN_TOOL, args);
