@@ -34,10 +34,14 @@ constexpr int kPushIterations = 4;
 // A visit's impulse change below the blocks' own relative precision
 // (kBlockRelTol) of the patch's normal impulse (couples: times the patch's
 // diameter) is their round-off, not a change (a slipping coin's second
-// visit: ~1e-12 of it): it is not applied, and the patch settles
-// (PatchSolverSettings::settleOnRoundOff;
+// visit reads float velocities and finds ~1e-12 of it): it is not applied,
+// and the patch settles (PatchSolverSettings::settleOnRoundOff;
 // PatchFrictionSolver.SettlingOnRoundOffSavesAVisitAndKeepsTheMotion).
-constexpr double kNegligibleChange = kBlockRelTol;
+// Float Bullet only: in double the solver's velocities carry ~1e-16, and
+// any threshold above that decides differently in a rotated frame or
+// another island order (FrameInvariance.*, MultithreadedWorld.* pin those
+// to round-off), so there only an exactly zero change settles, as before.
+constexpr double kNegligibleChange = sizeof(btScalar) == sizeof(double) ? 0.0 : kBlockRelTol;
 
 // True if every component of the impulse change d (S1 order: Lambda_z, the
 // two couples, the friction DOFs) lies within kNegligibleChange of the
@@ -175,7 +179,7 @@ bool visitPatch(VisitContext<Bodies>& cx, PatchConstraint& pc, PatchConstraint* 
       pc.lamN += dn;
     }
   }
-  if (cx.settings.settleOnRoundOff &&
+  if (kNegligibleChange > 0.0 && cx.settings.settleOnRoundOff &&
       negligibleChange(d, std::max(lamNBefore[0], pc.lamN[0]), pc.shape.diameter)) {
     pc.lamN = lamNBefore, pc.lamF = lamFBefore;
     d.setZero();

@@ -167,12 +167,13 @@ struct PatchSolverSettings {
   // patch's law lags its centre of pressure by up to 1e-2 of the diameter
   // while it sticks (maxPressureLag).
   bool deferStickingRefresh = true;
-  // A visit whose impulse change lies within the friction block's own
-  // relative precision (1e-9 in float Bullet, 1e-12 in double) of the
-  // patch's normal impulse, for its couples times the patch's diameter, is
-  // round-off: it is not applied and the patch settles. A sliding coin
-  // otherwise takes a third visit per step to chase a change of ~1e-12 of
-  // its impulse.
+  // Float Bullet: a visit whose impulse change lies within the friction
+  // block's own relative precision (1e-9) of the patch's normal impulse,
+  // for its couples times the patch's diameter, is round-off: it is not
+  // applied and the patch settles. A sliding coin otherwise takes a third
+  // visit per step to chase a change of ~1e-12 of its impulse. (Double
+  // Bullet: no effect; only an exactly zero change settles, which keeps
+  // the world frame invariant to round-off.)
   bool settleOnRoundOff = true;
 };
 
