@@ -296,20 +296,26 @@ bool projectArcRegionExact(const PatchShape& shape, const Mat3& M, const Vec3& y
         }
       }
       // Newton inside the bracket (bisection where a step leaves it), to
-      // round-off in t
+      // round-off in t: done after a Newton step below 1e-9 of the
+      // bracket's width (quadratic convergence: the next step would be
+      // ~1e-18 of it; stepping on, the rounding in h left Newton jittering
+      // about the root until the bracket collapsed, ~50 steps)
+      const double small = 1e-9 * (hi - lo);
       for (int it = 0; it < 100 && hNow != 0.0; ++it) {
         if (hNow < 0.0)
           a = t;
         else
           bb = t;
         double next = t - hNow / dhNow;
-        if (!(next > a && next < bb)) next = 0.5 * (a + bb);
-        const bool done =
-            std::abs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(next) ||
-            !(next > a && next < bb);
-        if (done) break;
+        const bool newton = next > a && next < bb;
+        if (!newton) next = 0.5 * (a + bb);
+        if (!(next > a && next < bb)) break;  // the bracket is two neighbours
+        const double step = std::abs(next - t);
         t = next;
         evaluate(t);
+        if (step <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t) ||
+            (newton && step <= small))
+          break;
       }
       if (!face(nNow, z)) continue;
       const Vec2 u(std::cos(t), std::sin(t));

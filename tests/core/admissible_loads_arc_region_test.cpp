@@ -90,7 +90,7 @@ TEST(AdmissibleLoadsArcRegion, ProjectionIsAdmissibleIdempotentAndOrthogonal) {
 // A disk of two half arcs centred at O (an ArcRegion, projected by its KKT
 // candidates) against Kind::Disk's exact closed-form projection (an
 // independent method): the same distance and point to 1e-12 of |y|
-// (measured 6.2e-15; 5.7e-16 with the former sampled root search).
+// (measured 3.4e-15; 5.7e-16 with the former sampled root search).
 TEST(AdmissibleLoadsArcRegion, ExactProjectionOnADisk) {
   const double R = 0.02;
   const PatchShape arcs =
@@ -125,7 +125,7 @@ TEST(AdmissibleLoadsArcRegion, ExactProjectionOnADisk) {
 // R / 4 off the centre, in directions that put the touch point anywhere on
 // an arc, next to a piece end (1e-12 to 1e-3 rad from it) and on it, for
 // rho from a third of to three times Eq. (11)'s. Both are exact projections
-// in double (a few ulps each; measured 3.6e-15 here, 6.2e-15 in
+// in double (a few ulps each; measured 1.9e-15 here, 3.4e-15 in
 // ExactProjectionOnADisk):
 // 1e-12 of |y| is far above their round-off and far below the fallback's
 // 1e-7.
