@@ -4,10 +4,11 @@
 // loads of linear pressures p >= 0 on the region.
 // K is {p >= 0 on every boundary point}, on an arc a
 // constraint between linear (its ends) and conic. Admissible loads come
-// back unchanged (the exact test, minPressure's). Others: the nearest
-// feasible KKT candidate (projectArcRegionExact: a piece end's face, a
-// segment's edge ray, an arc point whose face projection touches there);
-// if none is feasible, the projection onto the cone K_Q of a
+// back unchanged (the exact test, minPressure's). Others: the KKT
+// candidate whose local KKT conditions hold (projectArcRegionExact: a piece
+// end's face, a segment's edge ray, an arc point found by Newton's method
+// in y's negative interval on the arc, in closed form);
+// if none holds, the projection onto the cone K_Q of a
 // circumscribed polygon Q, coarse to fine (tangents 2 pi / 64 apart, then
 // 2 pi / 1024 and 2 pi / 16384 within two coarser steps of the previous
 // answer's touch angle: within 1.8e-8 R of the arc there), admissible as
@@ -163,104 +164,168 @@ void circumscribedPolygon(const std::vector<BoundaryPiece>& boundary, const Tang
 // The exact projection onto K for an arc region, by its KKT conditions. A
 // linear pressure >= 0 on a convex region bounded by segments and strictly
 // convex arcs vanishes (if anywhere) at one piece end, along one segment, or
-// at one arc point where its outward normal is -grad p; so the projection
-// is the nearest feasible one of: each piece end's face projection, each
-// segment's edge ray (multipliers >= 0), and per arc the face projection of
-// the point P(t) whose projection's own touch angle is t (a root of
-// r(t) = cross((cos t, sin t), -grad p_z(t)), bracketed on kArcSamples
-// points and solved by the Illinois method). Feasible: minPressure >= -kExactFeasible of the mean
-// pressure. False where no candidate is feasible (the polygon scheme
-// decides then).
-constexpr int kArcSamples = 16;
-constexpr double kExactFeasible = 1e-10;
+// at one arc point; so the projection is the one candidate among these
+// whose KKT conditions hold (unique: the projection onto a closed convex
+// cone), each tested locally, which by convexity is the whole test:
+//  * a piece end P: the face projection z = y - (n.y / |n|^2) n, n = n(P),
+//    n.y < 0, whose zero line through P supports the region: grad p_z . d
+//    >= 0 for the two one-sided tangents d at P and for the sum of the two
+//    inward normals (inside the tangent cone; the test that matters where
+//    the pieces join smoothly, the cone a half-plane);
+//  * a segment: its edge ray (edgeProjection's multipliers >= 0; the ray's
+//    pressure, cross(b - a, x - a), is >= 0 on the region);
+//  * an arc of centre c, radius R: with n(t) = N0 + R (cos t N1 + sin t N2)
+//    the row of P(t) = c + R (cos t, sin t), the face projection at P(t) is
+//    at squared distance f(t) = A^2 / q from y, A = n.y (y's pressure at
+//    P(t), a0 + R |(a1, a2)| cos(t - psi) in closed form), q = |n|^2. A
+//    face projection is the projection onto a half-space containing K, so
+//    the answer, where it touches the arc only, is a maximum of f with
+//    A < 0: a root of h = 2 A' q - A q' (f' = A h / q^2; h = 0 is grad p_z
+//    normal to the arc) in y's negative interval on the arc, in closed form
+//    (acos), where h < 0 at its start and h > 0 at its end. Solved by
+//    Newton's method inside the bracket, from the minimum of A (the root
+//    itself where q is constant along the arc: a disk in its own metric);
+//    the candidate holds if grad p_z . u < 0 (p_z grows inwards).
+// False where no candidate passes (the polygon scheme decides then).
+// Tests: AdmissibleLoadsArcRegion.* (KKT optimality, brute force, the
+// disk's closed form just outside the kern and at piece ends).
 bool projectArcRegionExact(const PatchShape& shape, const Mat3& M, const Vec3& y, double rho,
                            Vec3& out) {
   const bool aboutMean = shape.maxDistanceFromOrigin() > shape.diameter();
   Mat3 PinvT;
   PinvT << 1.0, 0.0, 0.0, 0.0, 0.0, -rho, 0.0, rho, 0.0;
   const Mat3 MinvT = aboutMean ? Mat3::Zero() : Mat3(M.inverse().transpose());
-  // n(P): the pressure at P of scaled loads z is n(P) . z
-  auto row = [&](const Vec2& P) -> Vec3 {
-    const Vec3 phi(1.0, P.x(), P.y());
+  // n(phi): the pressure of scaled loads z at P is n(1, P) . z (linear in phi)
+  auto rowOf = [&](const Vec3& phi) -> Vec3 {
     return aboutMean ? Vec3(PinvT * shape.solveLoadMatrix(phi)) : Vec3(MinvT * phi);
   };
-  auto pressureOf = [&](const Vec3& z) {
-    return LinearPressure::fromLoads(shape, loadsOfScaled(z, rho));
-  };
-  double best = std::numeric_limits<double>::infinity();
-  auto consider = [&](const Vec3& z) {
-    const double d = (z - y).norm();
-    if (!(d < best) || !(z[0] > 0.0)) return;
-    const double mean = z[0] / shape.area();
-    if (!(minPressure(shape, pressureOf(z)) >= -kExactFeasible * mean)) return;
-    best = d, out = z;
-  };
+  auto row = [&](const Vec2& P) { return rowOf(Vec3(1.0, P.x(), P.y())); };
+  // grad p_z = (N1 . z, N2 . z)
+  const Vec3 N1 = rowOf(Vec3(0.0, 1.0, 0.0)), N2 = rowOf(Vec3(0.0, 0.0, 1.0));
+  auto gradOf = [&](const Vec3& z) { return Vec2(N1.dot(z), N2.dot(z)); };
   auto face = [&](const Vec3& n, Vec3& z) {
     const double ny = n.dot(y);
     if (!(ny < 0.0)) return false;
     z = y - ny / n.squaredNorm() * n;
-    return true;
+    return z[0] > 0.0;
+  };
+  auto unit = [](const Vec2& v) { return Vec2(v / v.norm()); };
+  auto leftOf = [](const Vec2& v) { return Vec2(-v.y(), v.x()); };
+  // a piece's unit tangent (direction of travel) at its start or end
+  auto tangent = [&](const BoundaryPiece& p, bool atEnd) {
+    if (p.kind == BoundaryPiece::Kind::Segment) return unit(p.b - p.a);
+    const double t = atEnd ? p.angle1 : p.angle0;
+    return Vec2(-std::sin(t), std::cos(t));
   };
   const std::vector<BoundaryPiece>& b = shape.boundary();
+  const std::size_t count = b.size();
   Vec3 z;
-  for (const BoundaryPiece& piece : b) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const BoundaryPiece& piece = b[i];
     const Vec3 nStart = row(piece.start());
-    if (face(nStart, z)) consider(z);
-    if (piece.kind == BoundaryPiece::Kind::Segment && edgeProjection(nStart, row(piece.b), y, z))
-      consider(z);
-  }
-  // the KKT point is unique (the projection onto a closed convex cone): a
-  // feasible piece end or segment is it, and the arcs (kArcSamples + 1
-  // samples and the root search's steps, a sine, cosine and pressure each)
-  // are searched only where none is (AdmissibleLoadsArcRegion.*: KKT
-  // optimality against brute force)
-  if (std::isfinite(best)) return true;
-  for (const BoundaryPiece& piece : b) {
-    if (piece.kind != BoundaryPiece::Kind::Arc) continue;
-    // r(t) and the face projection at P(t)
-    auto residual = [&](double t, Vec3& zt) {
-      const Vec2 u(std::cos(t), std::sin(t));
-      if (!face(row(piece.centre + piece.radius * u), zt))
-        return std::numeric_limits<double>::quiet_NaN();
-      const LinearPressure pz = pressureOf(zt);
-      return u.x() * -pz.cy - u.y() * -pz.cx;
-    };
-    const double t0 = piece.angle0, span = piece.angle1 - piece.angle0;
-    double prevT = t0, prevR = residual(t0, z);
-    for (int i = 1; i <= kArcSamples; ++i) {
-      const double t = t0 + span * i / kArcSamples;
-      const double r = residual(t, z);
-      if (std::isfinite(prevR) && std::isfinite(r) && (prevR < 0.0) != (r < 0.0)) {
-        // the Illinois method on the bracket [prevT, t], to round-off
-        double a = prevT, fa = prevR, bb = t, fb = r, c = a, last = a;
-        int side = 0;
-        bool ok = false;
-        for (int it = 0; it < 100; ++it) {
-          c = (fa * bb - fb * a) / (fa - fb);
-          if (!(c > std::min(a, bb) && c < std::max(a, bb))) c = 0.5 * (a + bb);
-          const double fc = residual(c, z);
-          if (!std::isfinite(fc)) break;
-          ok = true;
-          if (fc == 0.0 ||
-              std::abs(c - last) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(c))
-            break;
-          last = c;
-          if ((fc < 0.0) == (fb < 0.0)) {
-            bb = c, fb = fc;
-            if (side == -1) fa *= 0.5;
-            side = -1;
-          } else {
-            a = c, fa = fc;
-            if (side == 1) fb *= 0.5;
-            side = 1;
-          }
-        }
-        if (ok) consider(z);  // (z: the projection at the last c)
+    if (face(nStart, z)) {
+      const Vec2 next = tangent(piece, false), prev = tangent(b[(i + count - 1) % count], true);
+      const Vec2 g = gradOf(z);
+      const double tol = kKktSlack * g.norm();
+      const Vec2 inward = leftOf(next) + leftOf(prev);
+      if (g.dot(next) >= -tol && g.dot(-prev) >= -tol && g.dot(inward) >= -tol * inward.norm()) {
+        out = z;
+        return true;
       }
-      prevT = t, prevR = r;
+    }
+    if (piece.kind == BoundaryPiece::Kind::Segment && edgeProjection(nStart, row(piece.b), y, z) &&
+        z[0] > 0.0) {
+      out = z;
+      return true;
     }
   }
-  return std::isfinite(best);
+  for (const BoundaryPiece& piece : b) {
+    if (piece.kind != BoundaryPiece::Kind::Arc) continue;
+    const double R = piece.radius, t0 = piece.angle0, t1 = piece.angle1;
+    const Vec3 N0 = row(piece.centre);
+    const double a0 = N0.dot(y), a1 = N1.dot(y), a2 = N2.dot(y);
+    const double amp = R * std::hypot(a1, a2);
+    if (!(a0 < amp)) continue;  // A >= 0 on the whole circle
+    // A = a0 + amp cos(t - psi) < 0 on (m - w, m + w), m = psi + pi; where
+    // |a0| < amp, h < 0 at m - w and h > 0 at m + w (A = 0 there, A' < 0
+    // and > 0)
+    const bool bounded = -a0 < amp;
+    const double w = bounded ? kTwoPiArc / 2.0 - std::acos(-a0 / amp) : kTwoPiArc / 2.0;
+    double m = std::fmod(std::atan2(a2, a1) + kTwoPiArc / 2.0 - t0, kTwoPiArc);
+    if (m < 0.0) m += kTwoPiArc;
+    m += t0;
+    // h and h' at t (n = N0 + R v, v = cos N1 + sin N2, w = v')
+    double hNow = 0.0, dhNow = 0.0;
+    Vec3 nNow;
+    auto evaluate = [&](double t) {
+      const double c = std::cos(t), s = std::sin(t);
+      const Vec3 v = c * N1 + s * N2, wv = c * N2 - s * N1;
+      nNow = N0 + R * v;
+      const double A = nNow.dot(y), dA = R * wv.dot(y), ddA = -R * v.dot(y);
+      const double q = nNow.squaredNorm(), dq = 2.0 * R * wv.dot(nNow);
+      const double ddq = 2.0 * R * (R * wv.squaredNorm() - v.dot(nNow));
+      hNow = 2.0 * dA * q - A * dq;
+      dhNow = 2.0 * ddA * q + dA * dq - A * ddq;
+    };
+    for (const double centre : {m - kTwoPiArc, m, m + kTwoPiArc}) {
+      const bool knownLo = bounded && centre - w >= t0, knownHi = bounded && centre + w <= t1;
+      const double lo = std::max(t0, centre - w), hi = std::min(t1, centre + w);
+      if (!(hi > lo)) continue;
+      // the bracket [a, bb] (h(a) < 0 < h(bb)) from the start: the
+      // minimum of A, or the interval's end nearest to it
+      double t = std::clamp(centre, lo, hi);
+      evaluate(t);
+      double a = lo, bb = hi;
+      if (hNow < 0.0) {
+        a = t;
+        if (!knownHi) {
+          const double keepT = t, keepH = hNow, keepDh = dhNow;
+          const Vec3 keepN = nNow;
+          evaluate(hi);
+          if (!(hNow > 0.0)) continue;  // f grows to the arc's end: a piece end's
+          t = keepT, hNow = keepH, dhNow = keepDh, nNow = keepN;
+        }
+      } else if (hNow > 0.0) {
+        bb = t;
+        if (!knownLo) {
+          const double keepT = t, keepH = hNow, keepDh = dhNow;
+          const Vec3 keepN = nNow;
+          evaluate(lo);
+          if (!(hNow < 0.0)) continue;
+          t = keepT, hNow = keepH, dhNow = keepDh, nNow = keepN;
+        }
+      }
+      // Newton inside the bracket (bisection where a step leaves it), to
+      // round-off in t: done after a Newton step below 1e-9 of the
+      // bracket's width (quadratic convergence: the next step would be
+      // ~1e-18 of it; stepping on, the rounding in h left Newton jittering
+      // about the root until the bracket collapsed, ~50 steps)
+      const double small = 1e-9 * (hi - lo);
+      for (int it = 0; it < 100 && hNow != 0.0; ++it) {
+        if (hNow < 0.0)
+          a = t;
+        else
+          bb = t;
+        double next = t - hNow / dhNow;
+        const bool newton = next > a && next < bb;
+        if (!newton) next = 0.5 * (a + bb);
+        if (!(next > a && next < bb)) break;  // the bracket is two neighbours
+        const double step = std::abs(next - t);
+        t = next;
+        evaluate(t);
+        if (step <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(t) ||
+            (newton && step <= small))
+          break;
+      }
+      if (!face(nNow, z)) continue;
+      const Vec2 u(std::cos(t), std::sin(t));
+      if (gradOf(z).dot(u) < 0.0) {
+        out = z;
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 }  // namespace
