@@ -24,6 +24,7 @@
 // arcs). Both branches in the frame centred at g (P' = P - g), moved back to
 // O as in exact_polygon.cpp. Guarded by exact_arc_region_test.cpp
 // (FarBranchMatchesOracleAcrossKappa for the far branch).
+#include "arc_region_numerics.hpp"
 #include "exact_area_rule.hpp"
 #include "exact_boundary_moments.hpp"
 #include "exact_far_green.hpp"
@@ -47,6 +48,9 @@ constexpr double kFarRatio = 8.0;
 // arcs' end points).
 constexpr double kClosureRel = 1e-9;
 constexpr double kDeltaZeroRel = 1e-15;
+// Arcs of radius above this many region sizes make the far branch an area
+// rule (farAreaRule).
+constexpr double kFlatRadius = 16.0;
 // Target of the far rule's quadrature error relative to F's scale, well
 // below the 1e-10 contract (as the polygon law's default).
 constexpr double kQuadratureTol = 1e-13;
@@ -238,6 +242,83 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Ve
   farGreenBasis(sums, wl, rho, wantJacobian, acc);
 }
 
+// Far branch on a region with a flat arc (radius above kFlatRadius region
+// sizes): an area rule, since Green's theorem on a thin region (a cap of
+// half-angle h: boundary terms of size^2 for an area of ~size^2 h / 1.5)
+// cancels to eps / h, and an arc's points about its centre carry ~eps R,
+// eps / h^2 of the cap's height. The chord polygon (the pieces' start
+// points) in fan triangles from the first, as the polygon's far branch
+// (exact_polygon.cpp: bilinear map, order n both ways); each arc's circular
+// segment in rays from its chord's midpoint (arcChord):
+//   P(th, s) = mid + s R' ((cos th - cos h) n + sin th e),  th in [-h, h], s in [0, 1],
+//   dA = s R'^2 (1 - cos h cos th) ds dth,
+// with cos th - cos h = 2 sin((h - th)/2) sin((h + th)/2) and 1 - cos h cos th
+// = 2 sin^2(th/2) + 2 cos th sin^2(h/2) (no cancellation). Order n in s
+// (the integrand's polynomial part has the fan's degree there: 3, 4 with
+// dF); in th, where P is quadratic in th / h (the bulge), that part has
+// twice the degree (6, 8), so n + 2 (farOrder's 0.5 degree grows by 1.5,
+// 2), or the arc's trigonometric order if larger (arcSpanOrder without the
+// ICR), in the fewest equal parts that fit the tables (n alone in th: 1e-10
+// of F on a cap of h = 1.7e-4). Guarded by FlatCapsMatchChordQuadrature.
+template <bool kJacobian>
+void farAreaRule(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Vec3& wl,
+                 double rho, int n, double size, ExactBasis& acc) {
+  const GaussTables& gt = gaussTables();
+  const double inv = 1.0 / rho;
+  auto add = [&](const Vec2& P, double wt) {
+    addKernelNode<kJacobian, 3>(P, Vec3(wt, wt * P.x(), wt * P.y()), wl, inv, acc.F, acc.dF.data());
+  };
+  const std::size_t N = pieces.size();
+  const Vec2 p0 = pieces[0].start() - g;
+  for (std::size_t k = 1; k + 1 < N; ++k) {
+    // triangle (p0, p1, p2): the quadrilateral (p0, p1, p2, p0)
+    const Vec2 p1 = pieces[k].start() - g, p2 = pieces[k + 1].start() - g;
+    const Vec2 e01 = p1 - p0, e32 = p2 - p0;
+    for (int i = 0; i < n; ++i) {
+      const double s = gt.x[n][i];
+      const Vec2 a = (1.0 - s) * p0 + s * p1, b = (1.0 - s) * p0 + s * p2;
+      const Vec2 dPdt = b - a;
+      for (int j = 0; j < n; ++j) {
+        const double t = gt.x[n][j];
+        const Vec2 dPds = (1.0 - t) * e01 + t * e32;
+        const double det = dPds.x() * dPdt.y() - dPds.y() * dPdt.x();
+        add(a + t * dPdt, gt.w[n][i] * gt.w[n][j] * det);
+      }
+    }
+  }
+  for (const BoundaryPiece& p : pieces) {
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    const ArcChord ch = arcChord(p);
+    if (!(ch.radius > 0.0)) continue;
+    const double h = ch.half, Rp = ch.radius;
+    const Vec2 mid = ch.mid - g;
+    const double sh2 = std::sin(0.5 * h);
+    int parts = 1, nt = n;
+    for (;; ++parts) {
+      const double H = h / parts;
+      nt = std::max(n + 2,
+                    arcSpanOrder(H, 1.0, 0.0, Cx{}, false, Rp, size, kJacobian, kQuadratureTol));
+      if (nt <= kGaussMaxOrder || parts == 64) break;
+    }
+    nt = std::min(nt, kGaussMaxOrder);
+    const double H = h / parts;
+    for (int q = 0; q < parts; ++q) {
+      for (int i = 0; i < nt; ++i) {
+        const double th = -h + (2.0 * q + 2.0 * gt.x[nt][i]) * H;
+        const double sth = std::sin(th), cth = std::cos(th), st2 = std::sin(0.5 * th);
+        const double bulge = 2.0 * std::sin(0.5 * (h - th)) * std::sin(0.5 * (h + th));
+        const double jac = Rp * Rp * 2.0 * (st2 * st2 + cth * sh2 * sh2);
+        const Vec2 Q = Rp * (bulge * ch.n + sth * ch.e);
+        const double wth = 2.0 * H * gt.w[nt][i] * jac;
+        for (int j = 0; j < n; ++j) {
+          const double sr = gt.x[n][j];
+          add(mid + sr * Q, wth * gt.w[n][j] * sr);
+        }
+      }
+    }
+  }
+}
+
 // Order of the far rule on segments: exact_area_rule.hpp's farOrder at
 // kQuadratureTol (its model, a polynomial of degree 3 (4 with dF) times a
 // function analytic up to the ICR, fits the boundary integrand as it fitted
@@ -305,8 +386,19 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
   const RegionFrame frame(g, rho, w);
   ExactBasis l;  // g-frame
   if (frame.far(kFarRatio, size * size)) {
-    const int n = arcFarOrder(frame.kappaSq(size * size), wantJacobian);
-    farBranch(boundary, g, frame.wl, rho, n, size, wantJacobian, l);
+    bool flat = false;
+    for (const BoundaryPiece& p : boundary)
+      flat = flat || (p.kind == BoundaryPiece::Kind::Arc && p.radius > kFlatRadius * size);
+    if (flat) {
+      const int n = farOrder(frame.kappaSq(size * size), kQuadratureTol, wantJacobian);
+      if (wantJacobian)
+        farAreaRule<true>(boundary, g, frame.wl, rho, n, size, l);
+      else
+        farAreaRule<false>(boundary, g, frame.wl, rho, n, size, l);
+    } else {
+      const int n = arcFarOrder(frame.kappaSq(size * size), wantJacobian);
+      farBranch(boundary, g, frame.wl, rho, n, size, wantJacobian, l);
+    }
   } else {
     nearBranch(boundary, g, frame.wl, rho, size, wantJacobian, l);
   }
