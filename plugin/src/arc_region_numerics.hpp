@@ -39,7 +39,9 @@ bool angleOnArc(double t, const BoundaryPiece& arc);
 
 // Area moments about the point g (coordinates P - g): the chord polygon of the
 // pieces' start points (signed triangles about g) plus each arc's circular
-// segment (closed form about the arc's centre, shifted to g).
+// segment (circularSegmentMoments about its chord's midpoint below
+// kSeriesHalfAngle, the closed form about the arc's centre above; shifted
+// to g).
 AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const Vec2& g);
 
 // Mean of the pieces' start points (a point of the closed convex region).

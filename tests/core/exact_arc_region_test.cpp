@@ -743,5 +743,52 @@ TEST(ExactArcRegionBasis, ShortCornerArcsMatchOracle) {
   }
 }
 
+// Thin regions (area below 1e-3 size^2) are their chord polygon plus the
+// arcs' circular segments (exact_arc_region.cpp: summed boundary terms lost
+// eps size^2 / area). The pi fuzz target's sliver, 1.04 m x 1e-9 m with a
+// 1e-9 rad arc of radius 1 about O at its foot (its circular segment 1e-28
+// of the area), against the polygon law on its pieces' start points, at
+// pure spin about O (on its edge: |∫x (x/r)| was 1.5 ∫x), translations and
+// ICRs on, near and far from it: within kThinTol = 1e-13 of the column
+// scale (the two laws' own ~1e-13 against their oracles; the arc's segment
+// is 1e-19 of the scale), F and dF.
+TEST(ExactArcRegionBasis, ThinRegionsMatchPolygonLaw) {
+  constexpr double kThinTol = 1e-13;
+  const Region sliver = {
+      BoundaryPiece::segment(Vec2(-1.2912755008898694e-236, 0.04044342041015625),
+                             Vec2(6.123233995736766e-17, -1)),
+      BoundaryPiece::arc(Vec2(0, 0), 1, -1.5707963267948966, -1.5707963257900757),
+      BoundaryPiece::segment(Vec2(1.0048209543902383e-09, -1),
+                             Vec2(1.0048211152025033e-09, -1.0230525589846103e-306)),
+      BoundaryPiece::segment(Vec2(1.0048211152025033e-09, -1.0230525589846103e-306),
+                             Vec2(-1.2912755008898694e-236, 0.04044342041015625))};
+  std::vector<Vec2> chord;
+  for (const BoundaryPiece& p : sliver) chord.push_back(p.start());
+  for (double rho : {0.49035674092091064, 1e-9}) {
+    const std::vector<std::pair<std::string, Vec3>> ws = {
+        {"pure spin about O", Vec3(0, 0, 1)},
+        {"pure spin about O, -", Vec3(0, 0, -1)},
+        {"translation", Vec3(0.6, -0.8, 0)},
+        {"ICR mid-sliver", wForIcr(Vec2(5e-10, -0.5), rho, 1.0)},
+        {"ICR beside the sliver", wForIcr(Vec2(0.01, -0.3), rho, -1.0)},
+        {"ICR 20 m out", wForIcr(Vec2(20.0, 3.0), rho, 1.0)}};
+    double area = 0.0;
+    for (std::size_t i = 0; i < chord.size(); ++i)
+      area += 0.5 * (chord[i].x() * chord[(i + 1) % chord.size()].y() -
+                     chord[i].y() * chord[(i + 1) % chord.size()].x());
+    const double s = area * (1.0 + 1.05 / rho);
+    const Vec3 scale(s, s * 1.1e-9, s * 1.05);
+    for (const auto& [label, w] : ws) {
+      ExactBasis arc, poly;
+      exactArcRegionBasis(sliver, rho, w, true, arc);
+      internal::exactPolygonBasis(chord, rho, w, true, poly);
+      EXPECT_LE(relativeError(arc.F, poly.F, scale), kThinTol) << "rho " << rho << ", " << label;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_LE(relativeError(arc.dF[k], poly.dF[k], scale), kThinTol)
+            << "rho " << rho << ", " << label << ", dF " << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace patchspin
