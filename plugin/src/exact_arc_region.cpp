@@ -67,6 +67,64 @@ BoundaryPiece shifted(const BoundaryPiece& p, const Vec2& g) {
   return q;
 }
 
+// A flat arc's boundary moments (exact_boundary_moments.hpp's N1, M, N3, Q,
+// U) by Gauss-Legendre in the arc's chord frame (arcChord; g-frame points
+// P = mid + R' ((cos th - cos h) n + sin th e), normal cos th n + sin th e,
+// ds = R' dth): about its centre the arc's points carry ~eps R, eps / h^2
+// of a cap's height, and the elliptic forms of addArcMoments cancel with
+// them. The integrands are analytic but at P = c, so th is split at the
+// ICR's foot th_f and each side in panels [th_f + x q, th_f + x], q = 1/4,
+// from the side's end down to the ICR's distance / R' (or 1e-17 of the
+// span), order 20 (Bernstein ellipse 3 for the singularity at the panel's
+// near end: 3^-40). Guarded by FlatCapsNearBranchMatchOracle.
+void addFlatArcMoments(const BoundaryPiece& arc, const Vec2& g, const Vec2& c, bool withGradient,
+                       BoundaryMoments& acc) {
+  const GaussTables& gt = gaussTables();
+  constexpr int kOrder = 20;
+  constexpr double kGrade = 0.25;
+  const ArcChord ch = arcChord(arc);
+  if (!(ch.radius > 0.0)) return;
+  const double h = ch.half, Rp = ch.radius;
+  const Vec2 mid = ch.mid - g;
+  auto pointAt = [&](double th) {
+    const double bulge = 2.0 * std::sin(0.5 * (h - th)) * std::sin(0.5 * (h + th));
+    return Vec2(mid + Rp * (bulge * ch.n + std::sin(th) * ch.e));
+  };
+  // the ICR's foot: its angle about the centre (mid - R' cos h n), clamped
+  const Vec2 cm = c - mid;
+  const double thf = std::clamp(std::atan2(cm.dot(ch.e), cm.dot(ch.n) + Rp * std::cos(h)), -h, h);
+  const double dist = (pointAt(thf) - c).norm() / Rp;
+  auto panel = [&](double a, double b) {
+    for (int i = 0; i < kOrder; ++i) {
+      const double th = a + gt.x[kOrder][i] * (b - a);
+      const Vec2 P = pointAt(th);
+      const Vec2 nrm = std::cos(th) * ch.n + std::sin(th) * ch.e;
+      const double wt = gt.w[kOrder][i] * std::abs(b - a) * Rp;
+      const Vec2 r = P - c;
+      const double rc = r.norm();
+      acc.N1 += (wt * rc) * nrm;
+      acc.M += (wt * rc) * r * nrm.transpose();
+      acc.N3 += (wt * rc * rc * rc) * nrm;
+      if (!withGradient || !(rc > 0.0)) continue;
+      acc.Q += (wt / rc) * r * nrm.transpose();
+      const Mat2 rr = (wt / rc) * r * r.transpose();
+      acc.U[0] += nrm.x() * rr;
+      acc.U[1] += nrm.y() * rr;
+    }
+  };
+  const double smallest = std::max(dist, 1e-17 * h);
+  for (const double end : {-h, h}) {
+    double x = std::abs(end - thf);
+    if (!(x > 0.0)) continue;
+    const double sgn = end > thf ? 1.0 : -1.0;
+    while (x > smallest) {
+      panel(thf + sgn * kGrade * x, thf + sgn * x);
+      x *= kGrade;
+    }
+    panel(thf, thf + sgn * x);
+  }
+}
+
 // Near branch: F' (g-frame) from the boundary moments about c, and dF'/dw'
 // through c. With d rho_c/dc = -u (exact_boundary_moments.hpp) and
 // tr_j = tr(dM/dc_j) = -sum_i U[i](i, j) - N1_j:
@@ -83,7 +141,10 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const V
     if (p.kind == BoundaryPiece::Kind::Segment) {
       addSegmentMoments(p.a, p.b, c, kDeltaZeroRel * size, wantJacobian, mom);
     } else {
-      addArcMoments(p.centre, p.radius, p.angle0, p.angle1, c, wantJacobian, mom);
+      if (p.radius > kFlatRadius * size)
+        addFlatArcMoments(piece, g, c, wantJacobian, mom);
+      else
+        addArcMoments(p.centre, p.radius, p.angle0, p.angle1, c, wantJacobian, mom);
     }
   }
   const double trM = mom.M.trace();

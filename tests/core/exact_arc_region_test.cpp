@@ -790,5 +790,66 @@ TEST(ExactArcRegionBasis, ThinRegionsMatchPolygonLaw) {
   }
 }
 
+// The near branch on flat caps (arcs of radius > 16 region sizes: their
+// boundary moments by graded Gauss panels in the chord frame,
+// addFlatArcMoments; about the centre they were 3.3e-5 of the scale off at h
+// = 0.01, 11 at h = 1e-3). The unit circle's cap at O, rho its half-chord,
+// ICRs at its centroid, a chord end, the arc's middle, 2 and 6 cap sizes
+// out: F against the brute-force oracle to the contract kContractTol (the
+// oracle's chord heights lose ~eps / h^2, 2.5e-11 at h = 3e-3; measured
+// worst 2.7e-11), dF (ICRs off the boundary) against finite differences.
+TEST(ExactArcRegionBasis, FlatCapsNearBranchMatchOracle) {
+  const double t0 = 0.7;
+  const Vec2 dir0(std::cos(t0), std::sin(t0)), e(-dir0.y(), dir0.x());
+  for (double h : {0.05, 0.01, 3e-3}) {
+    const Region cap = flatCap(-dir0, t0, h);
+    const double rho = std::sin(h);
+    const Vec3 scale = columnScales(cap, rho);
+    const Vec2 mid = -dir0 + std::cos(h) * dir0;
+    const std::vector<std::pair<std::string, Vec2>> icrs = {
+        {"centroid", mid - 0.3 * h * h * dir0},
+        {"chord end", cap[0].start()},
+        {"arc middle", mid + (1.0 - std::cos(h)) * dir0},
+        {"2 sizes out", mid + 2.0 * h * e},
+        {"6 sizes out", mid + 6.0 * h * dir0}};
+    for (const auto& [label, icr] : icrs) {
+      for (double spin : {1.0, -1.0}) {
+        const Vec3 w = wForIcr(icr, rho, spin);
+        ExactBasis out;
+        exactArcRegionBasis(cap, rho, w, true, out);
+        const Mat3 ref = oracleF(cap, rho, w);
+        EXPECT_LE(relativeError(out.F, ref, scale), kContractTol)
+            << "h = " << h << ", ICR at " << label << ", spin " << spin;
+        if (label == "chord end" || label == "arc middle") continue;  // (F'' log-singular)
+        // dF against Richardson differences: the smaller error of steps 1e-3
+        // and 1e-4 (truncation falls with the step, F's rounding over the
+        // step grows: measured at h = 0.05, ICR 6 sizes out, 3.9e-9 / 4.1e-8 /
+        // 7e-7 at 1e-3 / 1e-4 / 1e-5; at h = 0.01 3.1e-8 at best), to
+        // kNearFdTol = 1e-7 of the scale (a wrong dF term is >= 1e-3)
+        auto difference = [&](int j, double dw) {
+          ExactBasis plus, minus;
+          Vec3 wp = w, wm = w;
+          wp[j] += dw, wm[j] -= dw;
+          exactArcRegionBasis(cap, rho, wp, false, plus);
+          exactArcRegionBasis(cap, rho, wm, false, minus);
+          return Mat3((plus.F - minus.F) / (2.0 * dw));
+        };
+        constexpr double kNearFdTol = 1e-7;
+        for (int j = 0; j < 3; ++j) {
+          double best = INFINITY;
+          for (double step : {1e-3, 1e-4}) {
+            const Mat3 fd = (4.0 * difference(j, 0.5 * step) - difference(j, step)) / 3.0;
+            double err = 0.0;
+            for (int k = 0; k < 3; ++k)
+              err = std::max(err, (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k]);
+            best = std::min(best, err);
+          }
+          EXPECT_LE(best, kNearFdTol) << "h = " << h << ", ICR at " << label << ", dw" << j;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace patchspin
