@@ -11,8 +11,13 @@
 //   A = R^2 (a - s c),  ∫u = 2/3 R^3 s^3,  ∫v = 0,  ∫uv = 0,
 //   ∫u^2 = R^4 ((a + s c) / 4 - c^3 s / 2)   (sector minus triangle),
 //   ∫v^2 = R^4 ((4a - sin 4a) / 16 - 2/3 c s^3).
-// These cancel to ~eps / a^2 of the segment's moments for a flat arc (a
-// thin lens of half-angle a loses ~a^-2 eps relative; 1e-12 at a = 0.01).
+// These cancel for a flat arc (to ~eps / a^2 of A, and shifted from the
+// centre to the chord, eps / a^6 of the chord-frame ∫u'^2). So for a <
+// kSeriesHalfAngle (= 1) the segment's moments about its chord's midpoint
+// (u' = u - R c) are taken from their series in a (circularSegmentMoments:
+// exact within 1e-14 relative for all a, CircularSegmentMomentsMatchReference),
+// in the frame of the chord the chord polygon uses (arcChord: the pieces'
+// start and end points, radius |end - start| / (2 sin a)).
 #include "arc_region_numerics.hpp"
 #include "planar.hpp"
 #include "polygon_edge_moments.hpp"
@@ -20,6 +25,7 @@
 #include <patchspin/types.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -159,6 +165,81 @@ AreaMoments areaMomentsOf(const std::vector<BoundaryPiece>& boundary) {
 
 namespace internal {
 
+SegmentMoments circularSegmentMoments(double a) {
+  // Taylor coefficients (sympy, exact rationals rounded) of A / a^3, ∫u' / a^5,
+  // ∫u'^2 / a^7 and ∫v^2 / a^5 in x = a^2: 14 terms leave < 1e-17 relative at
+  // a = 1 (the largest, ∫v^2's, 1.2e-17 a^33)
+  static constexpr std::array<double, 14> kArea = {
+      0.6666666666666666,      -0.13333333333333333,    0.012698412698412698,
+      -0.0007054673721340388,  2.565335898669232e-05,   -6.577784355562133e-07,
+      1.2529113058213587e-08,  -1.8425166262078804e-10, 2.1549902060910882e-12,
+      -2.0523716248486557e-14, 1.622428161935696e-16,   -1.0816187746237974e-18,
+      6.163069940876338e-21,   -3.035995044766669e-23};
+  static constexpr std::array<double, 14> kFirst = {
+      0.13333333333333333,     -0.03492063492063492,   0.004497354497354497,
+      -0.00036956870290203624, 2.133411855634078e-05,  -9.143927794721446e-07,
+      3.0255958321629034e-08,  -7.962104817578651e-10, 1.7061655999029194e-11,
+      -3.0346819589512514e-13, 4.55202294977351e-15,   -5.835926860447255e-17,
+      6.468391840632451e-19,   -6.259734039348968e-21};
+  static constexpr std::array<double, 14> kNormal2 = {
+      0.0380952380952381,      -0.012698412698412698,   0.002077922077922078,
+      -0.00022101355434688767, 1.7027064646112266e-05,  -1.004908567933778e-06,
+      4.705852113041109e-08,   -1.7931981360627673e-09, 5.670629790189548e-11,
+      -1.5122003926137848e-12, 3.4466309195867245e-14,  -6.7914019041372835e-16,
+      1.1684137400830026e-17,  -1.7703240563522065e-19};
+  static constexpr std::array<double, 14> kAlong2 = {
+      0.13333333333333333,    -0.06349206349206349,   0.014814814814814815,
+      -0.002180535513868847,  0.00022430244652466876, -1.7102239324461548e-05,
+      1.0061983295721235e-06, -4.707576105205983e-08, 1.7933828495090037e-09,
+      -5.670792033005742e-11, 1.5122122904203058e-12, -3.446638315270654e-14,
+      6.791405850930842e-16,  -1.1684139228956074e-17};
+  const double x = a * a;
+  auto horner = [x](const std::array<double, 14>& c) {
+    double v = c.back();
+    for (std::size_t k = c.size() - 1; k-- > 0;) v = v * x + c[k];
+    return v;
+  };
+  const double a3 = a * x, a5 = a3 * x;
+  SegmentMoments m;
+  if (a < kSeriesHalfAngle) {
+    m.area = a3 * horner(kArea);
+    m.first = a5 * horner(kFirst);
+    m.normal2 = a5 * x * horner(kNormal2);
+    m.along2 = a5 * horner(kAlong2);
+    return m;
+  }
+  // closed forms (file comment), about the centre, then u' = u - c
+  const double s = std::sin(a), c = std::cos(a);
+  m.area = a - s * c;
+  const double su = 2.0 / 3.0 * s * s * s;
+  const double iuu = (a + s * c) / 4.0 - c * c * c * s / 2.0;
+  m.along2 = (4.0 * a - std::sin(4.0 * a)) / 16.0 - 2.0 / 3.0 * c * s * s * s;
+  m.first = su - c * m.area;
+  m.normal2 = iuu - 2.0 * c * su + c * c * m.area;
+  return m;
+}
+
+ArcChord arcChord(const BoundaryPiece& arc) {
+  ArcChord c;
+  c.half = 0.5 * (arc.angle1 - arc.angle0);
+  const double tm = 0.5 * (arc.angle0 + arc.angle1);
+  c.n = Vec2(std::cos(tm), std::sin(tm));
+  c.e = Vec2(-c.n.y(), c.n.x());
+  if (c.half >= kSeriesHalfAngle) {
+    c.radius = arc.radius;
+    c.mid = arc.centre + (arc.radius * std::cos(c.half)) * c.n;
+    return c;
+  }
+  const Vec2 s0 = arc.start(), s1 = arc.end();
+  const double L = (s1 - s0).norm();
+  c.mid = 0.5 * (s0 + s1);
+  if (!(L > 0.0)) return c;  // radius 0: no segment (a span within rounding)
+  c.e = (s1 - s0) / L;
+  c.n = Vec2(c.e.y(), -c.e.x());
+  c.radius = 0.5 * L / std::sin(c.half);
+  return c;
+}
+
 bool angleOnArc(double t, const BoundaryPiece& arc) {
   double d = std::fmod(t - arc.angle0, kTwoPi);
   if (d < 0.0) d += kTwoPi;
@@ -189,6 +270,28 @@ AreaMoments areaMomentsAbout(const std::vector<BoundaryPiece>& boundary, const V
     if (p.kind != BoundaryPiece::Kind::Arc) continue;
     const double R = p.radius, R2 = R * R, R4 = R2 * R2;
     const double half = 0.5 * (p.angle1 - p.angle0), mid = 0.5 * (p.angle0 + p.angle1);
+    if (half < kSeriesHalfAngle) {
+      // about the chord's midpoint (arcChord), (u', v) along (nu, e), shifted to g
+      const ArcChord ch = arcChord(p);
+      const double Rc = ch.radius, Rc2 = Rc * Rc, Rc4 = Rc2 * Rc2;
+      const SegmentMoments seg = circularSegmentMoments(half);
+      const double A = Rc2 * seg.area, su = Rc * Rc2 * seg.first;
+      const double iuu = Rc4 * seg.normal2, ivv = Rc4 * seg.along2;
+      const Vec2& nu = ch.n;
+      const Vec2& e = ch.e;
+      const double sxc = su * nu.x(), syc = su * nu.y();
+      const double ixxc = iuu * nu.x() * nu.x() + ivv * e.x() * e.x();
+      const double iyyc = iuu * nu.y() * nu.y() + ivv * e.y() * e.y();
+      const double ixyc = iuu * nu.x() * nu.y() + ivv * e.x() * e.y();
+      const Vec2 d = ch.mid - g;
+      sum.area += A;
+      sum.sx += sxc + A * d.x();
+      sum.sy += syc + A * d.y();
+      sum.ixx += ixxc + 2.0 * d.x() * sxc + A * d.x() * d.x();
+      sum.iyy += iyyc + 2.0 * d.y() * syc + A * d.y() * d.y();
+      sum.ixy += ixyc + d.x() * syc + d.y() * sxc + A * d.x() * d.y();
+      continue;
+    }
     const double s = std::sin(half), c = std::cos(half);
     const double A = R2 * (half - s * c);
     const double su = 2.0 / 3.0 * R * R2 * s * s * s;

@@ -24,10 +24,12 @@
 // arcs). Both branches in the frame centred at g (P' = P - g), moved back to
 // O as in exact_polygon.cpp. Guarded by exact_arc_region_test.cpp
 // (FarBranchMatchesOracleAcrossKappa for the far branch).
+#include "arc_region_numerics.hpp"
 #include "exact_area_rule.hpp"
 #include "exact_boundary_moments.hpp"
 #include "exact_far_green.hpp"
 #include "gauss_tables.hpp"
+#include "planar.hpp"
 
 #include <patchspin/internal/exact.hpp>
 
@@ -47,6 +49,9 @@ constexpr double kFarRatio = 8.0;
 // arcs' end points).
 constexpr double kClosureRel = 1e-9;
 constexpr double kDeltaZeroRel = 1e-15;
+// Arcs of radius above this many region sizes make the far branch an area
+// rule (farAreaRule).
+constexpr double kFlatRadius = 16.0;
 // Target of the far rule's quadrature error relative to F's scale, well
 // below the 1e-10 contract (as the polygon law's default).
 constexpr double kQuadratureTol = 1e-13;
@@ -60,6 +65,64 @@ BoundaryPiece shifted(const BoundaryPiece& p, const Vec2& g) {
   BoundaryPiece q = p;
   q.a -= g, q.b -= g, q.centre -= g;
   return q;
+}
+
+// A flat arc's boundary moments (exact_boundary_moments.hpp's N1, M, N3, Q,
+// U) by Gauss-Legendre in the arc's chord frame (arcChord; g-frame points
+// P = mid + R' ((cos th - cos h) n + sin th e), normal cos th n + sin th e,
+// ds = R' dth): about its centre the arc's points carry ~eps R, eps / h^2
+// of a cap's height, and the elliptic forms of addArcMoments cancel with
+// them. The integrands are analytic but at P = c, so th is split at the
+// ICR's foot th_f and each side in panels [th_f + x q, th_f + x], q = 1/4,
+// from the side's end down to the ICR's distance / R' (or 1e-17 of the
+// span), order 20 (Bernstein ellipse 3 for the singularity at the panel's
+// near end: 3^-40). Guarded by FlatCapsNearBranchMatchOracle.
+void addFlatArcMoments(const BoundaryPiece& arc, const Vec2& g, const Vec2& c, bool withGradient,
+                       BoundaryMoments& acc) {
+  const GaussTables& gt = gaussTables();
+  constexpr int kOrder = 20;
+  constexpr double kGrade = 0.25;
+  const ArcChord ch = arcChord(arc);
+  if (!(ch.radius > 0.0)) return;
+  const double h = ch.half, Rp = ch.radius;
+  const Vec2 mid = ch.mid - g;
+  auto pointAt = [&](double th) {
+    const double bulge = 2.0 * std::sin(0.5 * (h - th)) * std::sin(0.5 * (h + th));
+    return Vec2(mid + Rp * (bulge * ch.n + std::sin(th) * ch.e));
+  };
+  // the ICR's foot: its angle about the centre (mid - R' cos h n), clamped
+  const Vec2 cm = c - mid;
+  const double thf = std::clamp(std::atan2(cm.dot(ch.e), cm.dot(ch.n) + Rp * std::cos(h)), -h, h);
+  const double dist = (pointAt(thf) - c).norm() / Rp;
+  auto panel = [&](double a, double b) {
+    for (int i = 0; i < kOrder; ++i) {
+      const double th = a + gt.x[kOrder][i] * (b - a);
+      const Vec2 P = pointAt(th);
+      const Vec2 nrm = std::cos(th) * ch.n + std::sin(th) * ch.e;
+      const double wt = gt.w[kOrder][i] * std::abs(b - a) * Rp;
+      const Vec2 r = P - c;
+      const double rc = r.norm();
+      acc.N1 += (wt * rc) * nrm;
+      acc.M += (wt * rc) * r * nrm.transpose();
+      acc.N3 += (wt * rc * rc * rc) * nrm;
+      if (!withGradient || !(rc > 0.0)) continue;
+      acc.Q += (wt / rc) * r * nrm.transpose();
+      const Mat2 rr = (wt / rc) * r * r.transpose();
+      acc.U[0] += nrm.x() * rr;
+      acc.U[1] += nrm.y() * rr;
+    }
+  };
+  const double smallest = std::max(dist, 1e-17 * h);
+  for (const double end : {-h, h}) {
+    double x = std::abs(end - thf);
+    if (!(x > 0.0)) continue;
+    const double sgn = end > thf ? 1.0 : -1.0;
+    while (x > smallest) {
+      panel(thf + sgn * kGrade * x, thf + sgn * x);
+      x *= kGrade;
+    }
+    panel(thf, thf + sgn * x);
+  }
 }
 
 // Near branch: F' (g-frame) from the boundary moments about c, and dF'/dw'
@@ -78,7 +141,10 @@ void nearBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const V
     if (p.kind == BoundaryPiece::Kind::Segment) {
       addSegmentMoments(p.a, p.b, c, kDeltaZeroRel * size, wantJacobian, mom);
     } else {
-      addArcMoments(p.centre, p.radius, p.angle0, p.angle1, c, wantJacobian, mom);
+      if (p.radius > kFlatRadius * size)
+        addFlatArcMoments(piece, g, c, wantJacobian, mom);
+      else
+        addArcMoments(p.centre, p.radius, p.angle0, p.angle1, c, wantJacobian, mom);
     }
   }
   const double trM = mom.M.trace();
@@ -238,6 +304,83 @@ void farBranch(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Ve
   farGreenBasis(sums, wl, rho, wantJacobian, acc);
 }
 
+// Far branch on a region with a flat arc (radius above kFlatRadius region
+// sizes): an area rule, since Green's theorem on a thin region (a cap of
+// half-angle h: boundary terms of size^2 for an area of ~size^2 h / 1.5)
+// cancels to eps / h, and an arc's points about its centre carry ~eps R,
+// eps / h^2 of the cap's height. The chord polygon (the pieces' start
+// points) in fan triangles from the first, as the polygon's far branch
+// (exact_polygon.cpp: bilinear map, order n both ways); each arc's circular
+// segment in rays from its chord's midpoint (arcChord):
+//   P(th, s) = mid + s R' ((cos th - cos h) n + sin th e),  th in [-h, h], s in [0, 1],
+//   dA = s R'^2 (1 - cos h cos th) ds dth,
+// with cos th - cos h = 2 sin((h - th)/2) sin((h + th)/2) and 1 - cos h cos th
+// = 2 sin^2(th/2) + 2 cos th sin^2(h/2) (no cancellation). Order n in s
+// (the integrand's polynomial part has the fan's degree there: 3, 4 with
+// dF); in th, where P is quadratic in th / h (the bulge), that part has
+// twice the degree (6, 8), so n + 2 (farOrder's 0.5 degree grows by 1.5,
+// 2), or the arc's trigonometric order if larger (arcSpanOrder without the
+// ICR), in the fewest equal parts that fit the tables (n alone in th: 1e-10
+// of F on a cap of h = 1.7e-4). Guarded by FlatCapsMatchChordQuadrature.
+template <bool kJacobian>
+void farAreaRule(const std::vector<BoundaryPiece>& pieces, const Vec2& g, const Vec3& wl,
+                 double rho, int n, double size, ExactBasis& acc) {
+  const GaussTables& gt = gaussTables();
+  const double inv = 1.0 / rho;
+  auto add = [&](const Vec2& P, double wt) {
+    addKernelNode<kJacobian, 3>(P, Vec3(wt, wt * P.x(), wt * P.y()), wl, inv, acc.F, acc.dF.data());
+  };
+  const std::size_t N = pieces.size();
+  const Vec2 p0 = pieces[0].start() - g;
+  for (std::size_t k = 1; k + 1 < N; ++k) {
+    // triangle (p0, p1, p2): the quadrilateral (p0, p1, p2, p0)
+    const Vec2 p1 = pieces[k].start() - g, p2 = pieces[k + 1].start() - g;
+    const Vec2 e01 = p1 - p0, e32 = p2 - p0;
+    for (int i = 0; i < n; ++i) {
+      const double s = gt.x[n][i];
+      const Vec2 a = (1.0 - s) * p0 + s * p1, b = (1.0 - s) * p0 + s * p2;
+      const Vec2 dPdt = b - a;
+      for (int j = 0; j < n; ++j) {
+        const double t = gt.x[n][j];
+        const Vec2 dPds = (1.0 - t) * e01 + t * e32;
+        const double det = dPds.x() * dPdt.y() - dPds.y() * dPdt.x();
+        add(a + t * dPdt, gt.w[n][i] * gt.w[n][j] * det);
+      }
+    }
+  }
+  for (const BoundaryPiece& p : pieces) {
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    const ArcChord ch = arcChord(p);
+    if (!(ch.radius > 0.0)) continue;
+    const double h = ch.half, Rp = ch.radius;
+    const Vec2 mid = ch.mid - g;
+    const double sh2 = std::sin(0.5 * h);
+    int parts = 1, nt = n;
+    for (;; ++parts) {
+      const double H = h / parts;
+      nt = std::max(n + 2,
+                    arcSpanOrder(H, 1.0, 0.0, Cx{}, false, Rp, size, kJacobian, kQuadratureTol));
+      if (nt <= kGaussMaxOrder || parts == 64) break;
+    }
+    nt = std::min(nt, kGaussMaxOrder);
+    const double H = h / parts;
+    for (int q = 0; q < parts; ++q) {
+      for (int i = 0; i < nt; ++i) {
+        const double th = -h + (2.0 * q + 2.0 * gt.x[nt][i]) * H;
+        const double sth = std::sin(th), cth = std::cos(th), st2 = std::sin(0.5 * th);
+        const double bulge = 2.0 * std::sin(0.5 * (h - th)) * std::sin(0.5 * (h + th));
+        const double jac = Rp * Rp * 2.0 * (st2 * st2 + cth * sh2 * sh2);
+        const Vec2 Q = Rp * (bulge * ch.n + sth * ch.e);
+        const double wth = 2.0 * H * gt.w[nt][i] * jac;
+        for (int j = 0; j < n; ++j) {
+          const double sr = gt.x[n][j];
+          add(mid + sr * Q, wth * gt.w[n][j] * sr);
+        }
+      }
+    }
+  }
+}
+
 // Order of the far rule on segments: exact_area_rule.hpp's farOrder at
 // kQuadratureTol (its model, a polynomial of degree 3 (4 with dF) times a
 // function analytic up to the ICR, fits the boundary integrand as it fitted
@@ -248,8 +391,48 @@ int arcFarOrder(double kappaSq, bool jacobian) {
 
 }  // namespace
 
-void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
-                         bool wantJacobian, ExactBasis& out) {
+namespace {
+
+void regionBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
+                 bool wantJacobian, ExactBasis& out, bool mayDecompose);
+
+// A thin region (area below kThinRatio size^2): both branches sum boundary
+// terms of ~size^2 for a result of ~area (the near branch's moments, the far
+// one's Green's theorem) and lose eps size^2 / area (the pi fuzz target's
+// 1.04 m x 1e-9 m sliver with a 1e-9 rad arc, pure spin about O on its
+// edge: |∫x (x/r)| = 1.5 ∫x). It is evaluated as its chord polygon (the
+// pieces' start points; the polygon law, whose near branch takes slivers
+// and whose far branch is an area rule) plus each arc's circular segment
+// (the arc closed by its chord, on its own). Guarded by
+// ThinRegionsMatchPolygonLaw.
+constexpr double kThinRatio = 1e-3;
+
+void decomposedBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
+                     bool wantJacobian, ExactBasis& out, bool withPolygon) {
+  out = ExactBasis{};
+  if (withPolygon) {
+    std::vector<Vec2> chord;
+    for (const BoundaryPiece& p : boundary) chord.push_back(p.start());
+    try {
+      exactPolygonBasis(chord, rho, w, wantJacobian, out);
+    } catch (const Error&) {
+      // its area, positive about g here, not about the vertex mean (rounding)
+      out = ExactBasis{};
+    }
+  }
+  for (const BoundaryPiece& p : boundary) {
+    if (p.kind != BoundaryPiece::Kind::Arc) continue;
+    const std::vector<BoundaryPiece> cap = {p, BoundaryPiece::segment(p.end(), p.start())};
+    ExactBasis part;
+    regionBasis(cap, rho, w, wantJacobian, part, false);
+    out.F += part.F;
+    if (wantJacobian)
+      for (int k = 0; k < 3; ++k) out.dF[k] += part.dF[k];
+  }
+}
+
+void regionBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
+                 bool wantJacobian, ExactBasis& out, bool mayDecompose) {
   const std::size_t N = boundary.size();
   if (N < 1) fail("need at least 1 boundary piece");
   if (!(rho > 0.0) || !std::isfinite(rho)) fail("rho must be finite and > 0");
@@ -301,16 +484,51 @@ void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho,
       fail("piece " + std::to_string(i) + " does not end where the next starts");
   }
 
+  if (mayDecompose && N >= 3) {
+    // area: the chord polygon (g-frame) and the circular segments
+    double twiceChord = 0.0, segments = 0.0;
+    for (std::size_t i = 0; i < N; ++i)
+      twiceChord += cross(Vec2(ends[2 * i] - g), Vec2(ends[2 * ((i + 1) % N)] - g));
+    for (const BoundaryPiece& p : boundary) {
+      if (p.kind != BoundaryPiece::Kind::Arc) continue;
+      const ArcChord ch = arcChord(p);
+      segments += ch.radius * ch.radius * circularSegmentMoments(ch.half).area;
+    }
+    if (0.5 * twiceChord + segments < kThinRatio * size * size) {
+      // (a chord polygon of no positive area, rounding, is left out)
+      decomposedBasis(boundary, rho, w, wantJacobian, out, twiceChord > 0.0);
+      return;
+    }
+  }
+
   // g's frame (exact_area_rule.hpp), kappa in units of size
   const RegionFrame frame(g, rho, w);
   ExactBasis l;  // g-frame
   if (frame.far(kFarRatio, size * size)) {
-    const int n = arcFarOrder(frame.kappaSq(size * size), wantJacobian);
-    farBranch(boundary, g, frame.wl, rho, n, size, wantJacobian, l);
+    bool flat = false;
+    for (const BoundaryPiece& p : boundary)
+      flat = flat || (p.kind == BoundaryPiece::Kind::Arc && p.radius > kFlatRadius * size);
+    if (flat) {
+      const int n = farOrder(frame.kappaSq(size * size), kQuadratureTol, wantJacobian);
+      if (wantJacobian)
+        farAreaRule<true>(boundary, g, frame.wl, rho, n, size, l);
+      else
+        farAreaRule<false>(boundary, g, frame.wl, rho, n, size, l);
+    } else {
+      const int n = arcFarOrder(frame.kappaSq(size * size), wantJacobian);
+      farBranch(boundary, g, frame.wl, rho, n, size, wantJacobian, l);
+    }
   } else {
     nearBranch(boundary, g, frame.wl, rho, size, wantJacobian, l);
   }
   basisAtO(l.F, l.dF, g, frame, wantJacobian, out);
+}
+
+}  // namespace
+
+void exactArcRegionBasis(const std::vector<BoundaryPiece>& boundary, double rho, const Vec3& w,
+                         bool wantJacobian, ExactBasis& out) {
+  regionBasis(boundary, rho, w, wantJacobian, out, true);
 }
 
 }  // namespace patchspin::internal

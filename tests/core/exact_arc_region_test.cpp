@@ -2,6 +2,7 @@
 // (internal::exactArcRegionBasis): against the brute-force oracle
 // (tests/support/exact_arc_oracle.hpp), against exactDiskBasis for an uncut
 // disk, and against exactPolygonBasis on fine inscribed polygons.
+#include <patchspin/geometry.hpp>
 #include <patchspin/internal/exact.hpp>
 
 #include <gtest/gtest.h>
@@ -23,6 +24,7 @@ using internal::exactArcRegionBasis;
 using internal::ExactBasis;
 using namespace testing::exact_arc;
 using testing::exact_polygon::kContractTol;
+using testing::exact_polygon::kernel;
 using testing::exact_polygon::relativeError;
 using testing::exact_polygon::wForIcr;
 
@@ -540,6 +542,310 @@ TEST(ExactArcRegionBasis, FiniteAndBoundedEverywhere) {
         ASSERT_TRUE(out.F.col(k).allFinite() && out.dF[k].allFinite())
             << nr.name << " w = " << w.transpose();
         EXPECT_LE(out.F.col(k).cwiseAbs().maxCoeff(), scale[k] * (1.0 + 1e-12)) << nr.name;
+      }
+    }
+  }
+}
+
+// Gauss-Legendre on [-1, 1] in long double (Newton on P_n).
+void gaussLegendreLong(int n, std::vector<long double>& x, std::vector<long double>& w) {
+  x.assign(n, 0.0L), w.assign(n, 0.0L);
+  const long double pi = 3.141592653589793238462643383279502884L;
+  for (int i = 0; i < n; ++i) {
+    long double z = std::cos(pi * (i + 0.75L) / (n + 0.5L)), dp = 0.0L;
+    for (int it = 0; it < 100; ++it) {
+      long double p0 = 1.0L, p1 = z;
+      for (int k = 2; k <= n; ++k) {
+        const long double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+        p0 = p1, p1 = p2;
+      }
+      dp = n * (z * p1 - p0) / (z * z - 1.0L);
+      const long double dz = p1 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-21L) break;
+    }
+    x[i] = z;
+    w[i] = 2.0L / ((1.0L - z * z) * dp * dp);
+  }
+}
+
+// A cap of the unit circle about c0 (half-angle h about direction t0, closed
+// by its chord) and F on it by a tensor Gauss-Legendre rule (40 x 40) in the
+// chord's frame, as its pieces' end points define it (the segment's ends,
+// mid M, direction e, outward n, radius R' = |end - start| / (2 sin h)):
+// y along e in [-L/2, L/2], x along n in [0, (L/2 - y)(L/2 + y) /
+// (sqrt(R'^2 - y^2) + R' cos h)] (the height without cancellation). The
+// kernel is the oracle's; the rule is exact to rounding while the ICR is
+// many cap sizes away (the integrand analytic on a neighbourhood of the cap
+// many times its size). Also the cap's area.
+Region flatCap(const Vec2& c0, double t0, double h) {
+  Region cap = {BoundaryPiece::arc(c0, 1.0, t0 - h, t0 + h),
+                BoundaryPiece::segment(Vec2::Zero(), Vec2::Zero())};
+  cap[1] = BoundaryPiece::segment(cap[0].end(), cap[0].start());
+  return cap;
+}
+Mat3 capByChordRule(const Region& cap, double rho, const Vec3& w, double& area) {
+  // the half-angle as stored (t0 +- h rounds it by ~eps t0 / h relative)
+  const double h = 0.5 * (cap[0].angle1 - cap[0].angle0);
+  std::vector<long double> gx, gw;
+  gaussLegendreLong(40, gx, gw);
+  const Vec2 s0 = cap[0].start(), s1 = cap[0].end();
+  const double L = (s1 - s0).norm();
+  const Vec2 e = (s1 - s0) / L, n(e.y(), -e.x()), M = 0.5 * (s0 + s1);
+  const double Rp = 0.5 * L / std::sin(h);
+  Mat3 F = Mat3::Zero();
+  area = 0.0;
+  for (std::size_t i = 0; i < gx.size(); ++i) {
+    const double y = 0.5 * L * static_cast<double>(gx[i]);
+    const double wy = 0.5 * L * static_cast<double>(gw[i]);
+    const double top =
+        (0.5 * L - y) * (0.5 * L + y) / (std::sqrt(Rp * Rp - y * y) + Rp * std::cos(h));
+    for (std::size_t j = 0; j < gx.size(); ++j) {
+      const double x = 0.5 * top * (1.0 + static_cast<double>(gx[j]));
+      const double wt = wy * 0.5 * top * static_cast<double>(gw[j]);
+      const Vec2 P = M + x * n + y * e;
+      F += wt * kernel(w, rho, P.x(), P.y()) * Vec3(1.0, P.x(), P.y()).transpose();
+      area += wt;
+    }
+  }
+  return F;
+}
+
+// Flat caps (half-angles 0.05 down to 5e-10, the pi fuzz target's 1e-9 span)
+// in the far branch, which for an arc of radius > 16 region sizes is an
+// area rule (farAreaRule: Green's theorem on the thin cap cancelled to eps
+// / h, the arc's points about its centre to eps / h^2, |(pi_x0, pi_y0)| =
+// 1.83 at h = 5e-10). Directions: pure spin about O (the circle's centre,
+// as the moment table's rows with r), translations and ICRs 12 to 1e4 cap
+// sizes from the cap. Asserted, relative to the column scale A max|phi|
+// (1 + max|P|/rho) of the reference's A:
+//  * F, with and without dF, against capByChordRule to kFlatCapTol = 1e-13
+//    (the far rule's target; both rules exact to rounding here);
+//  * F with and without dF to kFlatCapTol of each other (the friction_q
+//    fuzz check: 3e-9 at h = 1.7e-4 before);
+//  * dF against Richardson-extrapolated central differences to 1e-8 of the
+//    scale (JacobianMatchesFiniteDifferences' kFdTol), steps that move the
+//    ICR by 1e-3 of its distance, for h >= 1e-4 (on smaller caps F's
+//    rounding over such steps exceeds the tolerance: 6e-4 at h = 5e-10);
+//  * at pure spin about O, |(F(0, 0), F(1, 0))| <= A (1 + kUnitTol), A the
+//    area moments' (the kernel is a unit vector; kUnitTol = 1e-14, a few
+//    rounding errors of the area and the sum).
+TEST(ExactArcRegionBasis, FlatCapsMatchChordQuadrature) {
+  constexpr double kFlatCapTol = 1e-13, kUnitTol = 1e-14;
+  const double t0 = 0.7;
+  const Vec2 dir0(std::cos(t0), std::sin(t0));
+  for (const Vec2& c0 : {Vec2(0.0, 0.0), Vec2(0.3, -0.2), Vec2(-dir0)}) {
+    // the last: the cap at O (within h^2), where ICRs a few cap sizes out
+    // are given to eps of the cap (elsewhere w fixes them to eps of |P|,
+    // 1e-7 of a cap of 2e-9)
+    const bool capAtO = c0 == -dir0;
+    for (double h : {0.05, 1.7e-4, 1e-6, 5e-10}) {
+      const Region cap = flatCap(c0, t0, h);
+      const Vec2 mid = c0 + std::cos(h) * dir0;
+      const double capSize = std::sin(h);
+      for (double rho : {1.0, capSize}) {
+        std::vector<std::pair<std::string, Vec3>> ws = {{"translation", Vec3(0.6, -0.8, 0)}};
+        if (capAtO) {
+          for (double kappa : {12.0, 100.0, 1e4})
+            for (double dir : {0.0, 2.0, 4.0})
+              ws.push_back({"ICR " + std::to_string(kappa) + " sizes out",
+                            wForIcr(mid + kappa * capSize * Vec2(std::cos(dir), std::sin(dir)), rho,
+                                    dir > 1.0 ? -1.0 : 1.0)});
+        } else {
+          ws.push_back({"pure spin about O", Vec3(0, 0, 1)});
+          ws.push_back({"pure spin about O, -", Vec3(0, 0, -1)});
+        }
+        for (const auto& [label, w] : ws) {
+          char at[160];
+          std::snprintf(at, sizeof at, "h = %g, rho = %g, c0 = (%g, %g), %s", h, rho, c0.x(),
+                        c0.y(), label.c_str());
+          double A = 0.0;
+          const Mat3 ref = capByChordRule(cap, rho, w, A);
+          double rmax = 0.0;
+          for (const BoundaryPiece& p : cap) rmax = std::max(rmax, p.start().norm());
+          const double s = A * (1.0 + (rmax + capSize) / rho);
+          const Vec3 scale(s, s * (rmax + capSize), s * (rmax + capSize));
+          ExactBasis plain, withJ;
+          exactArcRegionBasis(cap, rho, w, false, plain);
+          exactArcRegionBasis(cap, rho, w, true, withJ);
+          EXPECT_LE(relativeError(plain.F, ref, scale), kFlatCapTol) << at << "\n"
+                                                                     << plain.F << "\n"
+                                                                     << ref;
+          EXPECT_LE(relativeError(withJ.F, ref, scale), kFlatCapTol) << at;
+          EXPECT_LE(relativeError(withJ.F, plain.F, scale), kFlatCapTol) << at;
+          // dF against Richardson-extrapolated central differences, as
+          // JacobianMatchesFiniteDifferences (kFdTol 1e-8 of the scale)
+          auto difference = [&](int j, double step) {
+            ExactBasis plus, minus;
+            Vec3 wp = w, wm = w;
+            wp[j] += step, wm[j] -= step;
+            exactArcRegionBasis(cap, rho, wp, false, plus);
+            exactArcRegionBasis(cap, rho, wm, false, minus);
+            return Mat3((plus.F - minus.F) / (2.0 * step));
+          };
+          // the step moves the ICR by <= 1e-3 of its distance to the cap
+          // (rho |dw| / |w3|, plus |c| |dw3| / |w3|), or, in translation,
+          // puts it >= 1e3 (rho / max|P|) away
+          double step = 1e-3 * std::min(1.0, rho / (rmax + capSize));
+          if (w.z() != 0.0) {
+            const Vec2 c(-rho * w.y() / w.z(), rho * w.x() / w.z());
+            step = std::min(1e-3, 1e-3 * (c - mid).norm() * std::abs(w.z()) / (rho + c.norm()));
+          }
+          for (int j = 0; j < 3 && h >= 1e-4; ++j) {
+            const Mat3 fd = (4.0 * difference(j, 0.5 * step) - difference(j, step)) / 3.0;
+            for (int k = 0; k < 3; ++k)
+              EXPECT_LE((withJ.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k], 1e-8)
+                  << at << " column " << k << " dw" << j;
+          }
+          if (w == Vec3(0, 0, 1) && c0 == Vec2::Zero()) {
+            const double area = areaMomentsOf(cap).area;
+            EXPECT_NEAR(area, A, 1e-14 * A) << at;
+            EXPECT_LE(plain.F.col(0).head<2>().norm(), area * (1.0 + kUnitTol)) << at;
+          }
+        }
+      }
+    }
+  }
+}
+
+// A square face on a disk whose radius is just below the square's
+// half-diagonal (by a relative 1e-7 and 1e-12): four short arcs at the
+// corners (spans 1.3e-3 and 4e-6 rad), a region the Green's-theorem branches
+// handle with their arcs about the centre (radius ~ the region's size).
+// Against the brute-force oracle at testDirections' places (the first
+// piece an arc) to the contract kContractTol, as
+// MatchesBruteForceOracleEverywhere; F with and without dF to 1e-13 of the
+// column scale (the far rule's target; the near branch's F does not
+// depend on it).
+TEST(ExactArcRegionBasis, ShortCornerArcsMatchOracle) {
+  const double half = 0.05;
+  const Vec2 c(0.002, -0.001);
+  const std::vector<Vec2> square = {c + Vec2(-half, -half), c + Vec2(half, -half),
+                                    c + Vec2(half, half), c + Vec2(-half, half)};
+  for (double cut : {1e-7, 1e-12}) {
+    const double R = std::sqrt(2.0) * half * (1.0 - cut);
+    Region region = diskPolygonIntersection(c, R, square);
+    ASSERT_EQ(region.size(), 8u);
+    if (region[0].kind != BoundaryPiece::Kind::Arc)
+      std::rotate(region.begin(), region.begin() + 1, region.end());
+    ASSERT_EQ(region[0].kind, BoundaryPiece::Kind::Arc);
+    const double rho = 0.04;
+    const Vec3 scale = columnScales(region, rho);
+    for (const auto& [label, w] : testDirections(region, rho)) {
+      ExactBasis plain, withJ;
+      exactArcRegionBasis(region, rho, w, false, plain);
+      exactArcRegionBasis(region, rho, w, true, withJ);
+      const Mat3 ref = oracleF(region, rho, w);
+      EXPECT_LE(relativeError(plain.F, ref, scale), kContractTol)
+          << "cut " << cut << " / " << label;
+      EXPECT_LE(relativeError(withJ.F, plain.F, scale), 1e-13) << "cut " << cut << " / " << label;
+    }
+  }
+}
+
+// Thin regions (area below 1e-3 size^2) are their chord polygon plus the
+// arcs' circular segments (exact_arc_region.cpp: summed boundary terms lost
+// eps size^2 / area). The pi fuzz target's sliver, 1.04 m x 1e-9 m with a
+// 1e-9 rad arc of radius 1 about O at its foot (its circular segment 1e-28
+// of the area), against the polygon law on its pieces' start points, at
+// pure spin about O (on its edge: |∫x (x/r)| was 1.5 ∫x), translations and
+// ICRs on, near and far from it: within kThinTol = 1e-13 of the column
+// scale (the two laws' own ~1e-13 against their oracles; the arc's segment
+// is 1e-19 of the scale), F and dF.
+TEST(ExactArcRegionBasis, ThinRegionsMatchPolygonLaw) {
+  constexpr double kThinTol = 1e-13;
+  const Region sliver = {
+      BoundaryPiece::segment(Vec2(-1.2912755008898694e-236, 0.04044342041015625),
+                             Vec2(6.123233995736766e-17, -1)),
+      BoundaryPiece::arc(Vec2(0, 0), 1, -1.5707963267948966, -1.5707963257900757),
+      BoundaryPiece::segment(Vec2(1.0048209543902383e-09, -1),
+                             Vec2(1.0048211152025033e-09, -1.0230525589846103e-306)),
+      BoundaryPiece::segment(Vec2(1.0048211152025033e-09, -1.0230525589846103e-306),
+                             Vec2(-1.2912755008898694e-236, 0.04044342041015625))};
+  std::vector<Vec2> chord;
+  for (const BoundaryPiece& p : sliver) chord.push_back(p.start());
+  for (double rho : {0.49035674092091064, 1e-9}) {
+    const std::vector<std::pair<std::string, Vec3>> ws = {
+        {"pure spin about O", Vec3(0, 0, 1)},
+        {"pure spin about O, -", Vec3(0, 0, -1)},
+        {"translation", Vec3(0.6, -0.8, 0)},
+        {"ICR mid-sliver", wForIcr(Vec2(5e-10, -0.5), rho, 1.0)},
+        {"ICR beside the sliver", wForIcr(Vec2(0.01, -0.3), rho, -1.0)},
+        {"ICR 20 m out", wForIcr(Vec2(20.0, 3.0), rho, 1.0)}};
+    double area = 0.0;
+    for (std::size_t i = 0; i < chord.size(); ++i)
+      area += 0.5 * (chord[i].x() * chord[(i + 1) % chord.size()].y() -
+                     chord[i].y() * chord[(i + 1) % chord.size()].x());
+    const double s = area * (1.0 + 1.05 / rho);
+    const Vec3 scale(s, s * 1.1e-9, s * 1.05);
+    for (const auto& [label, w] : ws) {
+      ExactBasis arc, poly;
+      exactArcRegionBasis(sliver, rho, w, true, arc);
+      internal::exactPolygonBasis(chord, rho, w, true, poly);
+      EXPECT_LE(relativeError(arc.F, poly.F, scale), kThinTol) << "rho " << rho << ", " << label;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_LE(relativeError(arc.dF[k], poly.dF[k], scale), kThinTol)
+            << "rho " << rho << ", " << label << ", dF " << k;
+    }
+  }
+}
+
+// The near branch on flat caps (arcs of radius > 16 region sizes: their
+// boundary moments by graded Gauss panels in the chord frame,
+// addFlatArcMoments; about the centre they were 3.3e-5 of the scale off at h
+// = 0.01, 11 at h = 1e-3). The unit circle's cap at O, rho its half-chord,
+// ICRs at its centroid, a chord end, the arc's middle, 2 and 6 cap sizes
+// out: F against the brute-force oracle to the contract kContractTol (the
+// oracle's chord heights lose ~eps / h^2, 2.5e-11 at h = 3e-3; measured
+// worst 2.7e-11), dF (ICRs off the boundary) against finite differences.
+TEST(ExactArcRegionBasis, FlatCapsNearBranchMatchOracle) {
+  const double t0 = 0.7;
+  const Vec2 dir0(std::cos(t0), std::sin(t0)), e(-dir0.y(), dir0.x());
+  for (double h : {0.05, 0.01, 3e-3}) {
+    const Region cap = flatCap(-dir0, t0, h);
+    const double rho = std::sin(h);
+    const Vec3 scale = columnScales(cap, rho);
+    const Vec2 mid = -dir0 + std::cos(h) * dir0;
+    const std::vector<std::pair<std::string, Vec2>> icrs = {
+        {"centroid", mid - 0.3 * h * h * dir0},
+        {"chord end", cap[0].start()},
+        {"arc middle", mid + (1.0 - std::cos(h)) * dir0},
+        {"2 sizes out", mid + 2.0 * h * e},
+        {"6 sizes out", mid + 6.0 * h * dir0}};
+    for (const auto& [label, icr] : icrs) {
+      for (double spin : {1.0, -1.0}) {
+        const Vec3 w = wForIcr(icr, rho, spin);
+        ExactBasis out;
+        exactArcRegionBasis(cap, rho, w, true, out);
+        const Mat3 ref = oracleF(cap, rho, w);
+        EXPECT_LE(relativeError(out.F, ref, scale), kContractTol)
+            << "h = " << h << ", ICR at " << label << ", spin " << spin;
+        if (label == "chord end" || label == "arc middle") continue;  // (F'' log-singular)
+        // dF against Richardson differences: the smaller error of steps 1e-3
+        // and 1e-4 (truncation falls with the step, F's rounding over the
+        // step grows: measured at h = 0.05, ICR 6 sizes out, 3.9e-9 / 4.1e-8 /
+        // 7e-7 at 1e-3 / 1e-4 / 1e-5; at h = 0.01 3.1e-8 at best), to
+        // kNearFdTol = 1e-7 of the scale (a wrong dF term is >= 1e-3)
+        auto difference = [&](int j, double dw) {
+          ExactBasis plus, minus;
+          Vec3 wp = w, wm = w;
+          wp[j] += dw, wm[j] -= dw;
+          exactArcRegionBasis(cap, rho, wp, false, plus);
+          exactArcRegionBasis(cap, rho, wm, false, minus);
+          return Mat3((plus.F - minus.F) / (2.0 * dw));
+        };
+        constexpr double kNearFdTol = 1e-7;
+        for (int j = 0; j < 3; ++j) {
+          double best = INFINITY;
+          for (double step : {1e-3, 1e-4}) {
+            const Mat3 fd = (4.0 * difference(j, 0.5 * step) - difference(j, step)) / 3.0;
+            double err = 0.0;
+            for (int k = 0; k < 3; ++k)
+              err = std::max(err, (out.dF[k].col(j) - fd.col(k)).cwiseAbs().maxCoeff() / scale[k]);
+            best = std::min(best, err);
+          }
+          EXPECT_LE(best, kNearFdTol) << "h = " << h << ", ICR at " << label << ", dw" << j;
+        }
       }
     }
   }
