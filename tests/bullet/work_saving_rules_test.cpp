@@ -140,24 +140,34 @@ TEST(PatchFrictionSolver, QuickStickTestsBreakAwayWhereTheSolveDoes) {
 // 100 times the float round-off of the 10 cm scene's positions.
 constexpr double kDeferPositionTol = kDouble ? 1e-9 : 1e-5;
 
+// The settling scene of the deferred-refresh and round-off tests: on a
+// ground plane, an offset stack of three boxes (the middle one exact, the
+// others ellipsoidal) beside a coin (exact) sliding and spinning to a stop;
+// the bodies, the coin last.
+std::vector<btRigidBody*> addSettlingScene(Scene& scene) {
+  scene.addGroundPlane(1.0);
+  std::vector<btRigidBody*> bodies;
+  for (int i = 0; i < 3; ++i) {
+    btRigidBody* b = scene.addBox(
+        btVector3(0.08f, 0.06f, 0.03f), 1.0,
+        btVector3(btScalar(0.025 * i), btScalar(-0.015 * i), btScalar(0.03 + 0.06 * i)), 0.6);
+    scene.solver().enablePatchFriction(b, {i == 1 ? Model::Exact : Model::Ellipsoidal});
+    bodies.push_back(b);
+  }
+  btRigidBody* coin =
+      scene.addCylinder(kR, kH, kMass, btVector3(-0.5f, 0.3f, btScalar(kH / 2)), kMu);
+  coin->setLinearVelocity(btVector3(0.6f, 0.1f, 0));
+  coin->setAngularVelocity(btVector3(0, 0, 8));
+  scene.solver().enablePatchFriction(coin, {Model::Exact});
+  bodies.push_back(coin);
+  return bodies;
+}
+
 TEST(PatchFrictionSolver, DeferredRefreshesLeaveASettlingSceneAsItIs) {
   auto run = [](bool defer, PatchSolverStats* sum) {
     Scene scene(kG);
-    scene.addGroundPlane(1.0);
-    std::vector<btRigidBody*> bodies;
-    for (int i = 0; i < 3; ++i) {
-      btRigidBody* b = scene.addBox(
-          btVector3(0.08f, 0.06f, 0.03f), 1.0,
-          btVector3(btScalar(0.025 * i), btScalar(-0.015 * i), btScalar(0.03 + 0.06 * i)), 0.6);
-      scene.solver().enablePatchFriction(b, {i == 1 ? Model::Exact : Model::Ellipsoidal});
-      bodies.push_back(b);
-    }
-    btRigidBody* coin =
-        scene.addCylinder(kR, kH, kMass, btVector3(-0.5f, 0.3f, btScalar(kH / 2)), kMu);
-    coin->setLinearVelocity(btVector3(0.6f, 0.1f, 0));
-    coin->setAngularVelocity(btVector3(0, 0, 8));
-    scene.solver().enablePatchFriction(coin, {Model::Exact});
-    bodies.push_back(coin);
+    const std::vector<btRigidBody*> bodies = addSettlingScene(scene);
+    btRigidBody* coin = bodies.back();
     PatchSolverSettings settings;
     settings.deferStickingRefresh = defer;
     scene.solver().setSettings(settings);
@@ -243,21 +253,7 @@ TEST(PatchFrictionSolver, SettlingOnRoundOffSavesAVisitAndKeepsTheMotion) {
   }
   auto run = [](bool rule, long* visits) {
     Scene scene(kG);
-    scene.addGroundPlane(1.0);
-    std::vector<btRigidBody*> bodies;
-    for (int i = 0; i < 3; ++i) {
-      btRigidBody* b = scene.addBox(
-          btVector3(0.08f, 0.06f, 0.03f), 1.0,
-          btVector3(btScalar(0.025 * i), btScalar(-0.015 * i), btScalar(0.03 + 0.06 * i)), 0.6);
-      scene.solver().enablePatchFriction(b, {i == 1 ? Model::Exact : Model::Ellipsoidal});
-      bodies.push_back(b);
-    }
-    btRigidBody* coin =
-        scene.addCylinder(kR, kH, kMass, btVector3(-0.5f, 0.3f, btScalar(kH / 2)), kMu);
-    coin->setLinearVelocity(btVector3(0.6f, 0.1f, 0));
-    coin->setAngularVelocity(btVector3(0, 0, 8));
-    scene.solver().enablePatchFriction(coin, {Model::Exact});
-    bodies.push_back(coin);
+    const std::vector<btRigidBody*> bodies = addSettlingScene(scene);
     PatchSolverSettings settings;
     settings.settleOnRoundOff = rule;
     scene.solver().setSettings(settings);

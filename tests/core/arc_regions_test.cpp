@@ -9,6 +9,7 @@
 #include "arc_region_quadrature.hpp"
 #include "clip_polygon.hpp"
 #include "error_matchers.hpp"
+#include "gauss_legendre_long.hpp"
 
 #include <cmath>
 #include <random>
@@ -168,28 +169,7 @@ TEST(ArcRegions, AreaMomentsMatchQuadrature) {
   }
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1] in long double (Newton on
-// P_n from the Chebyshev guesses).
-void gaussLegendreLong(int n, std::vector<long double>& x, std::vector<long double>& w) {
-  x.assign(n, 0.0L), w.assign(n, 0.0L);
-  const long double pi = 3.141592653589793238462643383279502884L;
-  for (int i = 0; i < n; ++i) {
-    long double z = std::cos(pi * (i + 0.75L) / (n + 0.5L)), dp = 0.0L;
-    for (int it = 0; it < 100; ++it) {
-      long double p0 = 1.0L, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const long double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1, p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1.0L);
-      const long double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-21L) break;
-    }
-    x[i] = z;
-    w[i] = 2.0L / ((1.0L - z * z) * dp * dp);
-  }
-}
+using patchspin::testing::gaussLegendreLong;
 
 // The circular segment of radius R and half-angle a (the arc from -a to a
 // of the circle about (-R cos a, 0), closed by its chord on the y axis; the

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "exact_arc_oracle.hpp"
+#include "gauss_legendre_long.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -547,27 +548,7 @@ TEST(ExactArcRegionBasis, FiniteAndBoundedEverywhere) {
   }
 }
 
-// Gauss-Legendre on [-1, 1] in long double (Newton on P_n).
-void gaussLegendreLong(int n, std::vector<long double>& x, std::vector<long double>& w) {
-  x.assign(n, 0.0L), w.assign(n, 0.0L);
-  const long double pi = 3.141592653589793238462643383279502884L;
-  for (int i = 0; i < n; ++i) {
-    long double z = std::cos(pi * (i + 0.75L) / (n + 0.5L)), dp = 0.0L;
-    for (int it = 0; it < 100; ++it) {
-      long double p0 = 1.0L, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const long double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1, p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1.0L);
-      const long double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-21L) break;
-    }
-    x[i] = z;
-    w[i] = 2.0L / ((1.0L - z * z) * dp * dp);
-  }
-}
+using patchspin::testing::gaussLegendreLong;
 
 // A cap of the unit circle about c0 (half-angle h about direction t0, closed
 // by its chord) and F on it by a tensor Gauss-Legendre rule (40 x 40) in the
